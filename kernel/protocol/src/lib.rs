@@ -1,0 +1,295 @@
+//! The serial protocol between the kernel and the host, shared by both
+//! sides so they cannot drift apart. The README's "Protocol" section is the
+//! prose version of this file.
+//!
+//! Host to kernel: one ASCII command per line (`\n`, a `\r` before it is
+//! ignored), at most [`MAX_LINE`] bytes. Kernel to host: frames, each a
+//! header line `@KIND LEN CRC32\n` (LEN in decimal, CRC32 of the payload in
+//! 8 lowercase hex digits), then LEN payload bytes, then `\n`. Anything
+//! between frames is noise and the host skips it.
+#![no_std]
+
+use core::fmt;
+
+/// Longest command line the kernel accepts, terminator excluded.
+pub const MAX_LINE: usize = 4096;
+/// Bytes in a mode-13h framebuffer.
+pub const FRAMEBUFFER_LEN: usize = 320 * 200;
+/// Bytes in a dump: the framebuffer read back from 0xA0000, then the 256
+/// DAC entries read back as 6-bit red, green, blue.
+pub const DUMP_LEN: usize = FRAMEBUFFER_LEN + 768;
+/// The byte that starts every frame header.
+pub const FRAME_MARK: u8 = b'@';
+
+/// Which CPU fault the test-only `FAULT` command provokes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FaultKind {
+    Breakpoint,
+    PageFault,
+    DoubleFault,
+    Panic,
+}
+
+impl FaultKind {
+    pub const ALL: [FaultKind; 4] = [FaultKind::Breakpoint, FaultKind::PageFault, FaultKind::DoubleFault, FaultKind::Panic];
+
+    pub const fn name(self) -> &'static str {
+        match self {
+            FaultKind::Breakpoint => "breakpoint",
+            FaultKind::PageFault => "pagefault",
+            FaultKind::DoubleFault => "doublefault",
+            FaultKind::Panic => "panic",
+        }
+    }
+}
+
+/// A host request.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Command<'a> {
+    /// `PING`: answers `OK pong`.
+    Ping,
+    /// `LIST`: answers a `LIST` frame, lines `scene NAME` and `method NAME`.
+    List,
+    /// `DRAW SCENE [METHOD]`: draws a built-in scene; answers `OK`.
+    Draw { scene: &'a str, method: Option<&'a str> },
+    /// `CLEAR C`: fills the screen with colour C.
+    Clear(u8),
+    /// `POLY METHOD <poly line>`: fills one polygon written as a scene-file
+    /// `poly` line without the keyword, e.g. `POLY exact color=4 0,0 9,0 0,9`.
+    Poly { method: &'a str, spec: &'a str },
+    /// `DUMP`: answers a `DUMP` frame of [`DUMP_LEN`] bytes.
+    Dump,
+    /// `VGACHECK`: reads every mode-13h register and the DAC back; answers
+    /// `OK` or an `ERR` listing the mismatches.
+    VgaCheck,
+    /// `EXIT CODE`: leaves QEMU through isa-debug-exit with CODE (0-255).
+    Exit(u8),
+    /// `FAULT KIND`: test only; provokes a fault, which must be reported.
+    Fault(FaultKind),
+}
+
+/// Why a command line was rejected.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CommandError<'a> {
+    Empty,
+    NotAscii,
+    TooLong,
+    Unknown(&'a str),
+    MissingArgument(&'static str),
+    BadArgument(&'a str),
+    ExtraArgument(&'a str),
+}
+
+impl fmt::Display for CommandError<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CommandError::Empty => write!(f, "empty command"),
+            CommandError::NotAscii => write!(f, "command is not printable ASCII"),
+            CommandError::TooLong => write!(f, "command longer than {MAX_LINE} bytes"),
+            CommandError::Unknown(word) => write!(f, "unknown command `{word}`"),
+            CommandError::MissingArgument(what) => write!(f, "missing argument: {what}"),
+            CommandError::BadArgument(word) => write!(f, "bad argument `{word}`"),
+            CommandError::ExtraArgument(word) => write!(f, "unexpected argument `{word}`"),
+        }
+    }
+}
+
+impl<'a> Command<'a> {
+    /// Parses one line (without its terminator).
+    pub fn parse(line: &'a [u8]) -> Result<Self, CommandError<'a>> {
+        if line.len() > MAX_LINE {
+            return Err(CommandError::TooLong);
+        }
+        let line = line.strip_suffix(b"\r").unwrap_or(line);
+        if !line.iter().all(|b| (0x20..0x7f).contains(b) || *b == b'\t') {
+            return Err(CommandError::NotAscii);
+        }
+        let line = core::str::from_utf8(line).map_err(|_| CommandError::NotAscii)?;
+        let mut words = line.split_ascii_whitespace();
+        let name = words.next().ok_or(CommandError::Empty)?;
+        let command = match name {
+            "PING" => Command::Ping,
+            "LIST" => Command::List,
+            "DRAW" => Command::Draw { scene: words.next().ok_or(CommandError::MissingArgument("scene"))?, method: words.next() },
+            "CLEAR" => Command::Clear(parse_u8(words.next().ok_or(CommandError::MissingArgument("colour"))?)?),
+            "POLY" => {
+                let method = words.next().ok_or(CommandError::MissingArgument("method"))?;
+                let rest = line.trim_start();
+                let rest = rest[name.len()..].trim_start();
+                let spec = rest[method.len()..].trim();
+                if spec.is_empty() {
+                    return Err(CommandError::MissingArgument("polygon"));
+                }
+                return Ok(Command::Poly { method, spec });
+            }
+            "DUMP" => Command::Dump,
+            "VGACHECK" => Command::VgaCheck,
+            "EXIT" => Command::Exit(parse_u8(words.next().ok_or(CommandError::MissingArgument("code"))?)?),
+            "FAULT" => {
+                let kind = words.next().ok_or(CommandError::MissingArgument("fault kind"))?;
+                let fault = FaultKind::ALL.into_iter().find(|k| k.name() == kind).ok_or(CommandError::BadArgument(kind))?;
+                Command::Fault(fault)
+            }
+            other => return Err(CommandError::Unknown(other)),
+        };
+        match words.next() {
+            Some(extra) => Err(CommandError::ExtraArgument(extra)),
+            None => Ok(command),
+        }
+    }
+}
+
+fn parse_u8(word: &str) -> Result<u8, CommandError<'_>> {
+    word.parse().map_err(|_| CommandError::BadArgument(word))
+}
+
+impl fmt::Display for Command<'_> {
+    /// The command line as the host sends it (no terminator).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Command::Ping => write!(f, "PING"),
+            Command::List => write!(f, "LIST"),
+            Command::Draw { scene, method: Some(method) } => write!(f, "DRAW {scene} {method}"),
+            Command::Draw { scene, method: None } => write!(f, "DRAW {scene}"),
+            Command::Clear(color) => write!(f, "CLEAR {color}"),
+            Command::Poly { method, spec } => write!(f, "POLY {method} {spec}"),
+            Command::Dump => write!(f, "DUMP"),
+            Command::VgaCheck => write!(f, "VGACHECK"),
+            Command::Exit(code) => write!(f, "EXIT {code}"),
+            Command::Fault(kind) => write!(f, "FAULT {}", kind.name()),
+        }
+    }
+}
+
+/// What a frame carries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameKind {
+    /// Sent once at boot when the console is ready; payload: the VGA
+    /// read-back summary.
+    Ready,
+    /// A command succeeded; payload: a short text.
+    Ok,
+    /// A command failed; payload: what was wrong. The kernel keeps serving.
+    Err,
+    /// Answer to `LIST`.
+    List,
+    /// Answer to `DUMP`: [`DUMP_LEN`] bytes.
+    Dump,
+    /// Unrequested information, e.g. a VGA register mismatch at boot.
+    Log,
+    /// A panic or CPU exception; the kernel exits QEMU with a failure code.
+    Fatal,
+}
+
+impl FrameKind {
+    pub const ALL: [FrameKind; 7] =
+        [FrameKind::Ready, FrameKind::Ok, FrameKind::Err, FrameKind::List, FrameKind::Dump, FrameKind::Log, FrameKind::Fatal];
+
+    pub const fn name(self) -> &'static str {
+        match self {
+            FrameKind::Ready => "READY",
+            FrameKind::Ok => "OK",
+            FrameKind::Err => "ERR",
+            FrameKind::List => "LIST",
+            FrameKind::Dump => "DUMP",
+            FrameKind::Log => "LOG",
+            FrameKind::Fatal => "FATAL",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|k| k.name() == name)
+    }
+}
+
+/// The header line of a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FrameHeader {
+    pub kind: FrameKind,
+    pub len: usize,
+    pub crc: u32,
+}
+
+impl FrameHeader {
+    /// The header for `payload`.
+    pub fn for_payload(kind: FrameKind, payload: &[u8]) -> Self {
+        Self { kind, len: payload.len(), crc: crc32fast::hash(payload) }
+    }
+
+    /// Parses a header line (without `\n`); `None` if it is not one.
+    pub fn parse(line: &str) -> Option<Self> {
+        let rest = line.strip_prefix(FRAME_MARK as char)?;
+        let mut words = rest.split(' ');
+        let kind = FrameKind::from_name(words.next()?)?;
+        let len = words.next()?.parse().ok()?;
+        let crc = words.next().filter(|w| w.len() == 8)?;
+        let crc = u32::from_str_radix(crc, 16).ok()?;
+        words.next().is_none().then_some(Self { kind, len, crc })
+    }
+
+    /// Whether `payload` is the one this header announced.
+    pub fn matches(&self, payload: &[u8]) -> bool {
+        payload.len() == self.len && crc32fast::hash(payload) == self.crc
+    }
+}
+
+impl fmt::Display for FrameHeader {
+    /// The header line without its `\n`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "@{} {} {:08x}", self.kind.name(), self.len, self.crc)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::string::ToString;
+
+    #[test]
+    fn commands_round_trip_through_their_text() {
+        let commands = [
+            Command::Ping,
+            Command::List,
+            Command::Draw { scene: "abrash38-1", method: Some("abrash_float") },
+            Command::Draw { scene: "abrash38-2", method: None },
+            Command::Clear(7),
+            Command::Poly { method: "exact", spec: "color=4 0,0 9.5,0 0,9" },
+            Command::Dump,
+            Command::VgaCheck,
+            Command::Exit(16),
+            Command::Fault(FaultKind::PageFault),
+        ];
+        for command in commands {
+            let text = command.to_string();
+            assert_eq!(Command::parse(text.as_bytes()), Ok(command), "{text}");
+        }
+    }
+
+    #[test]
+    fn bad_lines_are_rejected_with_a_reason() {
+        assert_eq!(Command::parse(b""), Err(CommandError::Empty));
+        assert_eq!(Command::parse(b"  \r"), Err(CommandError::Empty));
+        assert_eq!(Command::parse(b"FROB 1"), Err(CommandError::Unknown("FROB")));
+        assert_eq!(Command::parse(b"CLEAR"), Err(CommandError::MissingArgument("colour")));
+        assert_eq!(Command::parse(b"CLEAR 256"), Err(CommandError::BadArgument("256")));
+        assert_eq!(Command::parse(b"DUMP now"), Err(CommandError::ExtraArgument("now")));
+        assert_eq!(Command::parse(b"POLY exact"), Err(CommandError::MissingArgument("polygon")));
+        assert_eq!(Command::parse(b"FAULT nap"), Err(CommandError::BadArgument("nap")));
+        assert_eq!(Command::parse(b"PI\xffNG"), Err(CommandError::NotAscii));
+        assert_eq!(Command::parse(&[b'A'; MAX_LINE + 1]), Err(CommandError::TooLong));
+    }
+
+    #[test]
+    fn headers_round_trip_and_check_their_payload() {
+        let header = FrameHeader::for_payload(FrameKind::Ok, b"pong");
+        let text = header.to_string();
+        assert_eq!(text, std::format!("@OK 4 {:08x}", crc32fast::hash(b"pong")));
+        assert_eq!(FrameHeader::parse(&text), Some(header));
+        assert!(header.matches(b"pong"));
+        assert!(!header.matches(b"pang"));
+        assert_eq!(FrameHeader::parse("@OK 4"), None);
+        assert_eq!(FrameHeader::parse("@NOPE 4 00000000"), None);
+        assert_eq!(FrameHeader::parse("OK 4 00000000"), None);
+    }
+}

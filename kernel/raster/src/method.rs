@@ -1,0 +1,98 @@
+//! The one interface over every fill method, with the metadata the kernel,
+//! the host renderer, the tests and the lab list and compare them by.
+
+use crate::geometry::{FillRule, Polygon};
+use crate::sink::SpanSink;
+
+/// Polygon classes, from cheapest to most general (Abrash ch. 41 naming in
+/// brackets).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Class {
+    /// Fewer than three distinct vertices, or no area.
+    Degenerate,
+    /// Exactly three vertices.
+    Triangle,
+    /// Monotone in y: every horizontal line meets the boundary at most
+    /// twice (Abrash's "convex", chapter 41's "monotone-vertical").
+    Convex,
+    /// Edges do not cross (Abrash's "nonconvex").
+    Simple,
+    /// Anything: self-intersecting, several contours (Abrash's "complex").
+    Complex,
+}
+
+impl Class {
+    pub const fn name(self) -> &'static str {
+        match self {
+            Class::Degenerate => "degenerate",
+            Class::Triangle => "triangle",
+            Class::Convex => "convex",
+            Class::Simple => "simple",
+            Class::Complex => "complex",
+        }
+    }
+}
+
+/// Where a method samples a pixel, in subpixels from the pixel's top-left
+/// corner: (128, 128) is the centre (our convention), (0, 0) the integer
+/// grid point (Abrash's). The lab judges a method against the reference
+/// under our convention and under its own.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Convention {
+    pub sample_x: i32,
+    pub sample_y: i32,
+    /// One line for people: how the method decides which pixels are in.
+    pub summary: &'static str,
+}
+
+/// What a method is, where it comes from and what it accepts.
+#[derive(Clone, Copy, Debug)]
+pub struct MethodInfo {
+    /// Short name used on the command line and in the protocol.
+    pub name: &'static str,
+    /// Seed file (and listing) it follows, or "ours".
+    pub seed: &'static str,
+    pub convention: Convention,
+    /// Arithmetic, e.g. "f64 inverse slope, ceil".
+    pub numeric: &'static str,
+    /// The most general class it fills correctly; see [`Class`].
+    pub handles: Class,
+    /// Fill rules it honours. Methods for one-span-per-line polygons have
+    /// no choice of rule and list both.
+    pub rules: &'static [FillRule],
+}
+
+/// Why a method declined a polygon. Declining draws nothing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Refusal {
+    /// The polygon has several contours and the method takes one list.
+    MultipleContours,
+    /// Coordinates beyond the range where the method's arithmetic is exact
+    /// or safe.
+    OutOfRange,
+    /// More vertices than the method's fixed tables hold.
+    TooManyVertices,
+    /// Memory for the method's tables could not be had (Abrash's `malloc`
+    /// failure path).
+    OutOfMemory,
+}
+
+impl Refusal {
+    pub const fn describe(self) -> &'static str {
+        match self {
+            Refusal::MultipleContours => "several contours, method takes one",
+            Refusal::OutOfRange => "coordinates out of the method's range",
+            Refusal::TooManyVertices => "too many vertices",
+            Refusal::OutOfMemory => "out of memory",
+        }
+    }
+}
+
+/// A fill method. Implementations never panic, never loop without bound
+/// (their work is bounded by the clipped area and the edge count) and
+/// never emit a span outside the sink's [`Size`](crate::Size).
+pub trait Method: Sync {
+    fn info(&self) -> &'static MethodInfo;
+    /// Fills `polygon` into `sink`, or declines it.
+    fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal>;
+}

@@ -1,0 +1,249 @@
+//! `abrash_float`: Abrash's first convex filler, Listing 38.1
+//! (`FillConvexPolygon` with the floating-point `ScanEdge`), seed
+//! `000_8935c452f75c56ce.txt`; the data restated in `ABRASH_FACTS.md` §2.
+//!
+//! - Convention: samples at integer grid points; a point on a left edge or a
+//!   flat top is in, on a right edge or a flat bottom out. Vertices are
+//!   rounded to whole pixels first (the original takes `int`s).
+//! - Arithmetic: `f64` inverse slope `DX / DY`, `X = X1 + ceil((Y - Y1) *
+//!   slope)`, right-edge X values moved one pixel left, so the float error
+//!   the book reports (ch. 39: two pixels off on its test screen) is kept.
+//! - Classes: one contour, monotone in y ("convex" in Abrash's sense). Other
+//!   polygons give what the original gives, within the target.
+//!
+//! Safety changes, none of which moves a pixel the original draws: the
+//! line list only holds visible rows, entries an edge chain never reaches
+//! draw nothing (the original leaves them uninitialised), a chain that runs
+//! past the last line stops (the original writes past its `malloc`), and the
+//! 16-bit `int` products become `i64`.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use crate::geometry::{FillRule, PixelPoint, Polygon};
+use crate::method::{Class, Convention, Method, MethodInfo, Refusal};
+use crate::sink::SpanSink;
+
+/// Listing 38.1.
+pub struct AbrashFloat;
+
+static INFO: MethodInfo = MethodInfo {
+    name: "abrash_float",
+    seed: "000_8935c452f75c56ce.txt (Black Book ch. 38, Listing 38.1)",
+    convention: Convention {
+        sample_x: 0,
+        sample_y: 0,
+        summary: "integer sample points; left edges and flat tops in, right edges and flat bottoms out",
+    },
+    numeric: "integer vertices; f64 inverse slope with ceil",
+    handles: Class::Convex,
+    rules: &[FillRule::EvenOdd, FillRule::NonZero],
+};
+
+impl Method for AbrashFloat {
+    fn info(&self) -> &'static MethodInfo {
+        &INFO
+    }
+
+    fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+        let contour = polygon.single_contour().ok_or(Refusal::MultipleContours)?;
+        let vertices: Vec<PixelPoint> = contour.iter().map(|p| p.round_to_pixel()).collect();
+        fill_convex_polygon(&vertices, polygon.color, sink);
+        Ok(())
+    }
+}
+
+/// The horizontal line list of Listing 38.1, limited to the rows the target
+/// shows. Entry `i` is scan line `y_start + i`; ends are inclusive.
+struct LineList {
+    y_start: i64,
+    lines: i64,
+    first_visible: i64,
+    x_start: Vec<i32>,
+    x_end: Vec<i32>,
+}
+
+impl LineList {
+    fn new(y_start: i64, lines: i64, height: i32) -> Self {
+        let first_visible = (0 - y_start).clamp(0, lines);
+        let last_visible = (i64::from(height) - y_start).clamp(first_visible, lines);
+        let visible = (last_visible - first_visible) as usize;
+        // Unreached entries draw nothing: start right of end.
+        Self { y_start, lines, first_visible, x_start: vec![i32::MAX; visible], x_end: vec![i32::MIN; visible] }
+    }
+
+    /// Visible slots `first..last` among entries `from..to` (line-list indices).
+    fn visible(&self, from: i64, to: i64) -> core::ops::Range<i64> {
+        let last_visible = self.first_visible + self.x_start.len() as i64;
+        from.max(self.first_visible)..to.min(last_visible).min(self.lines)
+    }
+}
+
+/// `FillConvexPolygon` of Listing 38.1, with offsets already applied.
+fn fill_convex_polygon(v: &[PixelPoint], color: u8, sink: &mut dyn SpanSink) {
+    let n = v.len();
+    if n == 0 {
+        return;
+    }
+    let forward = |i: usize| if i + 1 == n { 0 } else { i + 1 };
+    let backward = |i: usize| if i == 0 { n - 1 } else { i - 1 };
+
+    // Top and bottom: first strictly smaller Y, first largest Y (`else if`).
+    let (mut min_index, mut max_index) = (0, 0);
+    let (mut min_y, mut max_y) = (v[0].y, v[0].y);
+    for (i, p) in v.iter().enumerate().skip(1) {
+        if p.y < min_y {
+            min_y = p.y;
+            min_index = i;
+        } else if p.y > max_y {
+            max_y = p.y;
+            max_index = i;
+        }
+    }
+    if min_y == max_y {
+        return;
+    }
+
+    // Ends of the top edge; the walks stop because some vertex is lower.
+    let mut min_index_r = min_index;
+    while v[min_index_r].y == min_y {
+        min_index_r = forward(min_index_r);
+    }
+    min_index_r = backward(min_index_r);
+    let mut min_index_l = min_index;
+    while v[min_index_l].y == min_y {
+        min_index_l = backward(min_index_l);
+    }
+    min_index_l = forward(min_index_l);
+
+    let mut left_edge_forward = false;
+    let top_is_flat = v[min_index_l].x != v[min_index_r].x;
+    if top_is_flat {
+        if v[min_index_l].x > v[min_index_r].x {
+            left_edge_forward = true;
+            core::mem::swap(&mut min_index_l, &mut min_index_r);
+        }
+    } else {
+        let next = v[forward(min_index_r)];
+        let previous = v[backward(min_index_l)];
+        let top = v[min_index_l];
+        let (dxn, dyn_) = (i64::from(next.x) - i64::from(top.x), i64::from(next.y) - i64::from(top.y));
+        let (dxp, dyp) = (i64::from(previous.x) - i64::from(top.x), i64::from(previous.y) - i64::from(top.y));
+        if dxn * dyp - dyn_ * dxp < 0 {
+            left_edge_forward = true;
+            core::mem::swap(&mut min_index_l, &mut min_index_r);
+        }
+    }
+
+    let flat = i64::from(top_is_flat);
+    let lines = i64::from(max_y) - i64::from(min_y) - 1 + flat;
+    if lines <= 0 {
+        return;
+    }
+    let y_start = i64::from(min_y) + 1 - flat;
+    let mut list = LineList::new(y_start, lines, sink.size().height);
+
+    for (start, step_forward, x_shift, is_left) in
+        [(min_index_l, left_edge_forward, 0, true), (min_index_r, !left_edge_forward, -1, false)]
+    {
+        let mut slot = 0i64;
+        let mut skip_first = !top_is_flat;
+        let mut current = start;
+        loop {
+            let previous = current;
+            current = if step_forward { forward(current) } else { backward(current) };
+            let (a, b) = (v[previous], v[current]);
+            scan_edge(&mut list, &mut slot, a.x.saturating_add(x_shift), a.y, b.x.saturating_add(x_shift), b.y, skip_first, is_left);
+            skip_first = false;
+            if current == max_index {
+                break;
+            }
+        }
+    }
+
+    let width = sink.size().width;
+    for (i, (&xs, &xe)) in list.x_start.iter().zip(&list.x_end).enumerate() {
+        let y = list.y_start + list.first_visible + i as i64;
+        let (x0, x1) = (i64::from(xs).max(0), (i64::from(xe) + 1).min(i64::from(width)));
+        if x0 < x1 {
+            sink.span(y as i32, x0 as i32, x1 as i32, color);
+        }
+    }
+}
+
+/// `ScanEdge` of Listing 38.1: for Y in `Y1 + skip_first .. Y2`, stores
+/// `X1 + ceil((Y - Y1) * DX / DY)` (in `f64`) at the next line-list slot.
+#[allow(clippy::too_many_arguments)]
+fn scan_edge(list: &mut LineList, slot: &mut i64, x1: i32, y1: i32, x2: i32, y2: i32, skip_first: bool, is_left: bool) {
+    let delta_y = i64::from(y2) - i64::from(y1);
+    if delta_y <= 0 {
+        return;
+    }
+    let inverse_slope = (f64::from(x2) - f64::from(x1)) / delta_y as f64;
+    let first_y = i64::from(y1) + i64::from(skip_first);
+    let count = i64::from(y2) - first_y;
+    let slots = list.visible(*slot, *slot + count);
+    for s in slots {
+        let y = first_y + (s - *slot);
+        let x = x1.saturating_add(ceil((y - i64::from(y1)) as f64 * inverse_slope) as i32);
+        let index = (s - list.first_visible) as usize;
+        if is_left {
+            list.x_start[index] = x;
+        } else {
+            list.x_end[index] = x;
+        }
+    }
+    *slot += count;
+}
+
+/// `ceil` without `std`: `f64::ceil` lives in std, so round toward zero and
+/// correct the positive fractions.
+fn ceil(v: f64) -> f64 {
+    let t = v as i64 as f64;
+    if t < v { t + 1.0 } else { t }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sink::{Framebuffer, Size};
+
+    fn draw(points: &[(i32, i32)]) -> Framebuffer {
+        let mut fb = Framebuffer::new(Size { width: 8, height: 6 });
+        AbrashFloat.fill(&Polygon::from_pixels(points, (0, 0), 1), &mut fb).unwrap();
+        assert_eq!(fb.stray_spans(), 0);
+        fb
+    }
+
+    fn ascii(fb: &Framebuffer) -> alloc::string::String {
+        fb.pixels().chunks(8).map(|row| row.iter().map(|&p| if p == 0 { '.' } else { '#' }).chain(['\n']).collect::<alloc::string::String>()).collect()
+    }
+
+    #[test]
+    fn rectangle_excludes_right_column_and_bottom_row() {
+        let fb = draw(&[(1, 1), (5, 1), (5, 4), (1, 4)]);
+        assert_eq!(ascii(&fb), "........\n.####...\n.####...\n.####...\n........\n........\n");
+    }
+
+    #[test]
+    fn pointed_top_skips_the_top_line_and_right_edge_points() {
+        // Row 1 meets the left edge at x=2 (drawn) and the right at x=4 (not).
+        let fb = draw(&[(3, 0), (6, 3), (0, 3)]);
+        assert_eq!(ascii(&fb), "........\n..##....\n.####...\n........\n........\n........\n");
+    }
+
+    #[test]
+    fn off_screen_and_huge_polygons_are_clipped() {
+        let fb = draw(&[(-1 << 22, -1 << 22), (1 << 22, -1 << 22), (1 << 22, 1 << 22), (-1 << 22, 1 << 22)]);
+        assert!(fb.pixels().iter().all(|&p| p == 1));
+        let fb = draw(&[(100, 100), (120, 100), (120, 120)]);
+        assert!(fb.pixels().iter().all(|&p| p == 0));
+    }
+
+    #[test]
+    fn ceil_matches_the_definition() {
+        for (v, c) in [(-1.5, -1.0), (-0.0, 0.0), (0.25, 1.0), (2.0, 2.0), (-3.0, -3.0)] {
+            assert_eq!(ceil(v), c);
+        }
+    }
+}

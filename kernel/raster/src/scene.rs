@@ -1,0 +1,55 @@
+//! Scenes: plain data, a list of operations drawn in order.
+
+use alloc::string::String;
+use alloc::vec::Vec;
+
+use crate::geometry::Polygon;
+use crate::method::{Method, Refusal};
+use crate::sink::{self, SpanSink};
+
+/// One drawing step.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Op {
+    /// Every pixel to one colour.
+    Clear(u8),
+    /// One polygon, filled by whichever method draws the scene.
+    Fill(Polygon),
+}
+
+/// A named list of operations. Nothing is cleared implicitly: like the
+/// book's programs, each operation draws over what the previous ones left.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub struct Scene {
+    pub name: String,
+    pub ops: Vec<Op>,
+}
+
+/// What drawing a scene did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct DrawReport {
+    pub polygons: usize,
+    pub refused: usize,
+    /// The first refusal, if any, for error messages.
+    pub first_refusal: Option<Refusal>,
+}
+
+impl Scene {
+    /// Draws every operation with `method`. A refused polygon is counted and
+    /// skipped; the rest of the scene is still drawn.
+    pub fn draw(&self, method: &dyn Method, sink: &mut dyn SpanSink) -> DrawReport {
+        let mut report = DrawReport::default();
+        for op in &self.ops {
+            match op {
+                Op::Clear(color) => sink::clear(sink, *color),
+                Op::Fill(polygon) => {
+                    report.polygons += 1;
+                    if let Err(refusal) = method.fill(polygon, sink) {
+                        report.refused += 1;
+                        report.first_refusal.get_or_insert(refusal);
+                    }
+                }
+            }
+        }
+        report
+    }
+}

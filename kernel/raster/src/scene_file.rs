@@ -1,0 +1,199 @@
+//! The plain-text scene format (documented in the README):
+//!
+//! ```text
+//! # a comment; blank lines are ignored
+//! clear 3
+//! poly color=6 10,10 100.5,10 60,80.25
+//! poly color=5 rule=nonzero 0,0 320,0 320,200 0,200 | 50,50 50,150 270,150 270,50
+//! ```
+//!
+//! `poly` takes `color=` (0-255, required), `rule=evenodd|nonzero`
+//! (default evenodd) and vertices `x,y` in pixels, decimals allowed; `|`
+//! starts another contour of the same polygon. Coordinates are snapped to
+//! 1/256 pixel, rounding to nearest (halves up).
+
+use alloc::string::String;
+use alloc::vec::Vec;
+use core::fmt;
+
+use crate::geometry::{FillRule, Point, Polygon, SUBPIXEL_BITS};
+use crate::scene::{Op, Scene};
+
+/// What is wrong with one line.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum LineError {
+    UnknownKeyword(String),
+    MissingColor,
+    BadColor(String),
+    BadRule(String),
+    BadVertex(String),
+    CoordinateOutOfRange(String),
+    UnknownOption(String),
+    EmptyContour,
+    Extra(String),
+}
+
+impl fmt::Display for LineError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LineError::UnknownKeyword(w) => write!(f, "unknown keyword `{w}` (expected `clear` or `poly`)"),
+            LineError::MissingColor => write!(f, "`poly` needs `color=N`"),
+            LineError::BadColor(w) => write!(f, "bad colour `{w}` (expected 0-255)"),
+            LineError::BadRule(w) => write!(f, "bad rule `{w}` (expected evenodd or nonzero)"),
+            LineError::BadVertex(w) => write!(f, "bad vertex `{w}` (expected x,y)"),
+            LineError::CoordinateOutOfRange(w) => {
+                write!(f, "coordinate `{w}` out of range (|v| < 8388608 pixels)")
+            }
+            LineError::UnknownOption(w) => write!(f, "unknown option `{w}`"),
+            LineError::EmptyContour => write!(f, "empty contour around `|`"),
+            LineError::Extra(w) => write!(f, "unexpected `{w}`"),
+        }
+    }
+}
+
+/// A [`LineError`] with its 1-based line number.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SceneFileError {
+    pub line: usize,
+    pub error: LineError,
+}
+
+impl fmt::Display for SceneFileError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "line {}: {}", self.line, self.error)
+    }
+}
+
+/// Parses a whole scene file.
+pub fn parse(name: &str, text: &str) -> Result<Scene, SceneFileError> {
+    let mut ops = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        if let Some(op) = parse_line(line).map_err(|error| SceneFileError { line: i + 1, error })? {
+            ops.push(op);
+        }
+    }
+    Ok(Scene { name: String::from(name), ops })
+}
+
+/// Parses one line: `Ok(None)` for blank lines and comments.
+pub fn parse_line(line: &str) -> Result<Option<Op>, LineError> {
+    let line = line.split('#').next().unwrap_or("");
+    let mut words = line.split_ascii_whitespace();
+    let Some(keyword) = words.next() else { return Ok(None) };
+    match keyword {
+        "clear" => {
+            let color = words.next().ok_or(LineError::MissingColor)?;
+            let color = color.parse::<u8>().map_err(|_| LineError::BadColor(String::from(color)))?;
+            match words.next() {
+                Some(extra) => Err(LineError::Extra(String::from(extra))),
+                None => Ok(Some(Op::Clear(color))),
+            }
+        }
+        "poly" => parse_poly(words).map(|p| Some(Op::Fill(p))),
+        other => Err(LineError::UnknownKeyword(String::from(other))),
+    }
+}
+
+fn parse_poly<'a>(words: impl Iterator<Item = &'a str>) -> Result<Polygon, LineError> {
+    let mut color = None;
+    let mut rule = FillRule::EvenOdd;
+    let mut contours: Vec<Vec<Point>> = alloc::vec![Vec::new()];
+    for word in words {
+        if let Some(value) = word.strip_prefix("color=") {
+            color = Some(value.parse::<u8>().map_err(|_| LineError::BadColor(String::from(value)))?);
+        } else if let Some(value) = word.strip_prefix("rule=") {
+            rule = FillRule::from_name(value).ok_or_else(|| LineError::BadRule(String::from(value)))?;
+        } else if word == "|" {
+            contours.push(Vec::new());
+        } else if word.contains('=') {
+            return Err(LineError::UnknownOption(String::from(word)));
+        } else {
+            let (x, y) = word.split_once(',').ok_or_else(|| LineError::BadVertex(String::from(word)))?;
+            let point = Point::new(parse_coordinate(x)?, parse_coordinate(y)?);
+            if let Some(contour) = contours.last_mut() {
+                contour.push(point);
+            }
+        }
+    }
+    if contours.len() > 1 && contours.iter().any(Vec::is_empty) {
+        return Err(LineError::EmptyContour);
+    }
+    let color = color.ok_or(LineError::MissingColor)?;
+    Ok(Polygon { contours, color, rule })
+}
+
+/// A decimal number of pixels to subpixels, rounded to nearest, halves up.
+fn parse_coordinate(text: &str) -> Result<i32, LineError> {
+    let bad = || LineError::BadVertex(String::from(text));
+    let (negative, digits) = match text.strip_prefix('-') {
+        Some(rest) => (true, rest),
+        None => (false, text.strip_prefix('+').unwrap_or(text)),
+    };
+    let (whole, fraction) = digits.split_once('.').unwrap_or((digits, ""));
+    if whole.is_empty() && fraction.is_empty() {
+        return Err(bad());
+    }
+    if !whole.bytes().chain(fraction.bytes()).all(|b| b.is_ascii_digit()) {
+        return Err(bad());
+    }
+    // Exact: mantissa / 10^k pixels, at most 30 significant digits.
+    let all_digits = whole.trim_start_matches('0').len() + fraction.len();
+    if all_digits > 30 {
+        return Err(LineError::CoordinateOutOfRange(String::from(text)));
+    }
+    let mut mantissa: i128 = 0;
+    for b in whole.bytes().chain(fraction.bytes()) {
+        mantissa = mantissa * 10 + i128::from(b - b'0');
+    }
+    if negative {
+        mantissa = -mantissa;
+    }
+    let scale = 10i128.pow(fraction.len() as u32);
+    // floor((m * 256 * 2 + scale) / (2 * scale)) rounds to nearest, halves up.
+    let doubled = mantissa * (2 << SUBPIXEL_BITS) + scale;
+    let value = doubled.div_euclid(2 * scale);
+    i32::try_from(value).map_err(|_| LineError::CoordinateOutOfRange(String::from(text)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_clear_poly_comments_and_contours() {
+        let text = "# scene\n\nclear 3\npoly color=6 rule=nonzero 0,0 10.5,0 5,-2.25 | 1,1 2,1 2,2 # hole\n";
+        let scene = parse("t", text).unwrap();
+        assert_eq!(scene.ops[0], Op::Clear(3));
+        let Op::Fill(p) = &scene.ops[1] else { panic!() };
+        assert_eq!(p.color, 6);
+        assert_eq!(p.rule, FillRule::NonZero);
+        assert_eq!(p.contours[0], [Point::new(0, 0), Point::new(2688, 0), Point::new(1280, -576)]);
+        assert_eq!(p.contours[1].len(), 3);
+    }
+
+    #[test]
+    fn coordinates_round_to_nearest_subpixel_halves_up() {
+        assert_eq!(parse_coordinate("0.001953125"), Ok(1)); // exactly 0.5/256
+        assert_eq!(parse_coordinate("-0.001953125"), Ok(0));
+        assert_eq!(parse_coordinate("0.0019"), Ok(0));
+        assert_eq!(parse_coordinate(".5"), Ok(128));
+        assert_eq!(parse_coordinate("8388607.99"), Ok(i32::MAX - 2));
+        assert!(matches!(parse_coordinate("8388608"), Err(LineError::CoordinateOutOfRange(_))));
+        assert!(matches!(parse_coordinate("1e3"), Err(LineError::BadVertex(_))));
+        assert!(matches!(parse_coordinate("."), Err(LineError::BadVertex(_))));
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        let err = parse("t", "clear 1\npoly 1,1 2,2 3,1\n").unwrap_err();
+        assert_eq!(err.line, 2);
+        assert_eq!(err.error, LineError::MissingColor);
+        assert_eq!(alloc::format!("{err}"), "line 2: `poly` needs `color=N`");
+        assert!(matches!(parse_line("fill 3"), Err(LineError::UnknownKeyword(_))));
+        assert!(matches!(parse_line("poly color=300 1,1"), Err(LineError::BadColor(_))));
+        assert!(matches!(parse_line("poly color=1 rule=odd 1,1"), Err(LineError::BadRule(_))));
+        assert!(matches!(parse_line("poly color=1 1;1"), Err(LineError::BadVertex(_))));
+        assert!(matches!(parse_line("poly color=1 1,1 | | 2,2"), Err(LineError::EmptyContour)));
+        assert!(matches!(parse_line("clear 1 2"), Err(LineError::Extra(_))));
+    }
+}
