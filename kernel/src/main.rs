@@ -1,1 +1,58 @@
-fn main() {}
+//! The bare-metal side of the polygon lab (DESIGN.md): boots from the
+//! `bootloader` crate's BIOS stages, puts the VGA in mode 13h with its own
+//! register writes, runs the Listing 38.3 demo, and serves the host's
+//! commands over COM1 as soon as one arrives.
+//!
+//! Hardware access lives in small modules with `// SAFETY:` notes
+//! (`port`, `serial`, `video`, `heap`, `gdt`, `interrupts`, `fault`);
+//! everything above them is safe code.
+#![no_std]
+#![no_main]
+#![feature(abi_x86_interrupt)]
+#![deny(unsafe_op_in_unsafe_fn)]
+
+extern crate alloc;
+
+mod console;
+mod demo;
+mod exit;
+mod fatal;
+mod fault;
+mod gdt;
+mod heap;
+mod interrupts;
+mod keyboard;
+mod pit;
+mod port;
+mod serial;
+mod vga;
+mod video;
+
+use bootloader_api::config::{BootloaderConfig, Mapping};
+use bootloader_api::{entry_point, BootInfo};
+
+/// All physical memory mapped at an offset the bootloader chooses: the only
+/// way to reach 0xA0000 (DESIGN.md "Hardware facts").
+static CONFIG: BootloaderConfig = {
+    let mut config = BootloaderConfig::new_default();
+    config.mappings.physical_memory = Some(Mapping::Dynamic);
+    config
+};
+
+entry_point!(kernel_main, config = &CONFIG);
+
+fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
+    serial::init();
+    gdt::init();
+    interrupts::init();
+    heap::init();
+    vga::init();
+    let Some(mut screen) = video::Screen::new(boot_info) else {
+        panic!("the bootloader did not map physical memory, so 0xA0000 is out of reach");
+    };
+    // A mode set leaves a black screen; the VESA mode left other bytes.
+    raster::sink::clear(&mut screen, 0);
+    console::announce();
+    let first_byte = demo::run(&mut screen);
+    console::serve(&mut screen, first_byte)
+}

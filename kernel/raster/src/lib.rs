@@ -15,15 +15,20 @@
 
 extern crate alloc;
 
+pub mod classify;
+pub mod coverage;
 pub mod geometry;
 pub mod method;
 pub mod methods;
 pub mod palette;
+pub mod reference;
 pub mod scene;
 pub mod scene_file;
 pub mod scenes;
 pub mod sink;
 
+pub use classify::{classify, fill_auto};
+pub use coverage::{CoverageReport, CoverageSink};
 pub use geometry::{FillRule, PixelPoint, Point, Polygon, SUBPIXEL_BITS, SUBPIXEL_ONE};
 pub use method::{Class, Convention, Method, MethodInfo, Refusal};
 pub use scene::{Op, Scene};

@@ -48,10 +48,29 @@ impl Method for AbrashFloat {
     fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
         let contour = polygon.single_contour().ok_or(Refusal::MultipleContours)?;
         let vertices: Vec<PixelPoint> = contour.iter().map(|p| p.round_to_pixel()).collect();
-        fill_convex_polygon(&vertices, polygon.color, sink);
+        fill_convex_polygon(&vertices, polygon.color, sink, scan_edge);
         Ok(())
     }
 }
+
+/// One `ScanEdge` call of Listing 38.1: the segment from (`x1`, `y1`) down
+/// to (`x2`, `y2`), X already moved one pixel left on right edges, and
+/// whether its first scan line is skipped (`SkipFirst`).
+pub(super) struct Segment {
+    pub x1: i32,
+    pub y1: i32,
+    pub x2: i32,
+    pub y2: i32,
+    pub skip_first: bool,
+}
+
+/// A port of `ScanEdge`: stores the X of the segment's stored scan lines
+/// `rows` into `xs`, one each. Row 0 is scan line `y1 + skip_first`, the
+/// first the original stores. The driver calls it only for `y2 > y1` (every
+/// `ScanEdge` returns at once otherwise) and only with the rows the target
+/// shows, so a port must compute the X of `rows.start` without stepping
+/// through the rows before it.
+pub(super) type ScanEdge = fn(&Segment, core::ops::Range<i64>, &mut [i32]);
 
 /// The horizontal line list of Listing 38.1, limited to the rows the target
 /// shows. Entry `i` is scan line `y_start + i`; ends are inclusive.
@@ -79,8 +98,11 @@ impl LineList {
     }
 }
 
-/// `FillConvexPolygon` of Listing 38.1, with offsets already applied.
-fn fill_convex_polygon(v: &[PixelPoint], color: u8, sink: &mut dyn SpanSink) {
+/// `FillConvexPolygon` of Listing 38.1, with offsets already applied; the
+/// edges are scanned by `scan_edge`: Listing 38.1's float one here, Listing
+/// 39.2's integer one in `abrash_int` (chapter 39 keeps this driver and
+/// replaces only `ScanEdge`).
+pub(super) fn fill_convex_polygon(v: &[PixelPoint], color: u8, sink: &mut dyn SpanSink, scan_edge: ScanEdge) {
     let n = v.len();
     if n == 0 {
         return;
@@ -153,7 +175,14 @@ fn fill_convex_polygon(v: &[PixelPoint], color: u8, sink: &mut dyn SpanSink) {
             let previous = current;
             current = if step_forward { forward(current) } else { backward(current) };
             let (a, b) = (v[previous], v[current]);
-            scan_edge(&mut list, &mut slot, a.x.saturating_add(x_shift), a.y, b.x.saturating_add(x_shift), b.y, skip_first, is_left);
+            let segment = Segment {
+                x1: a.x.saturating_add(x_shift),
+                y1: a.y,
+                x2: b.x.saturating_add(x_shift),
+                y2: b.y,
+                skip_first,
+            };
+            scan_segment(&mut list, &mut slot, &segment, is_left, scan_edge);
             skip_first = false;
             if current == max_index {
                 break;
@@ -171,29 +200,35 @@ fn fill_convex_polygon(v: &[PixelPoint], color: u8, sink: &mut dyn SpanSink) {
     }
 }
 
-/// `ScanEdge` of Listing 38.1: for Y in `Y1 + skip_first .. Y2`, stores
-/// `X1 + ceil((Y - Y1) * DX / DY)` (in `f64`) at the next line-list slot.
-#[allow(clippy::too_many_arguments)]
-fn scan_edge(list: &mut LineList, slot: &mut i64, x1: i32, y1: i32, x2: i32, y2: i32, skip_first: bool, is_left: bool) {
-    let delta_y = i64::from(y2) - i64::from(y1);
+/// Runs `scan_edge` on `segment`, whose stored lines take the line-list
+/// slots from `*slot` on, for the visible ones only, then moves `*slot` past
+/// them as the original's `EdgePointPtr` moves.
+fn scan_segment(list: &mut LineList, slot: &mut i64, segment: &Segment, is_left: bool, scan_edge: ScanEdge) {
+    // `ScanEdge`'s own guard against horizontal and zero-length segments.
+    let delta_y = i64::from(segment.y2) - i64::from(segment.y1);
     if delta_y <= 0 {
         return;
     }
-    let inverse_slope = (f64::from(x2) - f64::from(x1)) / delta_y as f64;
-    let first_y = i64::from(y1) + i64::from(skip_first);
-    let count = i64::from(y2) - first_y;
+    let count = delta_y - i64::from(segment.skip_first);
     let slots = list.visible(*slot, *slot + count);
-    for s in slots {
-        let y = first_y + (s - *slot);
-        let x = x1.saturating_add(ceil((y - i64::from(y1)) as f64 * inverse_slope) as i32);
-        let index = (s - list.first_visible) as usize;
-        if is_left {
-            list.x_start[index] = x;
-        } else {
-            list.x_end[index] = x;
-        }
+    if !slots.is_empty() {
+        let index = |s: i64| (s - list.first_visible) as usize;
+        let (from, to) = (index(slots.start), index(slots.end));
+        let xs = if is_left { &mut list.x_start } else { &mut list.x_end };
+        scan_edge(segment, slots.start - *slot..slots.end - *slot, &mut xs[from..to]);
     }
     *slot += count;
+}
+
+/// `ScanEdge` of Listing 38.1: stored line `row` is scan line
+/// `Y = Y1 + skip_first + row`, at `X1 + ceil((Y - Y1) * DX / DY)` (in `f64`).
+fn scan_edge(segment: &Segment, rows: core::ops::Range<i64>, xs: &mut [i32]) {
+    let delta_y = i64::from(segment.y2) - i64::from(segment.y1);
+    let inverse_slope = (f64::from(segment.x2) - f64::from(segment.x1)) / delta_y as f64;
+    for (row, x) in rows.zip(xs) {
+        let y_minus_y1 = row + i64::from(segment.skip_first);
+        *x = segment.x1.saturating_add(ceil(y_minus_y1 as f64 * inverse_slope) as i32);
+    }
 }
 
 /// `ceil` without `std`: `f64::ceil` lives in std, so round toward zero and

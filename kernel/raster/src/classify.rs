@@ -1,0 +1,255 @@
+//! Polygon classes (DESIGN.md, "Model no more than a scene needs") and the
+//! automatic fill that sends each class to the cheapest exact path.
+//!
+//! Contours whose vertices all lie on one line enclose nothing and are left
+//! out of both: walking such a contour, a scan line is crossed as often
+//! downward as upward and always at the same point, so it adds nothing to
+//! any pixel's crossing count parity or winding sum.
+
+use core::cmp::Ordering;
+
+use alloc::vec::Vec;
+
+use crate::geometry::{Point, Polygon};
+use crate::method::{Class, Refusal};
+use crate::methods::exact::{fill_active_edges, fill_monotone};
+use crate::sink::SpanSink;
+
+/// The class of `polygon`: [`Class::Degenerate`] when no contour encloses
+/// anything (fewer than three distinct vertices, or all on one line);
+/// [`Class::Triangle`] for one contour of three distinct vertices;
+/// [`Class::Convex`] for one contour monotone in y (Abrash's sense: exactly
+/// two reversals of y direction, horizontal edges ignored);
+/// [`Class::Simple`] for one contour whose edges neither cross nor touch
+/// except neighbours at their shared vertex; [`Class::Complex`] otherwise,
+/// including every polygon with several enclosing contours.
+///
+/// The simplicity test compares every pair of edges: quadratic in the
+/// vertex count, which is why [`fill_auto`] never asks for it.
+pub fn classify(polygon: &Polygon) -> Class {
+    match Shape::of(polygon) {
+        Shape::Empty => Class::Degenerate,
+        Shape::Monotone(contour) if distinct_vertices(contour).len() == 3 => Class::Triangle,
+        Shape::Monotone(_) => Class::Convex,
+        Shape::Contour(contour) if is_simple(&distinct_vertices(contour)) => Class::Simple,
+        Shape::Contour(_) | Shape::Contours => Class::Complex,
+    }
+}
+
+/// Fills `polygon` exactly (DESIGN.md rule) by the cheapest path correct for
+/// its class: degenerate polygons (and targets without pixels) draw
+/// nothing, triangles and monotone contours take the two-chain path,
+/// everything else the active edge table. Simple and complex polygons share
+/// that path, so telling them apart would cost without saving anything.
+pub fn fill_auto(polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+    let size = sink.size();
+    if size.width <= 0 || size.height <= 0 {
+        return Ok(());
+    }
+    match Shape::of(polygon) {
+        Shape::Empty => Ok(()),
+        Shape::Monotone(contour) => {
+            fill_monotone(contour, polygon.color, sink);
+            Ok(())
+        }
+        Shape::Contour(_) | Shape::Contours => fill_active_edges(polygon, sink),
+    }
+}
+
+/// What the fill needs to know of a polygon: the linear-time part of
+/// [`classify`].
+enum Shape<'a> {
+    /// No contour encloses anything.
+    Empty,
+    /// One enclosing contour, monotone in y.
+    Monotone(&'a [Point]),
+    /// One enclosing contour, not monotone.
+    Contour(&'a [Point]),
+    /// Several enclosing contours.
+    Contours,
+}
+
+impl<'a> Shape<'a> {
+    fn of(polygon: &'a Polygon) -> Self {
+        let mut enclosing = polygon.contours.iter().filter(|contour| !is_collinear(contour));
+        match (enclosing.next(), enclosing.next()) {
+            (None, _) => Shape::Empty,
+            (Some(contour), None) if is_monotone(contour) => Shape::Monotone(contour),
+            (Some(contour), None) => Shape::Contour(contour),
+            (Some(_), Some(_)) => Shape::Contours,
+        }
+    }
+}
+
+/// Whether every vertex lies on one line (fewer than three distinct
+/// vertices included).
+fn is_collinear(contour: &[Point]) -> bool {
+    let Some(&first) = contour.first() else {
+        return true;
+    };
+    let Some(&second) = contour.iter().find(|&&p| p != first) else {
+        return true;
+    };
+    contour.iter().all(|&p| orientation(first, second, p) == Ordering::Equal)
+}
+
+/// Whether the contour reverses its y direction exactly twice, going round
+/// once and skipping horizontal edges (Abrash ch. 41's monotone-vertical
+/// test). A closed contour that is not horizontal everywhere reverses at
+/// least twice, at its top and its bottom.
+fn is_monotone(contour: &[Point]) -> bool {
+    let following = contour.iter().cycle().skip(1);
+    let mut directions = contour.iter().zip(following).map(|(a, b)| a.y.cmp(&b.y)).filter(|&d| d != Ordering::Equal);
+    let Some(first) = directions.next() else {
+        return false;
+    };
+    let (mut reversals, mut last) = (0, first);
+    for direction in directions {
+        if direction != last {
+            reversals += 1;
+            last = direction;
+        }
+    }
+    if last != first {
+        reversals += 1;
+    }
+    reversals == 2
+}
+
+/// The contour without vertices equal to the one before them (the last
+/// compared with the first too), so that every edge has length.
+fn distinct_vertices(contour: &[Point]) -> Vec<Point> {
+    let mut vertices: Vec<Point> = Vec::with_capacity(contour.len());
+    for &p in contour {
+        if vertices.last() != Some(&p) {
+            vertices.push(p);
+        }
+    }
+    while vertices.len() > 1 && vertices.first() == vertices.last() {
+        vertices.pop();
+    }
+    vertices
+}
+
+/// Whether no two edges of a contour without repeated neighbours meet,
+/// except neighbouring edges at their shared vertex. Neighbours need no
+/// test of their own: if one folds back over the other, the fold's end
+/// vertex lies on an edge that is not its neighbour (a contour that folds
+/// back with three vertices is collinear and never gets here).
+fn is_simple(vertices: &[Point]) -> bool {
+    let n = vertices.len();
+    let edge = |i: usize| (vertices[i], vertices[(i + 1) % n]);
+    let neighbours = |i: usize, j: usize| j == i + 1 || (i == 0 && j == n - 1);
+    (0..n).all(|i| {
+        (i + 1..n).filter(|&j| !neighbours(i, j)).all(|j| {
+            let ((a, b), (c, d)) = (edge(i), edge(j));
+            !segments_meet(a, b, c, d)
+        })
+    })
+}
+
+/// Whether the closed segments `a-b` and `c-d` share a point.
+fn segments_meet(a: Point, b: Point, c: Point, d: Point) -> bool {
+    let (abc, abd) = (orientation(a, b, c), orientation(a, b, d));
+    let (cda, cdb) = (orientation(c, d, a), orientation(c, d, b));
+    if abc != abd && cda != cdb && abc != Ordering::Equal && abd != Ordering::Equal && cda != Ordering::Equal && cdb != Ordering::Equal {
+        return true;
+    }
+    (abc == Ordering::Equal && within_box(a, b, c))
+        || (abd == Ordering::Equal && within_box(a, b, d))
+        || (cda == Ordering::Equal && within_box(c, d, a))
+        || (cdb == Ordering::Equal && within_box(c, d, b))
+}
+
+/// Whether `p`, collinear with `a-b`, lies on that segment.
+fn within_box(a: Point, b: Point, p: Point) -> bool {
+    (a.x.min(b.x)..=a.x.max(b.x)).contains(&p.x) && (a.y.min(b.y)..=a.y.max(b.y)).contains(&p.y)
+}
+
+/// The turn from `a-b` to `a-c`: the sign of their cross product, exact for
+/// any `i32` coordinates (differences need 33 bits, products 66).
+fn orientation(a: Point, b: Point, c: Point) -> Ordering {
+    let d = |p: Point, q: Point| (i128::from(q.x) - i128::from(p.x), i128::from(q.y) - i128::from(p.y));
+    let ((bx, by), (cx, cy)) = (d(a, b), d(a, c));
+    (bx * cy).cmp(&(by * cx))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::FillRule;
+
+    fn polygon(points: &[(i32, i32)]) -> Polygon {
+        Polygon::from_pixels(points, (0, 0), 1)
+    }
+
+    #[test]
+    fn too_few_or_collinear_vertices_are_degenerate() {
+        assert_eq!(classify(&Polygon::default()), Class::Degenerate);
+        assert_eq!(classify(&polygon(&[])), Class::Degenerate);
+        assert_eq!(classify(&polygon(&[(1, 1), (1, 1), (5, 5), (1, 1)])), Class::Degenerate);
+        assert_eq!(classify(&polygon(&[(0, 0), (2, 1), (6, 3), (4, 2)])), Class::Degenerate);
+        assert_eq!(classify(&polygon(&[(0, 4), (9, 4), (3, 4)])), Class::Degenerate);
+    }
+
+    #[test]
+    fn three_distinct_vertices_make_a_triangle() {
+        assert_eq!(classify(&polygon(&[(0, 0), (5, 0), (0, 5)])), Class::Triangle);
+        assert_eq!(classify(&polygon(&[(0, 0), (5, 0), (5, 0), (0, 5), (0, 0)])), Class::Triangle);
+    }
+
+    #[test]
+    fn monotone_in_y_is_convex_even_when_concave_sideways() {
+        // Abrash's chapter 41 point: a sideways notch keeps the polygon
+        // monotone-vertical, so one span per line still fills it.
+        assert_eq!(classify(&polygon(&[(0, 0), (9, 0), (4, 4), (9, 8), (0, 8)])), Class::Convex);
+        // The flat top and bottom are no reversals.
+        assert_eq!(classify(&polygon(&[(0, 0), (3, 0), (6, 0), (6, 3), (3, 3), (0, 3)])), Class::Convex);
+    }
+
+    #[test]
+    fn a_notch_from_below_makes_it_simple() {
+        assert_eq!(classify(&polygon(&[(0, 0), (9, 0), (9, 8), (4, 3), (0, 8)])), Class::Simple);
+    }
+
+    #[test]
+    fn crossing_edges_and_several_contours_are_complex() {
+        // A W-shaped contour whose middle edges cross the outer ones.
+        assert_eq!(classify(&polygon(&[(0, 0), (9, 6), (9, 0), (0, 6), (4, 9)])), Class::Complex);
+        // Touching at a vertex counts: the bowtie's two loops share (4, 4).
+        assert_eq!(classify(&polygon(&[(0, 0), (4, 4), (8, 0), (8, 8), (4, 4), (0, 8)])), Class::Complex);
+        let two = Polygon {
+            contours: alloc::vec![polygon(&[(0, 0), (4, 0), (0, 4)]).contours.remove(0), polygon(&[(5, 5), (9, 5), (5, 9)]).contours.remove(0)],
+            color: 1,
+            rule: FillRule::NonZero,
+        };
+        assert_eq!(classify(&two), Class::Complex);
+    }
+
+    #[test]
+    fn contours_enclosing_nothing_do_not_count() {
+        let mut triangle = polygon(&[(0, 0), (5, 0), (0, 5)]);
+        triangle.contours.push(alloc::vec![Point::new(7, 7), Point::new(900, 900)]);
+        triangle.contours.push(alloc::vec![]);
+        assert_eq!(classify(&triangle), Class::Triangle);
+    }
+
+    #[test]
+    fn folding_back_along_an_edge_is_not_simple() {
+        // (6, 0) -> (3, 0) runs back over (0, 0) -> (6, 0)'s end; the notch
+        // from below at (3, 7) keeps it from being monotone.
+        let folded = polygon(&[(0, 0), (6, 0), (3, 0), (3, 5), (6, 9), (3, 7), (0, 9), (2, 5)]);
+        assert_eq!(classify(&folded), Class::Complex);
+    }
+
+    #[test]
+    fn coordinates_at_the_i32_extremes_classify_exactly() {
+        let (lo, hi) = (i32::MIN, i32::MAX);
+        let square = Polygon::new(alloc::vec![Point::new(lo, lo), Point::new(hi, lo), Point::new(hi, hi), Point::new(lo, hi)], 1);
+        assert_eq!(classify(&square), Class::Convex);
+        let sliver = Polygon::new(alloc::vec![Point::new(lo, lo), Point::new(hi, hi), Point::new(hi - 1, hi)], 1);
+        assert_eq!(classify(&sliver), Class::Triangle);
+        let line = Polygon::new(alloc::vec![Point::new(lo, lo), Point::new(hi, hi), Point::new(0, 0)], 1);
+        assert_eq!(classify(&line), Class::Degenerate);
+    }
+}

@@ -1,0 +1,310 @@
+//! `abrash_int`: Abrash's fast convex filler of chapter 39: Listing 38.1's
+//! `FillConvexPolygon` driven by Listing 39.2's integer-only `ScanEdge`,
+//! drawing one whole span per scan line as Listing 39.1's `memset` does.
+//! Chapter 39 is restated in `ABRASH_FACTS.md` §3 (the OCR of seed
+//! `000_8935c452f75c56ce.txt` holds chapter 38 only).
+//!
+//! - Convention: the same as `abrash_float`, integer sample points; a point
+//!   on a left edge or a flat top is in, on a right edge or a flat bottom
+//!   out. Vertices are rounded to whole pixels first.
+//! - Arithmetic: integer error terms, in the four cases of Listing 39.2
+//!   (vertical, diagonal, Y-major, X-major), so an edge's X on scan line
+//!   `Y1 + k` is exactly `X1 + ceil(k * DX / DY)`: the pixels Listing 38.1
+//!   means to choose, without the two `ceil`s its `double`s get wrong on the
+//!   book's test screen (ch. 39).
+//! - Classes: one contour, monotone in y ("convex" in Abrash's sense); other
+//!   polygons give what the original gives, within the target.
+//!
+//! The book's `int` is 16 bits under its Borland compiler; here it is `i32`.
+//! C only promises that `int` has at least 16 bits, the listings never rely
+//! on the width, and every value they compute lies between two rounded
+//! vertex coordinates (at most 2^23 in size) or is an error term smaller
+//! than an edge's height, so with `i32` nothing overflows and nothing needs
+//! refusing. The driver is `abrash_float`'s, with its safety changes; on top
+//! of them, an edge that starts above the target jumps to its first visible
+//! line with [`ErrorTermStep::skip`], which gives the X and error term the
+//! stepping would, so clipping moves no pixel.
+
+use alloc::vec::Vec;
+use core::ops::Range;
+
+use super::abrash_float::{fill_convex_polygon, Segment};
+use crate::geometry::{FillRule, PixelPoint, Polygon};
+use crate::method::{Class, Convention, Method, MethodInfo, Refusal};
+use crate::sink::SpanSink;
+
+/// Listings 38.1, 39.1 and 39.2.
+pub struct AbrashInt;
+
+static INFO: MethodInfo = MethodInfo {
+    name: "abrash_int",
+    seed: "ABRASH_FACTS.md §3 (Black Book ch. 39, Listings 39.1 and 39.2 in Listing 38.1's driver)",
+    convention: Convention {
+        sample_x: 0,
+        sample_y: 0,
+        summary: "integer sample points; left edges and flat tops in, right edges and flat bottoms out",
+    },
+    numeric: "integer vertices; integer error-term edge stepping (i32)",
+    handles: Class::Convex,
+    rules: &[FillRule::EvenOdd, FillRule::NonZero],
+};
+
+impl Method for AbrashInt {
+    fn info(&self) -> &'static MethodInfo {
+        &INFO
+    }
+
+    fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+        let contour = polygon.single_contour().ok_or(Refusal::MultipleContours)?;
+        let vertices: Vec<PixelPoint> = contour.iter().map(|p| p.round_to_pixel()).collect();
+        fill_convex_polygon(&vertices, polygon.color, sink, scan_edge);
+        Ok(())
+    }
+}
+
+/// X stepping with an error term, one scan line at a time: `X += whole;
+/// ErrorTerm += adj_up; if ErrorTerm > 0 { X += direction; ErrorTerm -=
+/// adj_down }`. This is the loop of Listing 39.2's Y-major case (`whole` 0,
+/// `adj_up` the width) and X-major case, and Listing 40.1's `AdvanceAET` on
+/// an `EdgeState` (`abrash_aet` keeps its edges in this form).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct ErrorTermStep {
+    pub x: i32,
+    pub whole: i32,
+    pub direction: i32,
+    pub error_term: i32,
+    pub adj_up: i32,
+    pub adj_down: i32,
+}
+
+impl ErrorTermStep {
+    /// An edge leaving `x` with horizontal extent `delta_x` over `height`
+    /// scan lines (`height > 0`), stepping `whole` pixels and `adj_up`
+    /// error a line. Both listings start the error term at 0 going right
+    /// and at `1 - height` going left, and count `height` per extra pixel;
+    /// with their `whole` and `adj_up` (`whole * height + adj_up` is
+    /// `|delta_x|`), line `k`'s X is `x + ceil(k * delta_x / height)`.
+    pub(super) fn new(x: i32, delta_x: i32, height: i32, whole: i32, adj_up: i32) -> Self {
+        Self {
+            x,
+            whole,
+            direction: if delta_x > 0 { 1 } else { -1 },
+            error_term: if delta_x >= 0 { 0 } else { 1 - height },
+            adj_up,
+            adj_down: height,
+        }
+    }
+
+    /// One scan line down.
+    pub(super) fn step(&mut self) {
+        self.x += self.whole;
+        self.error_term += self.adj_up;
+        if self.error_term > 0 {
+            self.x += self.direction;
+            self.error_term -= self.adj_down;
+        }
+    }
+
+    /// `lines` scan lines down at once, in `i64` so no product overflows.
+    /// Both listings keep `0 <= adj_up <= adj_down` and start with the error
+    /// term in `(-adj_down, 0]`, so each step subtracts `adj_down` at most
+    /// once and leaves the term in that interval again: after `lines` steps
+    /// it has subtracted exactly `ceil((error_term + lines * adj_up) /
+    /// adj_down)` times. `lines` must not pass the edge's last line, where
+    /// X is back between the edge's ends.
+    pub(super) fn skip(&mut self, lines: i64) {
+        let adj_down = i64::from(self.adj_down);
+        let total = i64::from(self.error_term) + lines * i64::from(self.adj_up);
+        // `total > -adj_down`, so the numerator is never negative.
+        let extra = (total + adj_down - 1) / adj_down;
+        self.error_term = (total - extra * adj_down) as i32;
+        self.x = (i64::from(self.x) + lines * i64::from(self.whole) + extra * i64::from(self.direction)) as i32;
+    }
+}
+
+/// `ScanEdge` of Listing 39.2. The original steps from `Y1`, pre-stepping
+/// once when `SkipFirst` is set; here the first stored X comes from
+/// stepping `rows.start + skip_first` lines at once (the same X, see
+/// [`ErrorTermStep::skip`]), and the rest are stepped as in the book.
+fn scan_edge(segment: &Segment, rows: Range<i64>, xs: &mut [i32]) {
+    let delta_x = segment.x2 - segment.x1;
+    let height = segment.y2 - segment.y1;
+    let width = delta_x.abs();
+    let advance_amt = if delta_x > 0 { 1 } else { -1 };
+    let lines_before = rows.start + i64::from(segment.skip_first);
+    if width == 0 {
+        // Vertical: the same X on every line.
+        xs.fill(segment.x1);
+    } else if width == height {
+        // Diagonal: one pixel a line.
+        let mut x = (i64::from(segment.x1) + lines_before * i64::from(advance_amt)) as i32;
+        for slot in xs {
+            *slot = x;
+            x += advance_amt;
+        }
+    } else {
+        let mut edge = if height > width {
+            // Y-major: at most one pixel a line.
+            ErrorTermStep::new(segment.x1, delta_x, height, 0, width)
+        } else {
+            // X-major: `Width / Height` pixels a line, one more when the
+            // error term goes positive.
+            ErrorTermStep::new(segment.x1, delta_x, height, (width / height) * advance_amt, width % height)
+        };
+        edge.skip(lines_before);
+        for slot in xs {
+            *slot = edge.x;
+            edge.step();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Point;
+    use crate::methods::abrash_float::AbrashFloat;
+    use crate::scenes;
+    use crate::sink::{Framebuffer, Size, SCREEN};
+    use alloc::string::String;
+    use alloc::vec;
+
+    fn draw(points: &[(i32, i32)], offset: (i32, i32), size: Size) -> Framebuffer {
+        let mut fb = Framebuffer::new(size);
+        AbrashInt.fill(&Polygon::from_pixels(points, offset, 1), &mut fb).unwrap();
+        assert_eq!(fb.stray_spans(), 0);
+        fb
+    }
+
+    fn ascii(fb: &Framebuffer, width: usize) -> String {
+        let row = |r: &[u8]| r.iter().map(|&p| if p == 0 { '.' } else { '#' }).chain(['\n']).collect::<String>();
+        fb.pixels().chunks(width).map(row).collect()
+    }
+
+    const SMALL: Size = Size { width: 8, height: 6 };
+
+    #[test]
+    fn rectangle_excludes_right_column_and_bottom_row() {
+        let fb = draw(&[(1, 1), (5, 1), (5, 4), (1, 4)], (0, 0), SMALL);
+        assert_eq!(ascii(&fb, 8), "........\n.####...\n.####...\n.####...\n........\n........\n");
+    }
+
+    #[test]
+    fn pointed_top_skips_the_top_line_and_right_edge_points() {
+        // Row 1 meets the left edge at x=2 (drawn) and the right at x=4 (not).
+        let fb = draw(&[(3, 0), (6, 3), (0, 3)], (0, 0), SMALL);
+        assert_eq!(ascii(&fb, 8), "........\n..##....\n.####...\n........\n........\n........\n");
+    }
+
+    #[test]
+    fn x_major_and_y_major_edges_take_the_ceiling() {
+        // Left chain: (0,0)-(3,2) is X-major, X = ceil(3k/2) = 0, 2 on rows
+        // 0, 1; (3,2)-(1,5) is Y-major going left, X = 3 + ceil(-2k/3) = 3,
+        // 3, 2 on rows 2, 3, 4. The right edge is vertical at 7, less one.
+        let fb = draw(&[(0, 0), (7, 0), (7, 5), (1, 5), (3, 2)], (0, 0), SMALL);
+        assert_eq!(ascii(&fb, 8), "#######.\n..#####.\n...####.\n...####.\n..#####.\n........\n");
+    }
+
+    #[test]
+    fn skipping_to_row_k_gives_the_stepped_error_term() {
+        for height in 1..=9 {
+            for delta_x in -20..=20 {
+                let width = i32::abs(delta_x);
+                if width == 0 || width == height {
+                    continue;
+                }
+                let advance_amt = if delta_x > 0 { 1 } else { -1 };
+                let (whole, adj_up) =
+                    if height > width { (0, width) } else { ((width / height) * advance_amt, width % height) };
+                let start = ErrorTermStep::new(5, delta_x, height, whole, adj_up);
+                let mut stepped = start;
+                for k in 0..=i64::from(height) {
+                    let mut jumped = start;
+                    jumped.skip(k);
+                    assert_eq!(
+                        (jumped.x, jumped.error_term),
+                        (stepped.x, stepped.error_term),
+                        "dx {delta_x} h {height} k {k}"
+                    );
+                    let exact = 5
+                        + (k * i64::from(delta_x)).div_euclid(i64::from(height))
+                        + i64::from((k * i64::from(delta_x)).rem_euclid(i64::from(height)) != 0);
+                    assert_eq!(i64::from(stepped.x), exact);
+                    stepped.step();
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn clipping_changes_no_pixel() {
+        // X-major edges both ways, Y-major edges both ways, a diagonal and a
+        // vertical, each drawn whole on a tall target and with its first
+        // 1000 rows above a short one.
+        let shapes: &[&[(i32, i32)]] = &[
+            &[(160, 0), (2900, 1999), (-2500, 1999)],
+            &[(5, 0), (250, 1200), (0, 1100)],
+            &[(100, 3), (2000, 1903), (100, 1903)],
+        ];
+        for shape in shapes {
+            let whole = draw(shape, (0, 0), Size { width: 320, height: 2000 });
+            let clipped = draw(shape, (0, -1000), Size { width: 320, height: 200 });
+            assert!(clipped.pixels().contains(&1));
+            assert_eq!(clipped.pixels(), &whole.pixels()[320 * 1000..320 * 1200]);
+        }
+    }
+
+    #[test]
+    fn huge_and_off_screen_polygons_are_clipped() {
+        let big = 1 << 22;
+        let fb = draw(&[(-big, -big), (big, -big), (big, big), (-big, big)], (0, 0), SMALL);
+        assert!(fb.pixels().iter().all(|&p| p == 1));
+        let fb = draw(&[(100, 100), (120, 100), (120, 120)], (0, 0), SMALL);
+        assert!(fb.pixels().iter().all(|&p| p == 0));
+    }
+
+    #[test]
+    fn hostile_input_neither_panics_nor_strays() {
+        let extremes = [i32::MIN, -1, 0, 1, i32::MAX];
+        let mut polygons: Vec<Polygon> = Vec::new();
+        for &a in &extremes {
+            for &b in &extremes {
+                polygons.push(Polygon::new(vec![Point::new(a, b), Point::new(b, a), Point::new(a, a)], 1));
+            }
+        }
+        polygons.push(Polygon::new(Vec::new(), 1));
+        polygons.push(Polygon::from_pixels(&[(3, 3)], (0, 0), 1));
+        polygons.push(Polygon::from_pixels(&[(3, 3), (3, 3), (3, 3)], (0, 0), 1));
+        polygons.push(Polygon::from_pixels(&[(0, 0), (4, 2), (8, 4)], (0, 0), 1));
+        let zigzag: Vec<(i32, i32)> = (0..5000).map(|i| (i % 7 * 40 - 100, i / 2 - 1000)).collect();
+        polygons.push(Polygon::from_pixels(&zigzag, (0, 0), 1));
+        for polygon in &polygons {
+            let mut fb = Framebuffer::new(SCREEN);
+            AbrashInt.fill(polygon, &mut fb).unwrap();
+            assert_eq!(fb.stray_spans(), 0, "{polygon:?}");
+        }
+    }
+
+    #[test]
+    fn differs_from_the_float_version_in_the_two_pixels_chapter_39_reports() {
+        // Ch. 39: on Listing 38.3's screen the integer and float images differ
+        // in two pixels, where the float product crept just over an integer
+        // and `ceil` came out one too large. Both lie on hexagon 2 (colour
+        // 2), whose edges pass exactly through them: X = 160 + 19 * 84 / 38
+        // = 202 on its upper right edge (out, a right edge) and 76 + 19 * 84
+        // / 38 = 118 on its lower left edge (in, a left edge). The integer
+        // version is right in both.
+        let scene = scenes::by_name("abrash38-3").unwrap();
+        let (mut int, mut float) = (Framebuffer::new(SCREEN), Framebuffer::new(SCREEN));
+        scene.draw(&AbrashInt, &mut int);
+        scene.draw(&AbrashFloat, &mut float);
+        let differing: Vec<(i32, i32, u8, u8)> = (0..SCREEN.height)
+            .flat_map(|y| (0..SCREEN.width).map(move |x| (x, y)))
+            .filter_map(|(x, y)| {
+                let (a, b) = (int.get(x, y).unwrap(), float.get(x, y).unwrap());
+                (a != b).then_some((x, y, a, b))
+            })
+            .collect();
+        assert_eq!(differing, [(202, 35, 1, 2), (118, 165, 2, 1)]);
+    }
+}

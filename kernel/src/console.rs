@@ -1,0 +1,146 @@
+//! The protocol server on COM1 (kernel/protocol/src/lib.rs is the spec):
+//! one command line in, one frame out. Whatever arrives, the console
+//! answers and keeps serving: a bad line gets an `ERR` frame naming the
+//! problem, an over-long one is thrown away up to its newline, and no byte
+//! sequence can make it panic or wait forever (DESIGN.md, "Kernel <->
+//! host").
+
+use alloc::format;
+use alloc::string::{String, ToString};
+use alloc::vec;
+use alloc::vec::Vec;
+use core::fmt::Write;
+use core::hint::spin_loop;
+
+use protocol::{Command, CommandError, FrameKind, MAX_LINE};
+use raster::{methods, scene_file, scenes, sink, Method, Op, Scene};
+
+use crate::exit::exit_qemu;
+use crate::video::Screen;
+use crate::{fault, serial, vga};
+
+/// Tells the host the kernel is up: a `LOG` frame per VGA register or DAC
+/// entry that did not read back as written, then `READY` with the
+/// summary.
+pub fn announce() {
+    let mismatches = vga::verify();
+    for mismatch in &mismatches {
+        serial::send_frame(FrameKind::Log, mismatch.to_string().as_bytes());
+    }
+    serial::send_frame(FrameKind::Ready, vga::summary(&mismatches).as_bytes());
+}
+
+/// Serves the host forever, starting with `first_byte` (the byte that
+/// stopped the demo).
+pub fn serve(screen: &mut Screen, first_byte: u8) -> ! {
+    let mut console = Console { screen, line: Vec::with_capacity(MAX_LINE), overlong: false };
+    console.accept(first_byte);
+    loop {
+        match serial::try_read_byte() {
+            Some(byte) => console.accept(byte),
+            None => spin_loop(),
+        }
+    }
+}
+
+/// A reply: frame kind and payload. Failures are `Err(text)`, sent as
+/// `ERR` frames.
+type Reply = Result<(FrameKind, Vec<u8>), String>;
+
+struct Console<'a> {
+    screen: &'a mut Screen,
+    /// The line so far, without its `\n`; never longer than `MAX_LINE`.
+    line: Vec<u8>,
+    /// The current line outgrew `MAX_LINE`: drop bytes up to its `\n`.
+    overlong: bool,
+}
+
+impl Console<'_> {
+    fn accept(&mut self, byte: u8) {
+        match byte {
+            b'\n' if self.overlong => {
+                self.overlong = false;
+                serial::send_frame(FrameKind::Err, CommandError::TooLong.to_string().as_bytes());
+            }
+            b'\n' => {
+                let line = core::mem::take(&mut self.line);
+                self.execute(&line);
+                // Keep the buffer and its capacity for the next line.
+                self.line = line;
+                self.line.clear();
+            }
+            _ if self.overlong => {}
+            _ if self.line.len() == MAX_LINE => {
+                self.overlong = true;
+                self.line.clear();
+            }
+            _ => self.line.push(byte),
+        }
+    }
+
+    fn execute(&mut self, line: &[u8]) {
+        let reply = Command::parse(line).map_err(|error| error.to_string()).and_then(|command| self.run(command));
+        match reply {
+            Ok((kind, payload)) => serial::send_frame(kind, &payload),
+            Err(text) => serial::send_frame(FrameKind::Err, text.as_bytes()),
+        }
+    }
+
+    fn run(&mut self, command: Command<'_>) -> Reply {
+        match command {
+            Command::Ping => ok("pong"),
+            Command::List => Ok((FrameKind::List, listing().into_bytes())),
+            Command::Draw { scene, method } => {
+                let method = method_named(method)?;
+                let scene = scenes::by_name(scene).ok_or_else(|| format!("unknown scene `{scene}`"))?;
+                ok(self.screen.draw(&scene, method))
+            }
+            Command::Clear(color) => {
+                sink::clear(self.screen, color);
+                ok(format_args!("clear {color}"))
+            }
+            Command::Poly { method, spec } => {
+                let method = method_named(Some(method))?;
+                // The spec is a scene-file `poly` line without its keyword.
+                let op = scene_file::parse_line(&format!("poly {spec}")).map_err(|error| error.to_string())?;
+                let Some(fill @ Op::Fill(_)) = op else { return Err(String::from("POLY takes one polygon")) };
+                let scene = Scene { name: String::from("POLY"), ops: vec![fill] };
+                ok(self.screen.draw(&scene, method))
+            }
+            Command::Dump => Ok((FrameKind::Dump, self.screen.dump())),
+            Command::VgaCheck => {
+                let mismatches = vga::verify();
+                let summary = vga::summary(&mismatches);
+                if mismatches.is_empty() { ok(summary) } else { Err(summary) }
+            }
+            Command::Exit(code) => exit_qemu(code),
+            Command::Fault(kind) => fault::provoke(kind),
+        }
+    }
+}
+
+fn ok(text: impl core::fmt::Display) -> Reply {
+    Ok((FrameKind::Ok, text.to_string().into_bytes()))
+}
+
+/// The method called `name`, or the default one when none is named.
+fn method_named(name: Option<&str>) -> Result<&'static dyn Method, String> {
+    match name {
+        None => Ok(methods::default_method()),
+        Some(name) => methods::by_name(name).ok_or_else(|| format!("unknown method `{name}`")),
+    }
+}
+
+/// The `LIST` payload: a `scene NAME` line per built-in scene, then a
+/// `method NAME` line per method, each ending in `\n`.
+fn listing() -> String {
+    let mut text = String::new();
+    // Writing to a `String` cannot fail.
+    for name in scenes::NAMES {
+        let _ = writeln!(text, "scene {name}");
+    }
+    for method in methods::ALL {
+        let _ = writeln!(text, "method {}", method.info().name);
+    }
+    text
+}

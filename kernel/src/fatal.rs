@@ -1,0 +1,51 @@
+//! The end of the road for panics and CPU exceptions: one `FATAL` frame
+//! saying what happened, then QEMU exits with [`QemuExitCode::Failed`]
+//! (a real PC halts). DESIGN.md: "A panic or CPU exception prints over
+//! serial and exits QEMU with a failure code."
+
+use core::fmt::{self, Write};
+use core::panic::PanicInfo;
+use core::sync::atomic::{AtomicBool, Ordering};
+
+use crate::exit::{exit_qemu, QemuExitCode};
+use crate::serial;
+
+/// Longest `FATAL` text; the rest is cut. A stack buffer, not the heap:
+/// the heap may be what failed.
+const MESSAGE_CAPACITY: usize = 512;
+
+/// Set by the first fatal error, so that a fault while reporting one exits
+/// at once instead of looping through the handlers.
+static REPORTING: AtomicBool = AtomicBool::new(false);
+
+/// Reports `what` in a `FATAL` frame and exits QEMU with the failure code.
+pub fn fatal(what: fmt::Arguments<'_>) -> ! {
+    if !REPORTING.swap(true, Ordering::SeqCst) {
+        let mut message = Message { bytes: [0; MESSAGE_CAPACITY], len: 0 };
+        // `Message` never fails; it cuts what does not fit.
+        let _ = message.write_fmt(what);
+        serial::send_fatal(&message.bytes[..message.len]);
+    }
+    exit_qemu(QemuExitCode::Failed as u8)
+}
+
+#[panic_handler]
+fn panic(info: &PanicInfo<'_>) -> ! {
+    fatal(format_args!("panic: {info}"))
+}
+
+/// A fixed buffer that keeps the first `MESSAGE_CAPACITY` bytes written.
+struct Message {
+    bytes: [u8; MESSAGE_CAPACITY],
+    len: usize,
+}
+
+impl Write for Message {
+    fn write_str(&mut self, text: &str) -> fmt::Result {
+        let room = MESSAGE_CAPACITY - self.len;
+        let take = text.len().min(room);
+        self.bytes[self.len..self.len + take].copy_from_slice(&text.as_bytes()[..take]);
+        self.len += take;
+        Ok(())
+    }
+}

@@ -1,0 +1,65 @@
+//! The test-only `FAULT` command: provokes each kind of fault for real, so
+//! the harness can prove that the handlers in `interrupts.rs` and the
+//! panic handler report it and exit QEMU with the failure code.
+
+use core::arch::asm;
+use core::hint::black_box;
+
+use protocol::FaultKind;
+
+use crate::fatal::fatal;
+
+/// An address no page maps: level-4 entry 27 of the lower half. The
+/// bootloader hands out level-4 entries from index 0 up (no ASLR in our
+/// config) and uses a handful, for the kernel, its stack, the boot info
+/// and the physical-memory map.
+const UNMAPPED_ADDRESS: u64 = 0xdeadbeef000;
+
+/// Each frame of `overflow_stack` holds this many `u64`s (512 bytes), so
+/// the 80 KiB kernel stack runs out after some 160 calls.
+const FRAME_WORDS: usize = 64;
+
+/// Provokes `kind`. Its handler ends the run; should one ever return, the
+/// run ends here, reported all the same.
+pub fn provoke(kind: FaultKind) -> ! {
+    match kind {
+        FaultKind::Breakpoint => x86_64::instructions::interrupts::int3(),
+        FaultKind::PageFault => {
+            black_box(read_unmapped());
+        }
+        FaultKind::DoubleFault => {
+            black_box(overflow_stack(0));
+        }
+        FaultKind::Panic => panic!("FAULT panic: the host asked for it"),
+    }
+    fatal(format_args!("FAULT {}: the fault handler returned", kind.name()))
+}
+
+/// Reads [`UNMAPPED_ADDRESS`]: a page fault with CR2 set to it.
+fn read_unmapped() -> u8 {
+    let value: u8;
+    // SAFETY: the load touches no Rust object; it faults, and the page
+    // fault handler never returns, so the asm block never completes. (In
+    // asm rather than `read_volatile`, which would be undefined behaviour
+    // for an address where nothing lives.)
+    unsafe {
+        asm!(
+            "mov {value}, byte ptr [{address}]",
+            address = in(reg) UNMAPPED_ADDRESS,
+            value = out(reg_byte) value,
+            options(nostack, readonly, preserves_flags),
+        );
+    }
+    value
+}
+
+/// Recurses until the kernel stack reaches its guard page. The page fault
+/// there cannot be delivered on the same, exhausted stack, so the CPU
+/// raises a double fault, which runs on the IST stack of `gdt.rs`: the
+/// genuine article, and the reason the IST stack exists.
+#[expect(unconditional_recursion, reason = "overflowing the stack is the point")]
+fn overflow_stack(depth: u64) -> u64 {
+    // `black_box` keeps the frame and the call: no tail call, no folding.
+    let frame = black_box([depth; FRAME_WORDS]);
+    overflow_stack(frame[0].wrapping_add(1)).wrapping_add(frame[FRAME_WORDS - 1])
+}

@@ -1,0 +1,243 @@
+//! Mode 13h by our own register writes, the DAC, and the read-back proof.
+//!
+//! The mode is data ([`MODE_13H`]); [`set_mode`] is the one function that
+//! knows the order the registers must be written in, and [`verify`] reads
+//! every one of them back. Values and order are DESIGN.md's "Hardware
+//! facts" (Chris Giese's modes.c, SeaBIOS vgasrc/stdvgamodes.c and
+//! rust-osdev/vga agree on them).
+
+use alloc::format;
+use alloc::string::String;
+use alloc::vec::Vec;
+use core::fmt::{self, Write};
+
+use raster::palette::{ENTRIES, VGA_DEFAULT};
+
+use crate::port::{bochs, vga, IoPort};
+
+/// Bytes in the DAC: 256 entries of red, green, blue.
+pub const DAC_LEN: usize = ENTRIES * 3;
+
+/// A display mode as register values, each group indexed from 0.
+struct Mode {
+    misc: u8,
+    sequencer: &'static [u8],
+    crtc: &'static [u8],
+    graphics: &'static [u8],
+    attribute: &'static [u8],
+}
+
+/// 320x200, 256 colours, chain-4: one byte per pixel, linear at 0xA0000.
+const MODE_13H: Mode = Mode {
+    misc: 0x63,
+    sequencer: &[0x03, 0x01, 0x0F, 0x00, 0x0E],
+    crtc: &[
+        0x5F, 0x4F, 0x50, 0x82, 0x54, 0x80, 0xBF, 0x1F, 0x00, 0x41, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, //
+        0x9C, 0x0E, 0x8F, 0x28, 0x40, 0x96, 0xB9, 0xA3, 0xFF,
+    ],
+    graphics: &[0x00, 0x00, 0x00, 0x00, 0x00, 0x40, 0x05, 0x0F, 0xFF],
+    attribute: &[
+        0x00, 0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x07, 0x08, 0x09, 0x0A, 0x0B, 0x0C, 0x0D, 0x0E, 0x0F, //
+        0x41, 0x00, 0x0F, 0x00, 0x00,
+    ],
+};
+
+/// Sequencer register 0 while the others change: synchronous reset
+/// (bit 1 clear), so the sequencer does not run on a half-set clock.
+const SEQUENCER_SYNC_RESET: u8 = 0x01;
+/// CRTC register 0x11, whose bit 7 write-protects CRTC registers 0-7.
+const CRTC_PROTECT_INDEX: u8 = 0x11;
+const CRTC_PROTECT_BIT: u8 = 0x80;
+/// Attribute index bit 5 (palette address source): while clear the
+/// attribute registers are open to the CPU and the screen is blank; it must
+/// be set again at the end or the screen stays blank.
+const ATTRIBUTE_VIDEO_ON: u8 = 0x20;
+/// Bochs dispi register numbers and the ID range of its VBE versions.
+const BOCHS_ID_INDEX: u16 = 0;
+const BOCHS_ENABLE_INDEX: u16 = 4;
+const BOCHS_IDS: core::ops::RangeInclusive<u16> = 0xB0C0..=0xB0CF;
+
+/// An index/data port pair: one register group.
+#[derive(Clone, Copy)]
+struct IndexedRegisters {
+    index: IoPort<u8>,
+    data: IoPort<u8>,
+}
+
+const SEQUENCER: IndexedRegisters = IndexedRegisters { index: vga::SEQUENCER_INDEX, data: vga::SEQUENCER_DATA };
+const CRTC: IndexedRegisters = IndexedRegisters { index: vga::CRTC_INDEX, data: vga::CRTC_DATA };
+const GRAPHICS: IndexedRegisters = IndexedRegisters { index: vga::GRAPHICS_INDEX, data: vga::GRAPHICS_DATA };
+
+impl IndexedRegisters {
+    fn write(self, index: u8, value: u8) {
+        self.index.write(index);
+        self.data.write(value);
+    }
+
+    fn read(self, index: u8) -> u8 {
+        self.index.write(index);
+        self.data.read()
+    }
+
+    fn write_all(self, values: &[u8]) {
+        for (index, &value) in (0..).zip(values) {
+            self.write(index, value);
+        }
+    }
+}
+
+/// Writes one attribute register. The flip-flop is reset first, so the
+/// write to 0x3C0 is taken as the index and the next as the data.
+fn write_attribute(index: u8, value: u8) {
+    vga::INPUT_STATUS_1.read();
+    vga::ATTRIBUTE_WRITE.write(index);
+    vga::ATTRIBUTE_WRITE.write(value);
+}
+
+/// Reads one attribute register, keeping the video on while doing it.
+fn read_attribute(index: u8) -> u8 {
+    vga::INPUT_STATUS_1.read();
+    vga::ATTRIBUTE_WRITE.write(index | ATTRIBUTE_VIDEO_ON);
+    vga::ATTRIBUTE_READ.read()
+}
+
+/// Turns the Bochs VBE interface off, so that the VGA registers rule the
+/// screen again (the bootloader left a VESA mode on). Only when the ID
+/// register answers with a Bochs ID: on real cards 0x1CE/0x1CF may be
+/// someone else's registers.
+fn disable_bochs_vbe() {
+    bochs::INDEX.write(BOCHS_ID_INDEX);
+    if BOCHS_IDS.contains(&bochs::DATA.read()) {
+        bochs::INDEX.write(BOCHS_ENABLE_INDEX);
+        bochs::DATA.write(0);
+    }
+}
+
+/// Puts the card in mode 13h with the VGA default palette: what [`verify`]
+/// checks.
+pub fn init() {
+    set_mode(&MODE_13H);
+    load_dac(&VGA_DEFAULT);
+}
+
+/// Programs `mode` in the order DESIGN.md gives: Misc first (colour ports
+/// are ignored until Misc bit 0 selects them), the sequencer inside a
+/// synchronous reset, CRTC after unlocking registers 0-7, graphics, then
+/// the attribute controller, and finally the video back on.
+fn set_mode(mode: &Mode) {
+    disable_bochs_vbe();
+    vga::MISC_WRITE.write(mode.misc);
+
+    SEQUENCER.write(0, SEQUENCER_SYNC_RESET);
+    for (index, &value) in (0..).zip(mode.sequencer).skip(1) {
+        SEQUENCER.write(index, value);
+    }
+    if let Some(&reset) = mode.sequencer.first() {
+        SEQUENCER.write(0, reset);
+    }
+
+    let protect = CRTC.read(CRTC_PROTECT_INDEX);
+    CRTC.write(CRTC_PROTECT_INDEX, protect & !CRTC_PROTECT_BIT);
+    CRTC.write_all(mode.crtc);
+
+    GRAPHICS.write_all(mode.graphics);
+
+    for (index, &value) in (0..).zip(mode.attribute) {
+        write_attribute(index, value);
+    }
+    vga::INPUT_STATUS_1.read();
+    vga::ATTRIBUTE_WRITE.write(ATTRIBUTE_VIDEO_ON);
+}
+
+/// Loads the DAC: 6-bit red, green, blue per entry from entry 0 on.
+/// After the bootloader's VESA mode it does not hold the VGA default
+/// palette, so mode 13h needs it loaded by hand (DESIGN.md).
+fn load_dac(palette: &[[u8; 3]; ENTRIES]) {
+    vga::DAC_WRITE_INDEX.write(0);
+    for &level in palette.as_flattened() {
+        vga::DAC_DATA.write(level);
+    }
+}
+
+/// The DAC read back, entry 0 first, red, green, blue each.
+pub fn read_dac() -> [u8; DAC_LEN] {
+    vga::DAC_READ_INDEX.write(0);
+    let mut dac = [0; DAC_LEN];
+    dac.fill_with(|| vga::DAC_DATA.read());
+    dac
+}
+
+/// Which register group a [`Mismatch`] is in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Group {
+    Misc,
+    Sequencer,
+    Crtc,
+    Graphics,
+    Attribute,
+    /// `index` is the byte offset in the DAC: entry * 3 + component.
+    Dac,
+}
+
+/// A register that does not read back what mode 13h wrote.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Mismatch {
+    pub group: Group,
+    pub index: usize,
+    pub expected: u8,
+    pub actual: u8,
+}
+
+impl fmt::Display for Mismatch {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let Self { index, expected, actual, .. } = *self;
+        match self.group {
+            Group::Misc => write!(f, "misc")?,
+            Group::Sequencer => write!(f, "sequencer[{index:#04x}]")?,
+            Group::Crtc => write!(f, "crtc[{index:#04x}]")?,
+            Group::Graphics => write!(f, "graphics[{index:#04x}]")?,
+            Group::Attribute => write!(f, "attribute[{index:#04x}]")?,
+            Group::Dac => write!(f, "dac[{}].{}", index / 3, ["red", "green", "blue"][index % 3])?,
+        }
+        write!(f, ": expected {expected:#04x}, read {actual:#04x}")
+    }
+}
+
+/// Reads back every register of [`MODE_13H`] and the whole DAC and returns
+/// whatever differs from what [`set_mode`] and [`load_dac`] wrote with the
+/// default palette. Empty means the card is in mode 13h as we set it.
+pub fn verify() -> Vec<Mismatch> {
+    let mode = &MODE_13H;
+    let mut mismatches = Vec::new();
+    let mut check = |group, index, expected, actual| {
+        if expected != actual {
+            mismatches.push(Mismatch { group, index, expected, actual });
+        }
+    };
+    check(Group::Misc, 0, mode.misc, vga::MISC_READ.read());
+    let groups = [(Group::Sequencer, SEQUENCER, mode.sequencer), (Group::Crtc, CRTC, mode.crtc), (Group::Graphics, GRAPHICS, mode.graphics)];
+    for (group, registers, values) in groups {
+        for (index, &value) in (0..).zip(values) {
+            check(group, usize::from(index), value, registers.read(index));
+        }
+    }
+    for (index, &value) in (0..).zip(mode.attribute) {
+        check(Group::Attribute, usize::from(index), value, read_attribute(index));
+    }
+    for (index, (&expected, actual)) in VGA_DEFAULT.as_flattened().iter().zip(read_dac()).enumerate() {
+        check(Group::Dac, index, expected, actual);
+    }
+    mismatches
+}
+
+/// One line for people: `vga: 0 mismatches`, or the count and every
+/// mismatch, `; `-separated.
+pub fn summary(mismatches: &[Mismatch]) -> String {
+    let mut text = format!("vga: {} mismatches", mismatches.len());
+    for (i, mismatch) in mismatches.iter().enumerate() {
+        let separator = if i == 0 { ": " } else { "; " };
+        // Writing to a `String` cannot fail.
+        let _ = write!(text, "{separator}{mismatch}");
+    }
+    text
+}

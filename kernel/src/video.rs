@@ -1,0 +1,105 @@
+//! The mode-13h framebuffer: 64,000 bytes at physical 0xA0000, one byte a
+//! pixel, row after row (DESIGN.md "Hardware facts").
+//!
+//! Every access is volatile: the compiler sees stores that nobody reads and
+//! would be free to drop or merge them if they were plain writes.
+
+use alloc::vec::Vec;
+use core::fmt;
+use core::ptr::NonNull;
+
+use bootloader_api::BootInfo;
+use protocol::{DUMP_LEN, FRAMEBUFFER_LEN};
+use raster::scene::DrawReport;
+use raster::{Method, Scene, Size, SpanSink, SCREEN};
+use volatile::VolatilePtr;
+
+use crate::vga;
+
+/// Physical address of the mode-13h window.
+const FRAMEBUFFER_PHYSICAL: u64 = 0xA0000;
+
+// The sink's bounds check against `SCREEN` is what keeps spans inside the
+// 64,000 bytes.
+const _: () = assert!((SCREEN.width * SCREEN.height) as usize == FRAMEBUFFER_LEN);
+
+/// The screen as a span sink. Spans that break the sink contract are not
+/// drawn at all, only counted: nothing is ever written outside the 64,000
+/// bytes.
+pub struct Screen {
+    pixels: VolatilePtr<'static, [u8]>,
+    stray_spans: usize,
+}
+
+impl Screen {
+    /// The framebuffer through the bootloader's map of all physical memory
+    /// (`mappings.physical_memory` in main.rs's config): 0xA0000 is not
+    /// mapped otherwise, and the boot-info framebuffer is the VESA one,
+    /// stale after the mode switch. `None` if the map is missing.
+    pub fn new(boot_info: &BootInfo) -> Option<Self> {
+        let offset = boot_info.physical_memory_offset.into_option()?;
+        let start = offset.checked_add(FRAMEBUFFER_PHYSICAL)?;
+        let start = NonNull::new(core::ptr::with_exposed_provenance_mut::<u8>(usize::try_from(start).ok()?))?;
+        let pixels = NonNull::slice_from_raw_parts(start, FRAMEBUFFER_LEN);
+        // SAFETY: the bootloader maps all physical memory at `offset`, so
+        // these 64,000 bytes are the VGA window 0xA0000..0xAFA00: device
+        // memory, valid for volatile reads and writes for the whole run and
+        // never a Rust object, so nothing else holds a reference into it.
+        let pixels = unsafe { VolatilePtr::new(pixels) };
+        Some(Self { pixels, stray_spans: 0 })
+    }
+
+    /// Draws `scene` with `method` and says how it went.
+    pub fn draw(&mut self, scene: &Scene, method: &dyn Method) -> Drawn {
+        self.stray_spans = 0;
+        let report = scene.draw(method, self);
+        Drawn { report, stray_spans: self.stray_spans }
+    }
+
+    /// A `DUMP` payload: the 64,000 bytes read back from video memory, then
+    /// the 768 DAC bytes read back from the card.
+    pub fn dump(&self) -> Vec<u8> {
+        let mut dump = alloc::vec![0; DUMP_LEN];
+        let (framebuffer, dac) = dump.split_at_mut(FRAMEBUFFER_LEN);
+        self.pixels.copy_into_slice(framebuffer);
+        dac.copy_from_slice(&vga::read_dac());
+        dump
+    }
+}
+
+impl SpanSink for Screen {
+    fn size(&self) -> Size {
+        SCREEN
+    }
+
+    fn span(&mut self, y: i32, x_start: i32, x_end: i32, color: u8) {
+        let inside = (0..SCREEN.height).contains(&y) && 0 <= x_start && x_start < x_end && x_end <= SCREEN.width;
+        if !inside {
+            self.stray_spans += 1;
+            return;
+        }
+        // All three are non-negative and below 64,000 after the check above.
+        let row = (y * SCREEN.width) as usize;
+        let range = row + x_start as usize..row + x_end as usize;
+        self.pixels.index(range).fill(color);
+    }
+}
+
+/// What [`Screen::draw`] did.
+pub struct Drawn {
+    pub report: DrawReport,
+    /// Spans a method emitted outside the screen (a method bug), dropped.
+    pub stray_spans: usize,
+}
+
+impl fmt::Display for Drawn {
+    /// The `OK` text of `DRAW` and `POLY`: `polygons=N refused=M`, then
+    /// ` strays=K` only if a method broke the sink contract.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "polygons={} refused={}", self.report.polygons, self.report.refused)?;
+        if self.stray_spans > 0 {
+            write!(f, " strays={}", self.stray_spans)?;
+        }
+        Ok(())
+    }
+}
