@@ -1,1 +1,37 @@
+//! The headless QEMU harness, shared by the integration tests in `tests/`
+//! and by the xtask: build the image, boot it, speak the serial protocol,
+//! take QEMU's screendumps, and compare pictures.
+//!
+//! ```no_run
+//! use harness::{compare_images, render, Qemu, QemuOptions};
+//! # fn main() -> anyhow::Result<()> {
+//! let mut qemu = Qemu::boot(QemuOptions::default())?;
+//! qemu.console.draw("abrash38-1", None)?;
+//! let dump = qemu.console.dump()?;
+//! let expected = render::render(&render::builtin_scene("abrash38-1")?, render::method_named(None)?);
+//! compare_images("abrash38-1", &expected, &dump.image())?;
+//! # Ok(())
+//! # }
+//! ```
 
+pub mod cargo;
+pub mod checks;
+pub mod compare;
+pub mod console;
+pub mod image;
+mod once;
+pub mod picture;
+pub mod ppm;
+pub mod prerequisites;
+pub mod process;
+pub mod qemu;
+pub mod qmp;
+pub mod render;
+pub mod serial;
+pub mod workspace;
+
+pub use compare::compare_images;
+pub use console::{Console, Dump, Listing, Reply};
+pub use image::build_image;
+pub use picture::Image;
+pub use qemu::{Display, Medium, Qemu, QemuOptions};

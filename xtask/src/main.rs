@@ -1,1 +1,29 @@
-fn main() {}
+//! `cargo xtask`: the developer's hands (see `opt.rs` for the commands).
+//! Building, booting and talking to the kernel live in the `harness`
+//! library, shared with the tests.
+
+mod dump;
+mod opt;
+mod render;
+mod run;
+mod test;
+
+use anyhow::Result;
+use clap::Parser;
+use harness::build_image;
+
+use crate::opt::{Action, Cli};
+
+fn main() -> Result<()> {
+    match Cli::parse().action {
+        Action::Run(opt) => run::run(&opt),
+        Action::Image => {
+            // The path is the last line, for scripts: `dd if="$(cargo xtask image | tail -1)" ...`.
+            println!("{}", build_image()?.display());
+            Ok(())
+        }
+        Action::Dump(opt) => dump::dump(&opt),
+        Action::Render(opt) => render::render(&opt),
+        Action::Test(opt) => test::test(&opt),
+    }
+}

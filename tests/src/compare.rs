@@ -1,0 +1,120 @@
+//! Golden-image comparison that explains a mismatch with pictures, never
+//! with pixel values: expected, actual and diff PNGs written side by side.
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Result};
+
+use crate::picture::{Image, Pixels, Rgb};
+use crate::workspace;
+
+/// Colour of a differing pixel in a diff image.
+const DIFF_MARK: Rgb = [255, 0, 255];
+
+/// Where mismatches are written: `target/harness-failures/`.
+pub fn failures_dir() -> PathBuf {
+    workspace::target_dir().join("harness-failures")
+}
+
+/// Succeeds when the images are equal pixel for pixel: two indexed images
+/// by their indices (the raw framebuffer bytes), otherwise by colour.
+/// Otherwise writes `<name>.expected.png`, `<name>.actual.png` and
+/// `<name>.diff.png` (differing pixels magenta over a darkened copy of
+/// the actual image) into [`failures_dir`] and fails naming them and
+/// counting the differing pixels.
+pub fn compare_images(name: &str, expected: &Image, actual: &Image) -> Result<()> {
+    let same_size = (expected.width(), expected.height()) == (actual.width(), actual.height());
+    let differing: Vec<usize> = if same_size {
+        (0..expected.pixel_count()).filter(|&i| !same_pixel(expected, actual, i)).collect()
+    } else {
+        Vec::new()
+    };
+    if same_size && differing.is_empty() {
+        return Ok(());
+    }
+    let file_stem: String =
+        name.chars().map(|c| if c.is_ascii_alphanumeric() || "-_.".contains(c) { c } else { '_' }).collect();
+    let path = |what: &str| failures_dir().join(format!("{file_stem}.{what}.png"));
+    let (expected_path, actual_path) = (path("expected"), path("actual"));
+    expected.write_png(&expected_path)?;
+    actual.write_png(&actual_path)?;
+    if !same_size {
+        bail!(
+            "{name}: expected a {}x{} image, got {}x{}; wrote {} and {}",
+            expected.width(),
+            expected.height(),
+            actual.width(),
+            actual.height(),
+            expected_path.display(),
+            actual_path.display()
+        );
+    }
+    let diff_path = path("diff");
+    diff_image(actual, &differing)?.write_png(&diff_path)?;
+    let first = differing[0] as u32;
+    bail!(
+        "{name}: {} of {} pixels differ (first at x={}, y={}); wrote {}, {} and {}",
+        differing.len(),
+        expected.pixel_count(),
+        first % expected.width(),
+        first / expected.width(),
+        expected_path.display(),
+        actual_path.display(),
+        diff_path.display()
+    )
+}
+
+fn same_pixel(expected: &Image, actual: &Image, i: usize) -> bool {
+    match (expected.pixels(), actual.pixels()) {
+        (Pixels::Indexed { indices: a, .. }, Pixels::Indexed { indices: b, .. }) => a[i] == b[i],
+        _ => expected.color(i) == actual.color(i),
+    }
+}
+
+fn diff_image(actual: &Image, differing: &[usize]) -> Result<Image> {
+    let mut colors: Vec<Rgb> = (0..actual.pixel_count()).map(|i| actual.color(i).map(|c| c / 4)).collect();
+    for &i in differing {
+        colors[i] = DIFF_MARK;
+    }
+    Image::rgb(actual.width(), actual.height(), colors)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grey(levels: &[u8]) -> Image {
+        Image::rgb(levels.len() as u32, 1, levels.iter().map(|&v| [v; 3]).collect()).unwrap()
+    }
+
+    #[test]
+    fn equal_images_pass_and_write_nothing() {
+        compare_images("unit-equal", &grey(&[1, 2, 3]), &grey(&[1, 2, 3])).unwrap();
+        assert!(!failures_dir().join("unit-equal.diff.png").exists());
+    }
+
+    #[test]
+    fn indexed_images_compare_by_index_even_when_colours_agree() {
+        let palette = vec![[9, 9, 9], [9, 9, 9]];
+        let a = Image::indexed(2, 1, vec![0, 1], palette.clone()).unwrap();
+        let b = Image::indexed(2, 1, vec![0, 0], palette).unwrap();
+        let error = compare_images("unit/indexed", &a, &b).unwrap_err().to_string();
+        assert!(error.starts_with("unit/indexed: 1 of 2 pixels differ (first at x=1, y=0); wrote "), "{error}");
+        let diff = Image::read_png(&failures_dir().join("unit_indexed.diff.png")).unwrap();
+        assert_eq!(diff, Image::rgb(2, 1, vec![[2, 2, 2], DIFF_MARK]).unwrap());
+        for what in ["expected", "actual", "diff"] {
+            let path = failures_dir().join(format!("unit_indexed.{what}.png"));
+            assert!(error.contains(&path.display().to_string()), "{error}");
+            std::fs::remove_file(path).unwrap();
+        }
+    }
+
+    #[test]
+    fn different_sizes_are_reported_as_such() {
+        let error = compare_images("unit-size", &grey(&[1, 2]), &grey(&[1])).unwrap_err().to_string();
+        assert!(error.starts_with("unit-size: expected a 2x1 image, got 1x1"), "{error}");
+        for what in ["expected", "actual"] {
+            std::fs::remove_file(failures_dir().join(format!("unit-size.{what}.png"))).unwrap();
+        }
+    }
+}

@@ -1,0 +1,289 @@
+//! The host end of the serial protocol: commands out, typed replies in.
+
+use std::io::Write;
+use std::time::Duration;
+
+use anyhow::{bail, ensure, Context, Result};
+use protocol::{Command, FrameKind, DUMP_LEN, FRAMEBUFFER_LEN};
+use raster::palette::ENTRIES;
+use raster::SCREEN;
+
+use crate::picture::Image;
+use crate::serial::{Frame, FrameReader};
+
+/// Longest wait for the READY frame: SeaBIOS, the bootloader's stages and
+/// the mode set under TCG, on a loaded 2-core machine.
+pub const READY_TIMEOUT: Duration = Duration::from_secs(120);
+/// Longest wait for the answer to one command (a dump is 64 KB through an
+/// emulated UART).
+pub const REPLY_TIMEOUT: Duration = Duration::from_secs(60);
+
+/// A kernel's answer to a command, decoded.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Reply {
+    Ready(String),
+    Ok(String),
+    Err(String),
+    List(Listing),
+    Dump(Box<Dump>),
+    Fatal(String),
+}
+
+impl Reply {
+    fn decode(frame: Frame) -> Result<Self> {
+        Ok(match frame.kind {
+            FrameKind::Ready => Reply::Ready(frame.text()),
+            FrameKind::Ok => Reply::Ok(frame.text()),
+            FrameKind::Err => Reply::Err(frame.text()),
+            FrameKind::List => Reply::List(Listing::parse(&frame.text())?),
+            FrameKind::Dump => Reply::Dump(Box::new(Dump::parse(&frame.payload)?)),
+            FrameKind::Fatal => Reply::Fatal(frame.text()),
+            FrameKind::Log => bail!("a LOG frame is not a reply"),
+        })
+    }
+
+    /// One line for error messages; never the bytes of a dump.
+    fn describe(&self) -> String {
+        match self {
+            Reply::Ready(text) => format!("READY \"{text}\""),
+            Reply::Ok(text) => format!("OK \"{text}\""),
+            Reply::Err(text) => format!("ERR \"{text}\""),
+            Reply::List(listing) => {
+                format!("LIST of {} scenes and {} methods", listing.scenes.len(), listing.methods.len())
+            }
+            Reply::Dump(_) => "a DUMP".to_string(),
+            Reply::Fatal(text) => format!("FATAL \"{text}\""),
+        }
+    }
+}
+
+/// The answer to `LIST`.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub struct Listing {
+    pub scenes: Vec<String>,
+    pub methods: Vec<String>,
+}
+
+impl Listing {
+    fn parse(text: &str) -> Result<Self> {
+        let mut listing = Listing::default();
+        for line in text.lines().filter(|line| !line.is_empty()) {
+            match line.split_once(' ') {
+                Some(("scene", name)) => listing.scenes.push(name.to_string()),
+                Some(("method", name)) => listing.methods.push(name.to_string()),
+                _ => bail!("LIST line `{line}` is neither `scene NAME` nor `method NAME`"),
+            }
+        }
+        Ok(listing)
+    }
+}
+
+/// The answer to `DUMP`: the framebuffer and the DAC, both read back.
+#[derive(Clone, PartialEq, Eq)]
+pub struct Dump {
+    /// 320x200 bytes read back from 0xA0000.
+    pub pixels: Vec<u8>,
+    /// The 256 DAC entries read back, 6-bit red, green, blue.
+    pub palette: [[u8; 3]; ENTRIES],
+}
+
+impl std::fmt::Debug for Dump {
+    /// A summary: a derived Debug would print 64,000 numbers.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Dump {{ {} pixels, {} palette entries }}", self.pixels.len(), self.palette.len())
+    }
+}
+
+impl Dump {
+    pub fn parse(payload: &[u8]) -> Result<Self> {
+        ensure!(payload.len() == DUMP_LEN, "a dump has {DUMP_LEN} bytes, this one {}", payload.len());
+        let (pixels, dac) = payload.split_at(FRAMEBUFFER_LEN);
+        let mut palette = [[0; 3]; ENTRIES];
+        for (entry, rgb) in palette.iter_mut().zip(dac.chunks_exact(3)) {
+            entry.copy_from_slice(rgb);
+        }
+        Ok(Self { pixels: pixels.to_vec(), palette })
+    }
+
+    /// The framebuffer as an indexed image whose palette is the read-back
+    /// DAC: the picture the screen shows, with the raw bytes kept.
+    pub fn image(&self) -> Image {
+        Image::from_dac(SCREEN.width as u32, SCREEN.height as u32, self.pixels.clone(), &self.palette)
+            .expect("a dump holds width x height pixels")
+    }
+}
+
+/// A protocol session over a serial line.
+pub struct Console {
+    frames: FrameReader,
+    input: Box<dyn Write + Send>,
+    logs: Vec<String>,
+}
+
+impl Console {
+    /// A console that sends to `input` and reads frames from `frames`.
+    pub fn new(input: impl Write + Send + 'static, frames: FrameReader) -> Self {
+        Self { frames, input: Box::new(input), logs: Vec::new() }
+    }
+
+    /// Waits for the READY frame and returns its text (the VGA read-back
+    /// summary). LOG frames before it are kept in [`Console::logs`].
+    pub fn wait_ready(&mut self) -> Result<String> {
+        match self.reply_within(READY_TIMEOUT).context("waiting for the kernel's READY frame")? {
+            Reply::Ready(text) => Ok(text),
+            other => bail!("the kernel's first frame is {}, not READY", other.describe()),
+        }
+    }
+
+    /// The LOG frames received so far, in order.
+    pub fn logs(&self) -> &[String] {
+        &self.logs
+    }
+
+    /// Sends one command line.
+    pub fn send(&mut self, command: &Command) -> Result<()> {
+        self.send_bytes(format!("{command}\n").as_bytes()).with_context(|| format!("failed to send `{command}`"))
+    }
+
+    /// Sends raw bytes, valid or not.
+    pub fn send_bytes(&mut self, bytes: &[u8]) -> Result<()> {
+        self.input.write_all(bytes)?;
+        self.input.flush()?;
+        Ok(())
+    }
+
+    /// The next reply, within [`REPLY_TIMEOUT`]; LOG frames on the way are
+    /// kept in [`Console::logs`].
+    pub fn reply(&mut self) -> Result<Reply> {
+        self.reply_within(REPLY_TIMEOUT)
+    }
+
+    fn reply_within(&mut self, timeout: Duration) -> Result<Reply> {
+        loop {
+            let frame = self.frames.next_frame(timeout)?;
+            if frame.kind == FrameKind::Log {
+                self.logs.push(frame.text());
+                continue;
+            }
+            return Reply::decode(frame);
+        }
+    }
+
+    /// Sends `command` and returns its reply, whatever it is.
+    pub fn request(&mut self, command: &Command) -> Result<Reply> {
+        self.send(command)?;
+        self.reply().with_context(|| format!("waiting for the reply to `{command}`"))
+    }
+
+    /// Sends `command` and expects OK; returns its text.
+    pub fn ok(&mut self, command: &Command) -> Result<String> {
+        match self.request(command)? {
+            Reply::Ok(text) => Ok(text),
+            other => bail!("`{command}` answered {}", other.describe()),
+        }
+    }
+
+    /// Clears the screen to black (the host render's starting point) and
+    /// draws a built-in scene.
+    pub fn draw(&mut self, scene: &str, method: Option<&str>) -> Result<()> {
+        self.ok(&Command::Clear(0))?;
+        self.ok(&Command::Draw { scene, method })?;
+        Ok(())
+    }
+
+    pub fn dump(&mut self) -> Result<Dump> {
+        match self.request(&Command::Dump)? {
+            Reply::Dump(dump) => Ok(*dump),
+            other => bail!("`DUMP` answered {}", other.describe()),
+        }
+    }
+
+    pub fn list(&mut self) -> Result<Listing> {
+        match self.request(&Command::List)? {
+            Reply::List(listing) => Ok(listing),
+            other => bail!("`LIST` answered {}", other.describe()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use protocol::FrameHeader;
+    use std::sync::mpsc::{self, Sender};
+    use std::sync::{Arc, Mutex};
+
+    /// What the console wrote, shared with the test.
+    #[derive(Clone, Default)]
+    struct Sent(Arc<Mutex<Vec<u8>>>);
+
+    impl Write for Sent {
+        fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
+            self.0.lock().unwrap().extend_from_slice(bytes);
+            Ok(bytes.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    fn console(frames: &[(FrameKind, &[u8])]) -> (Console, Sent, Sender<Vec<u8>>) {
+        let (sender, receiver) = mpsc::channel();
+        for (kind, payload) in frames {
+            let mut bytes = format!("{}\n", FrameHeader::for_payload(*kind, payload)).into_bytes();
+            bytes.extend_from_slice(payload);
+            bytes.push(b'\n');
+            sender.send(bytes).unwrap();
+        }
+        let sent = Sent::default();
+        (Console::new(sent.clone(), FrameReader::new(receiver)), sent, sender)
+    }
+
+    #[test]
+    fn commands_go_out_as_lines_and_replies_come_back_typed() {
+        let (mut console, sent, _keep) = console(&[
+            (FrameKind::Log, b"vga: CRTC 0x11 reads 0x0e"),
+            (FrameKind::Ready, b"vga: 1 mismatches"),
+            (FrameKind::Ok, b"pong"),
+            (FrameKind::List, b"scene abrash38-1\nmethod abrash_float\n"),
+        ]);
+        assert_eq!(console.wait_ready().unwrap(), "vga: 1 mismatches");
+        assert_eq!(console.ok(&Command::Ping).unwrap(), "pong");
+        let listing = console.list().unwrap();
+        assert_eq!(listing, Listing { scenes: vec!["abrash38-1".into()], methods: vec!["abrash_float".into()] });
+        assert_eq!(console.logs(), ["vga: CRTC 0x11 reads 0x0e"]);
+        assert_eq!(sent.0.lock().unwrap().as_slice(), b"PING\nLIST\n");
+    }
+
+    #[test]
+    fn an_unexpected_reply_is_an_error_naming_the_command_and_the_reply() {
+        let (mut console, _, _keep) = console(&[(FrameKind::Err, b"unknown scene `x`")]);
+        let error = console.ok(&Command::Draw { scene: "x", method: None }).unwrap_err().to_string();
+        assert_eq!(error, "`DRAW x` answered ERR \"unknown scene `x`\"");
+    }
+
+    #[test]
+    fn a_dump_splits_into_framebuffer_and_palette() {
+        let mut payload = vec![7; FRAMEBUFFER_LEN];
+        payload.extend((0..ENTRIES as u32 * 3).map(|i| (i % 64) as u8));
+        let (mut console, _, _keep) = console(&[(FrameKind::Dump, &payload)]);
+        let dump = console.dump().unwrap();
+        assert_eq!(dump.pixels, vec![7; FRAMEBUFFER_LEN]);
+        assert_eq!(dump.palette[1], [3, 4, 5]);
+        // Every pixel is index 7, whose DAC entry (21, 22, 23) widens to 8 bits.
+        assert_eq!(dump.image().color(0), [87, 88, 95]);
+    }
+
+    #[test]
+    fn a_short_dump_is_refused() {
+        let error = Dump::parse(&[0; 10]).unwrap_err().to_string();
+        assert_eq!(error, format!("a dump has {DUMP_LEN} bytes, this one 10"));
+    }
+
+    #[test]
+    fn a_first_frame_other_than_ready_is_an_error() {
+        let (mut console, _, _keep) = console(&[(FrameKind::Fatal, b"panic at boot")]);
+        let error = console.wait_ready().unwrap_err().to_string();
+        assert_eq!(error, "the kernel's first frame is FATAL \"panic at boot\", not READY");
+    }
+}

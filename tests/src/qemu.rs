@@ -1,0 +1,294 @@
+//! Running the image in QEMU: the command line (every flag says why), the
+//! child process (killed on drop, every wait bounded) and its channels:
+//! COM1 on the child's stdin/stdout, QMP on a unix socket.
+
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, ExitStatus, Stdio};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc::Receiver;
+use std::time::{Duration, Instant};
+
+use anyhow::{anyhow, Context, Result};
+
+use crate::console::Console;
+use crate::image::build_image;
+use crate::picture::Image;
+use crate::prerequisites::{ensure_qemu, QEMU};
+use crate::process::command_line;
+use crate::qmp::Qmp;
+use crate::serial::{forward_bytes, FrameReader};
+
+/// Longest wait for QEMU to exit after QMP `quit`.
+pub const QUIT_TIMEOUT: Duration = Duration::from_secs(30);
+
+/// How the image is attached.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Medium {
+    /// The first IDE disk, as a PC's hard disk.
+    #[default]
+    Disk,
+    /// A USB stick (usb-storage on an xHCI controller): the rehearsal for
+    /// `dd`-ing the image onto a real stick.
+    UsbStick,
+}
+
+/// Whether a person watches.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Display {
+    #[default]
+    Headless,
+    /// A window on the user's desktop (QEMU's default display backend).
+    Window,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct QemuOptions {
+    pub medium: Medium,
+    pub display: Display,
+}
+
+/// QEMU's arguments for booting `image` with `options`, its QMP socket at
+/// `qmp_socket`.
+pub fn qemu_arguments(image: &Path, qmp_socket: &Path, options: QemuOptions) -> Vec<OsString> {
+    let mut args: Vec<OsString> = Vec::new();
+    // The i440FX PC with SeaBIOS: where DESIGN.md's hardware facts were
+    // verified, and a BIOS that boots the bootloader's BIOS image.
+    flag(&mut args, "-machine", "pc");
+    // Always emulate: KVM here is nested and pathologically slow, and TCG
+    // exists everywhere QEMU does.
+    flag(&mut args, "-accel", "tcg");
+    // Plenty for the bootloader and the kernel's heap; small enough to start fast.
+    flag(&mut args, "-m", "128M");
+    // The standard VGA (with the Bochs VBE interface the kernel switches off):
+    // the card the mode-13h register tables are proven on.
+    flag(&mut args, "-vga", "std");
+    match options.display {
+        // No window; QMP screendumps still render the card's output.
+        Display::Headless => flag(&mut args, "-display", "none"),
+        // No `-display`: QEMU picks its best backend for a window (GTK, SDL).
+        Display::Window => {}
+    }
+    // No human monitor: QMP is the control channel and stdio is COM1.
+    flag(&mut args, "-monitor", "none");
+    // COM1 on QEMU's stdin and stdout, both pipes to us: the protocol line.
+    flag(&mut args, "-serial", "stdio");
+    // Screendump and quit; `wait=off` lets the guest run with no client yet.
+    flag(&mut args, "-qmp", with_path("unix:", qmp_socket, ",server=on,wait=off"));
+    // `EXIT n` and fault reports leave QEMU with exit status (n << 1) | 1.
+    flag(&mut args, "-device", "isa-debug-exit,iobase=0xf4,iosize=0x04");
+    // A triple fault exits QEMU instead of rebooting the guest forever.
+    args.push("-no-reboot".into());
+    // `snapshot=on` sends writes to a temporary overlay: the image file stays
+    // untouched and parallel runs can share it without QEMU's write lock.
+    match options.medium {
+        Medium::Disk => {
+            flag(&mut args, "-drive", with_path("if=ide,index=0,format=raw,snapshot=on,file=", image, ""));
+        }
+        Medium::UsbStick => {
+            // The stick's drive has no bus of its own; usb-storage carries it.
+            flag(&mut args, "-drive", with_path("if=none,id=stick,format=raw,snapshot=on,file=", image, ""));
+            // A USB 3 controller, as on the PCs the stick is meant for.
+            flag(&mut args, "-device", "qemu-xhci,id=xhci");
+            // The stick itself; SeaBIOS boots from it as from a disk.
+            flag(&mut args, "-device", "usb-storage,bus=xhci.0,drive=stick");
+        }
+    }
+    args
+}
+
+fn flag(args: &mut Vec<OsString>, flag: &str, value: impl Into<OsString>) {
+    args.push(flag.into());
+    args.push(value.into());
+}
+
+/// `prefix`, `path` and `suffix` as one argument (paths need not be UTF-8).
+fn with_path(prefix: &str, path: &Path, suffix: &str) -> OsString {
+    let mut arg = OsString::from(prefix);
+    arg.push(path);
+    arg.push(suffix);
+    arg
+}
+
+/// A running QEMU. Dropping it kills the process.
+pub struct Qemu {
+    child: Child,
+    /// The protocol session on COM1.
+    pub console: Console,
+    /// The kernel's READY text (its VGA read-back summary), once booted.
+    pub ready: String,
+    run_dir: PathBuf,
+    qmp: Option<Qmp>,
+    stderr: Receiver<Vec<u8>>,
+    stderr_seen: Vec<u8>,
+}
+
+impl Qemu {
+    /// Builds (or reuses) the image, starts QEMU and waits for the kernel's
+    /// READY frame.
+    pub fn boot(options: QemuOptions) -> Result<Self> {
+        let mut qemu = Self::spawn(&build_image()?, options)?;
+        qemu.ready = match qemu.console.wait_ready() {
+            Ok(ready) => ready,
+            Err(error) => return Err(qemu.explain(error)),
+        };
+        Ok(qemu)
+    }
+
+    /// Starts QEMU on `image`, printing its command line. Does not wait for
+    /// the kernel.
+    pub fn spawn(image: &Path, options: QemuOptions) -> Result<Self> {
+        ensure_qemu()?;
+        static RUNS: AtomicUsize = AtomicUsize::new(0);
+        let run_dir = std::env::temp_dir().join(format!(
+            "polylab-qemu-{}-{}",
+            std::process::id(),
+            RUNS.fetch_add(1, Ordering::Relaxed)
+        ));
+        std::fs::create_dir_all(&run_dir).with_context(|| format!("failed to create {}", run_dir.display()))?;
+        let mut command = Command::new(QEMU);
+        command.args(qemu_arguments(image, &run_dir.join("qmp.sock"), options));
+        command.stdin(Stdio::piped()).stdout(Stdio::piped()).stderr(Stdio::piped());
+        let line = command_line(&command);
+        eprintln!("harness: running {line}");
+        let mut child = command.spawn().with_context(|| format!("failed to start `{line}`"))?;
+        let (Some(input), Some(output), Some(stderr)) = (child.stdin.take(), child.stdout.take(), child.stderr.take())
+        else {
+            unreachable!("all three streams are piped");
+        };
+        let console = Console::new(input, FrameReader::new(forward_bytes(output)));
+        Ok(Self {
+            child,
+            console,
+            ready: String::new(),
+            run_dir,
+            qmp: None,
+            stderr: forward_bytes(stderr),
+            stderr_seen: Vec::new(),
+        })
+    }
+
+    /// `error` with what QEMU printed on its standard error, if anything.
+    fn explain(&mut self, error: anyhow::Error) -> anyhow::Error {
+        // QEMU's last words may trail the serial stream's end by a moment.
+        while let Ok(chunk) = self.stderr.recv_timeout(Duration::from_millis(200)) {
+            self.stderr_seen.extend(chunk);
+        }
+        if self.stderr_seen.is_empty() {
+            return error;
+        }
+        let stderr = String::from_utf8_lossy(&self.stderr_seen).trim().to_string();
+        error.context(format!("QEMU's standard error says: {stderr}"))
+    }
+
+    /// The QMP session, connected on first use.
+    pub fn qmp(&mut self) -> Result<&mut Qmp> {
+        if self.qmp.is_none() {
+            self.qmp = Some(Qmp::connect(&self.run_dir.join("qmp.sock"))?);
+        }
+        Ok(self.qmp.as_mut().expect("connected above"))
+    }
+
+    /// QEMU's screendump of the display now.
+    pub fn screendump(&mut self) -> Result<Image> {
+        let scratch = self.run_dir.join("screen.ppm");
+        self.qmp()?.screendump(&scratch)
+    }
+
+    /// Asks QEMU to quit through QMP and waits (at most [`QUIT_TIMEOUT`])
+    /// for it to go.
+    pub fn quit(mut self) -> Result<ExitStatus> {
+        self.qmp()?;
+        self.qmp.take().expect("connected above").quit()?;
+        self.wait_exit(QUIT_TIMEOUT)
+    }
+
+    /// Waits at most `timeout` for QEMU to exit by itself (after `EXIT`, a
+    /// fault, or `quit`) and returns its exit status.
+    pub fn wait_exit(&mut self, timeout: Duration) -> Result<ExitStatus> {
+        let deadline = Instant::now() + timeout;
+        loop {
+            if let Some(status) = self.child.try_wait().context("failed to poll QEMU")? {
+                return Ok(status);
+            }
+            if Instant::now() >= deadline {
+                let error = anyhow!("QEMU did not exit within {} s", timeout.as_secs_f64());
+                return Err(self.explain(error));
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+
+    /// Waits, with no time limit, until the user closes QEMU's window. Only
+    /// for interactive runs: a person is the timeout. Fails (with QEMU's
+    /// complaint) unless QEMU exits successfully, as closing the window does.
+    pub fn wait_until_closed(&mut self) -> Result<()> {
+        let status = self.child.wait().context("failed to wait for QEMU")?;
+        if !status.success() {
+            return Err(self.explain(anyhow!("QEMU exited with {status}")));
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Qemu {
+    fn drop(&mut self) {
+        // Killing an exited child fails harmlessly; waiting reaps it.
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+        let _ = std::fs::remove_dir_all(&self.run_dir);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn arguments(options: QemuOptions) -> Vec<String> {
+        qemu_arguments(Path::new("/img/polylab.img"), Path::new("/run/qmp.sock"), options)
+            .into_iter()
+            .map(|a| a.into_string().unwrap())
+            .collect()
+    }
+
+    fn has_pair(args: &[String], flag: &str, value: &str) -> bool {
+        args.windows(2).any(|w| w[0] == flag && w[1] == value)
+    }
+
+    #[test]
+    fn headless_disk_boot_has_every_required_flag() {
+        let args = arguments(QemuOptions::default());
+        for (flag, value) in [
+            ("-accel", "tcg"),
+            ("-display", "none"),
+            ("-serial", "stdio"),
+            ("-qmp", "unix:/run/qmp.sock,server=on,wait=off"),
+            ("-device", "isa-debug-exit,iobase=0xf4,iosize=0x04"),
+            ("-m", "128M"),
+            ("-drive", "if=ide,index=0,format=raw,snapshot=on,file=/img/polylab.img"),
+        ] {
+            assert!(has_pair(&args, flag, value), "{flag} {value} missing from {args:?}");
+        }
+        assert!(args.contains(&"-no-reboot".to_string()));
+        assert!(!args.iter().any(|a| a.contains("usb")));
+    }
+
+    #[test]
+    fn usb_stick_boot_puts_the_image_on_xhci_usb_storage() {
+        let args = arguments(QemuOptions { medium: Medium::UsbStick, ..QemuOptions::default() });
+        assert!(has_pair(&args, "-drive", "if=none,id=stick,format=raw,snapshot=on,file=/img/polylab.img"));
+        assert!(has_pair(&args, "-device", "qemu-xhci,id=xhci"));
+        assert!(has_pair(&args, "-device", "usb-storage,bus=xhci.0,drive=stick"));
+        assert!(!args.iter().any(|a| a.starts_with("if=ide")));
+    }
+
+    #[test]
+    fn a_window_drops_only_the_display_flag() {
+        let headless = arguments(QemuOptions::default());
+        let window = arguments(QemuOptions { display: Display::Window, ..QemuOptions::default() });
+        let mut expected = headless.clone();
+        let display = headless.iter().position(|a| a == "-display").unwrap();
+        expected.drain(display..display + 2);
+        assert_eq!(window, expected);
+    }
+}

@@ -1,0 +1,106 @@
+//! The QEMU Machine Protocol client: JSON lines over a unix socket, used to
+//! take screendumps (QEMU's own view of the VGA card) and to quit.
+
+use std::io::{BufRead, BufReader, ErrorKind, Write};
+use std::os::unix::net::UnixStream;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use anyhow::{bail, Context, Result};
+use serde_json::{json, Value};
+
+use crate::picture::Image;
+use crate::ppm::parse_ppm;
+
+/// Longest wait for QEMU to create the socket, and for any one answer.
+pub const QMP_TIMEOUT: Duration = Duration::from_secs(30);
+
+/// A QMP session in command mode.
+pub struct Qmp {
+    reader: BufReader<UnixStream>,
+    writer: UnixStream,
+}
+
+impl Qmp {
+    /// Connects to `socket` (retrying until QEMU has created it, within
+    /// [`QMP_TIMEOUT`]), reads the greeting and leaves capabilities
+    /// negotiation mode.
+    pub fn connect(socket: &Path) -> Result<Self> {
+        let deadline = Instant::now() + QMP_TIMEOUT;
+        let stream = loop {
+            match UnixStream::connect(socket) {
+                Ok(stream) => break stream,
+                Err(_) if Instant::now() < deadline => std::thread::sleep(Duration::from_millis(20)),
+                Err(error) => {
+                    return Err(error).with_context(|| format!("failed to connect to QMP socket {}", socket.display()))
+                }
+            }
+        };
+        stream.set_read_timeout(Some(QMP_TIMEOUT))?;
+        stream.set_write_timeout(Some(QMP_TIMEOUT))?;
+        let mut qmp = Self { reader: BufReader::new(stream.try_clone()?), writer: stream };
+        let greeting = qmp.read_message()?.context("QMP closed before its greeting")?;
+        if greeting.get("QMP").is_none() {
+            bail!("QMP greeting expected, got {greeting}");
+        }
+        qmp.execute("qmp_capabilities", json!({}))?;
+        Ok(qmp)
+    }
+
+    /// The next JSON message, or `None` when QEMU closed the socket.
+    fn read_message(&mut self) -> Result<Option<Value>> {
+        let mut line = String::new();
+        match self.reader.read_line(&mut line) {
+            Ok(0) => Ok(None),
+            Err(error) if error.kind() == ErrorKind::ConnectionReset => Ok(None),
+            Ok(_) => Ok(Some(
+                serde_json::from_str(&line)
+                    .with_context(|| format!("QMP sent something that is not JSON: {line:?}"))?,
+            )),
+            Err(error) if matches!(error.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut) => {
+                bail!("QMP sent nothing within {} s", QMP_TIMEOUT.as_secs())
+            }
+            Err(error) => Err(error).context("failed to read from QMP"),
+        }
+    }
+
+    /// Runs one command and returns its `return` value, skipping the
+    /// asynchronous events QEMU sends in between. `None` if QEMU closed the
+    /// socket first (as it may after `quit`).
+    fn execute_allowing_close(&mut self, command: &str, arguments: Value) -> Result<Option<Value>> {
+        let request = json!({ "execute": command, "arguments": arguments });
+        writeln!(self.writer, "{request}").with_context(|| format!("failed to send QMP `{command}`"))?;
+        loop {
+            let Some(message) = self.read_message().with_context(|| format!("waiting for QMP `{command}`"))? else {
+                return Ok(None);
+            };
+            if let Some(value) = message.get("return") {
+                return Ok(Some(value.clone()));
+            }
+            if let Some(error) = message.get("error") {
+                bail!("QMP `{command}` failed: {error}");
+            }
+        }
+    }
+
+    fn execute(&mut self, command: &str, arguments: Value) -> Result<Value> {
+        self.execute_allowing_close(command, arguments)?
+            .with_context(|| format!("QMP closed before answering `{command}`"))
+    }
+
+    /// What the emulated display shows now, as QEMU renders it: for mode
+    /// 13h a 640x400 picture. QEMU writes a PPM to `scratch`, which is read
+    /// back and parsed.
+    pub fn screendump(&mut self, scratch: &Path) -> Result<Image> {
+        let filename = scratch.to_str().context("screendump path is not UTF-8")?;
+        self.execute("screendump", json!({ "filename": filename }))?;
+        let bytes = std::fs::read(scratch).with_context(|| format!("failed to read the screendump {filename}"))?;
+        parse_ppm(&bytes).with_context(|| format!("bad screendump {filename}"))
+    }
+
+    /// Asks QEMU to exit.
+    pub fn quit(mut self) -> Result<()> {
+        self.execute_allowing_close("quit", json!({}))?;
+        Ok(())
+    }
+}

@@ -1,0 +1,70 @@
+//! The demo pages, drawn by the kernel in QEMU, against the host render and
+//! against QEMU's own view of the screen.
+
+use anyhow::{ensure, Result};
+use harness::checks::{dump_matches_host_render, screen_matches_dump};
+use harness::{Qemu, QemuOptions};
+use protocol::Command;
+use raster::methods;
+use raster::palette::VGA_DEFAULT;
+use raster::scenes::NAMES;
+
+#[test]
+fn every_page_with_every_method_dumps_what_the_host_renders() -> Result<()> {
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    // Every combination runs, so one failure does not hide the others.
+    let failures: Vec<String> = NAMES
+        .iter()
+        .flat_map(|scene| methods::ALL.iter().map(move |method| (*scene, *method)))
+        .filter_map(|(scene, method)| dump_matches_host_render(&mut qemu.console, scene, method).err())
+        .map(|error| format!("{error:#}"))
+        .collect();
+    ensure!(failures.is_empty(), "{} mismatches:\n{}", failures.len(), failures.join("\n"));
+    Ok(())
+}
+
+#[test]
+fn screendump_shows_every_page_through_the_read_back_palette() -> Result<()> {
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    for scene in NAMES {
+        qemu.console.draw(scene, None)?;
+        let dump = qemu.console.dump()?;
+        let screen = qemu.screendump()?;
+        screen_matches_dump(scene, &dump, &screen)?;
+    }
+    Ok(())
+}
+
+#[test]
+fn read_back_palette_is_the_vga_default() -> Result<()> {
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    let dump = qemu.console.dump()?;
+    let wrong: Vec<usize> = (0..VGA_DEFAULT.len()).filter(|&i| dump.palette[i] != VGA_DEFAULT[i]).collect();
+    if let Some(&first) = wrong.first() {
+        anyhow::bail!(
+            "{} of 256 DAC entries differ from the VGA default; entry {first} reads {:?}, expected {:?}",
+            wrong.len(),
+            dump.palette[first],
+            VGA_DEFAULT[first]
+        );
+    }
+    Ok(())
+}
+
+#[test]
+fn kernel_lists_the_scenes_and_methods_the_host_knows() -> Result<()> {
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    let listing = qemu.console.list()?;
+    let methods: Vec<&str> = methods::ALL.iter().map(|m| m.info().name).collect();
+    ensure!(listing.scenes == NAMES, "kernel lists scenes {:?}, host has {NAMES:?}", listing.scenes);
+    ensure!(listing.methods == methods, "kernel lists methods {:?}, host has {methods:?}", listing.methods);
+    Ok(())
+}
+
+#[test]
+fn vga_registers_read_back_as_programmed() -> Result<()> {
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    ensure!(qemu.console.logs().is_empty(), "the kernel logged at boot: {:?}", qemu.console.logs());
+    qemu.console.ok(&Command::VgaCheck)?;
+    Ok(())
+}

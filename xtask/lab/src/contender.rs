@@ -1,0 +1,98 @@
+//! Everything the lab judges: the methods of `raster` and the peers, behind
+//! one face, so measuring never asks which is which.
+
+use std::hint::black_box;
+
+use raster::reference::SampleOffset;
+use raster::{Framebuffer, Method, Polygon, SpanSink, SCREEN};
+
+use crate::corpus::Family;
+use crate::peers::Peer;
+
+/// A method of `raster` or a peer library.
+#[derive(Clone, Copy)]
+pub enum Contender {
+    Method(&'static dyn Method),
+    Peer(Peer),
+}
+
+impl Contender {
+    /// Every method of `raster::methods::ALL`, then the peers.
+    pub fn all() -> Vec<Contender> {
+        let methods = raster::methods::ALL.iter().map(|&m| Contender::Method(m));
+        methods.chain(Peer::ALL.into_iter().map(Contender::Peer)).collect()
+    }
+
+    pub fn name(&self) -> &'static str {
+        match self {
+            Contender::Method(m) => m.info().name,
+            Contender::Peer(p) => p.name(),
+        }
+    }
+
+    pub fn is_peer(&self) -> bool {
+        matches!(self, Contender::Peer(_))
+    }
+
+    /// The seed file a method follows, or the peer's crate and call.
+    pub fn source(&self) -> &'static str {
+        match self {
+            Contender::Method(m) => m.info().seed,
+            Contender::Peer(p) => p.source(),
+        }
+    }
+
+    /// Arithmetic and convention, in words.
+    pub fn summary(&self) -> String {
+        match self {
+            Contender::Method(m) => format!("{}; {}", m.info().numeric, m.info().convention.summary),
+            Contender::Peer(p) => match p {
+                Peer::TinySkia => "f32 path, 26.6 fixed-point edges; pixel centres".to_string(),
+                Peer::EmbeddedGraphics => "whole-pixel vertices; i32 scanline intersections, edges drawn".to_string(),
+            },
+        }
+    }
+
+    /// Where it samples a pixel: its own convention, for the reference.
+    pub fn sample(&self) -> SampleOffset {
+        match self {
+            Contender::Method(m) => SampleOffset::of(&m.info().convention),
+            Contender::Peer(p) => p.sample(),
+        }
+    }
+
+    /// Whether it runs on `family` at all (a peer must take every polygon).
+    pub fn accepts(&self, family: &Family) -> bool {
+        match self {
+            Contender::Method(_) => true,
+            Contender::Peer(p) => family.polygons.iter().all(|polygon| p.accepts(polygon)),
+        }
+    }
+
+    /// Draws `polygon` into `sink`, or says why it declined.
+    pub fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str> {
+        match self {
+            Contender::Method(m) => m.fill(polygon, sink).map_err(|refusal| refusal.describe()),
+            Contender::Peer(p) => p.draw(polygon, sink),
+        }
+    }
+
+    /// One timed pass over `polygons` into a 320x200 target (for a peer, its
+    /// own kind of target).
+    pub fn pass<'a>(&self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a> {
+        match *self {
+            Contender::Method(method) => {
+                let polygons = polygons.to_vec();
+                let mut screen = Framebuffer::new(SCREEN);
+                Box::new(move || {
+                    for polygon in &polygons {
+                        // A refusal costs what it costs; it draws nothing.
+                        let _ = method.fill(polygon, &mut screen);
+                    }
+                    black_box(&mut screen);
+                })
+            }
+            Contender::Peer(p) => p.pass(polygons),
+        }
+    }
+}

@@ -1,0 +1,353 @@
+//! Accuracy: every contender on every polygon of a family, judged against
+//! `raster::reference` under our convention (pixel centres) and under the
+//! contender's own sample point, with `raster::CoverageSink` counting
+//! overdraw, gaps and stray spans.
+//!
+//! A polygon is drawn once into a [`Recorder`]; its spans are then replayed
+//! into a fresh coverage sink (that polygon alone) and, on tiling families,
+//! into the tiling's sink, where overdraw and gaps between tiles show.
+
+use std::ops::Range;
+use std::panic::{self, AssertUnwindSafe};
+
+use raster::reference::{self, SampleOffset};
+use raster::{CoverageSink, Polygon, SCREEN};
+
+use crate::contender::Contender;
+use crate::corpus::Family;
+use crate::spans::{self, Recorder, Span};
+use crate::stats::MeanVector;
+
+/// What one contender did on a set of polygons.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Tally {
+    pub polygons: u64,
+    /// Polygons declined cleanly (nothing drawn).
+    pub refusals: u64,
+    /// Panics and fills that emitted spans outside the target.
+    pub failures: u64,
+    /// Pixels differing from the reference under our convention.
+    pub wrong_pixels: u64,
+    /// Pixels differing from the reference under the contender's own.
+    pub wrong_pixels_own: u64,
+    /// Pixels drawn more than once: within one fill, or within one tiling
+    /// on tiling families.
+    pub overdraw: u64,
+    /// Pixels of a tiling's region (under the contender's own convention)
+    /// that no tile drew; tiling families only.
+    pub gaps: u64,
+    /// Polygons failed, wrong under the contender's own convention, or
+    /// overdrawn within their fill.
+    pub faulty_polygons: u64,
+    /// Pixels written on screen, overdraw included.
+    pub drawn_pixels: u64,
+    /// Centroid of the drawn pixels minus the reference's (our convention),
+    /// in pixels, over polygons where both drew something.
+    pub bias: MeanVector,
+    pub first_failure: Option<String>,
+    pub first_refusal: Option<String>,
+}
+
+/// How one fill went.
+#[derive(Clone, Debug, PartialEq)]
+enum Status {
+    Drawn,
+    Refused(&'static str),
+    Failed(String),
+}
+
+/// One contender on one polygon.
+struct Outcome {
+    status: Status,
+    wrong: u64,
+    wrong_own: u64,
+    overdraw: u64,
+    drawn: u64,
+    bias: Option<(f64, f64)>,
+}
+
+impl Tally {
+    fn record(&mut self, index: usize, outcome: &Outcome, count_overdraw: bool) {
+        self.polygons += 1;
+        self.wrong_pixels += outcome.wrong;
+        self.wrong_pixels_own += outcome.wrong_own;
+        self.drawn_pixels += outcome.drawn;
+        if count_overdraw {
+            self.overdraw += outcome.overdraw;
+        }
+        if let Some(bias) = outcome.bias {
+            self.bias.add(bias);
+        }
+        match &outcome.status {
+            Status::Drawn => {}
+            Status::Refused(reason) => {
+                self.refusals += 1;
+                self.first_refusal.get_or_insert_with(|| format!("polygon {index}: {reason}"));
+            }
+            Status::Failed(reason) => {
+                self.failures += 1;
+                self.first_failure.get_or_insert_with(|| format!("polygon {index}: {reason}"));
+            }
+        }
+        let failed = matches!(outcome.status, Status::Failed(_));
+        self.faulty_polygons += u64::from(failed || outcome.wrong_own > 0 || outcome.overdraw > 0);
+    }
+}
+
+/// A family judged.
+pub struct Judged {
+    /// The reference's spans (our convention) of every polygon.
+    pub exact: Vec<Vec<Span>>,
+    /// Per contender, in the order given: its tally, or `None` where it
+    /// does not take the family.
+    pub tallies: Vec<Option<Tally>>,
+    /// The family's sweep runs `(value, polygons)`, if it sweeps.
+    pub runs: Vec<(f64, Range<usize>)>,
+    /// Per contender, a tally for each sweep run (empty without a sweep or
+    /// where it does not take the family).
+    pub run_tallies: Vec<Vec<Tally>>,
+    /// Per contender, the polygons it drew or declined without failing:
+    /// the ones its timing runs on.
+    pub timed: Vec<Vec<usize>>,
+}
+
+/// The reference's fill of one polygon at one sample point.
+struct Exact {
+    sample: SampleOffset,
+    spans: Vec<Span>,
+    coverage: CoverageSink,
+}
+
+impl Exact {
+    fn of(polygon: &Polygon, sample: SampleOffset) -> Self {
+        let mut recorder = Recorder::default();
+        reference::fill(polygon, sample, &mut recorder);
+        let coverage = coverage_of(&recorder.spans);
+        Self { sample, spans: recorder.spans, coverage }
+    }
+}
+
+fn coverage_of(spans: &[Span]) -> CoverageSink {
+    let mut coverage = CoverageSink::new(SCREEN);
+    spans::replay(spans, 1, &mut coverage);
+    coverage
+}
+
+/// Judges every contender on every polygon of `family`; `progress` is told
+/// of each polygon done. Panics are caught and counted as failures; the
+/// caller should silence the panic hook (see [`quietly`]).
+pub fn judge(family: &Family, contenders: &[Contender], progress: &dyn Fn()) -> Judged {
+    let mut samples = vec![SampleOffset::CENTRE];
+    for c in contenders {
+        if !samples.contains(&c.sample()) {
+            samples.push(c.sample());
+        }
+    }
+    let own: Vec<usize> = contenders.iter().map(|c| samples.iter().position(|&s| s == c.sample()).unwrap_or(0)).collect();
+    let takes: Vec<bool> = contenders.iter().map(|c| c.accepts(family)).collect();
+    let runs = family.sweep.as_ref().map(|s| s.runs()).unwrap_or_default();
+    let run_of: Vec<usize> = runs.iter().enumerate().flat_map(|(r, (_, range))| range.clone().map(move |_| r)).collect();
+
+    let mut judged = Judged {
+        exact: Vec::with_capacity(family.polygons.len()),
+        tallies: takes.iter().map(|&t| t.then(Tally::default)).collect(),
+        run_tallies: takes.iter().map(|&t| if t { vec![Tally::default(); runs.len()] } else { vec![] }).collect(),
+        runs,
+        timed: vec![Vec::new(); contenders.len()],
+    };
+
+    let tiled = !family.tilings.is_empty();
+    let canvases: Vec<Range<usize>> =
+        if tiled { family.tilings.clone() } else { (0..family.polygons.len()).map(|i| i..i + 1).collect() };
+    for canvas in canvases {
+        // On tiling families: what the tiles drew together, per contender,
+        // and the region they tile, per sample point.
+        let mut drawn_together: Vec<CoverageSink> = Vec::new();
+        let mut region: Vec<CoverageSink> = Vec::new();
+        if tiled {
+            drawn_together = contenders.iter().map(|_| CoverageSink::new(SCREEN)).collect();
+            region = samples.iter().map(|_| CoverageSink::new(SCREEN)).collect();
+        }
+        for index in canvas {
+            let polygon = &family.polygons[index];
+            let exact: Vec<Exact> = samples.iter().map(|&s| Exact::of(polygon, s)).collect();
+            for (sink, e) in region.iter_mut().zip(&exact) {
+                spans::replay(&e.spans, 1, sink);
+            }
+            for (c, contender) in contenders.iter().enumerate() {
+                if !takes[c] {
+                    continue;
+                }
+                let (outcome, drawn) = judge_one(contender, polygon, &exact[0], &exact[own[c]]);
+                if tiled {
+                    spans::replay(&drawn, 1, &mut drawn_together[c]);
+                }
+                if !matches!(outcome.status, Status::Failed(_)) {
+                    judged.timed[c].push(index);
+                }
+                if let Some(tally) = &mut judged.tallies[c] {
+                    tally.record(index, &outcome, !tiled);
+                }
+                if let Some(&run) = run_of.get(index) {
+                    judged.run_tallies[c][run].record(index, &outcome, !tiled);
+                }
+            }
+            judged.exact.push(exact.into_iter().next().map(|e| e.spans).unwrap_or_default());
+            progress();
+        }
+        for (c, together) in drawn_together.iter().enumerate() {
+            let report = together.report(&region[own[c]]);
+            if let Some(tally) = &mut judged.tallies[c] {
+                tally.overdraw += report.overdrawn as u64;
+                tally.gaps += report.gaps as u64;
+            }
+        }
+    }
+    judged
+}
+
+/// Draws `polygon` with `contender` and compares it with the reference
+/// under our convention (`ours`) and the contender's (`own`). Returns the
+/// spans it drew, for the tiling.
+fn judge_one(contender: &Contender, polygon: &Polygon, ours: &Exact, own: &Exact) -> (Outcome, Vec<Span>) {
+    let mut recorder = Recorder::default();
+    let status = match panic::catch_unwind(AssertUnwindSafe(|| contender.draw(polygon, &mut recorder))) {
+        Ok(Ok(())) => Status::Drawn,
+        Ok(Err(reason)) => Status::Refused(reason),
+        Err(payload) => Status::Failed(format!("panicked: {}", panic_message(payload.as_ref()))),
+    };
+    let drawn = recorder.spans;
+    let coverage = coverage_of(&drawn);
+    let against_ours = coverage.report(&ours.coverage);
+    let against_own = if own.sample == ours.sample { against_ours } else { coverage.report(&own.coverage) };
+    let status = match status {
+        Status::Drawn | Status::Refused(_) if against_ours.out_of_bounds > 0 => {
+            Status::Failed(format!("{} spans outside the 320x200 target", against_ours.out_of_bounds))
+        }
+        status => status,
+    };
+    let judged = matches!(status, Status::Drawn);
+    let bias = match (spans::centroid(&drawn), spans::centroid(&ours.spans)) {
+        (Some(d), Some(e)) if judged => Some((d.0 - e.0, d.1 - e.1)),
+        _ => None,
+    };
+    let outcome = Outcome {
+        wrong: if judged { (against_ours.gaps + against_ours.extras) as u64 } else { 0 },
+        wrong_own: if judged { (against_own.gaps + against_own.extras) as u64 } else { 0 },
+        overdraw: against_ours.overdrawn as u64,
+        drawn: spans::pixel_count(&drawn),
+        bias,
+        status,
+    };
+    (outcome, drawn)
+}
+
+fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "a non-text panic".to_string())
+}
+
+/// Runs `f` with the panic hook silenced, so that the panics the judging
+/// catches do not print; the previous hook is back afterwards.
+pub fn quietly<T>(f: impl FnOnce() -> T) -> T {
+    let previous = panic::take_hook();
+    panic::set_hook(Box::new(|_| {}));
+    let result = f();
+    panic::set_hook(previous);
+    result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::corpus::Group;
+    use raster::{Method, MethodInfo, Point, Refusal, SpanSink};
+
+    /// A method that misbehaves on purpose, by colour: 1 draws the exact
+    /// fill, 2 panics, 3 declines, 4 draws everything twice, 5 writes off
+    /// the target.
+    struct Misfit;
+
+    static MISFIT: MethodInfo = MethodInfo {
+        name: "misfit",
+        seed: "test",
+        convention: raster::Convention { sample_x: 128, sample_y: 128, summary: "test" },
+        numeric: "test",
+        handles: raster::Class::Complex,
+        rules: &[],
+    };
+
+    impl Method for Misfit {
+        fn info(&self) -> &'static MethodInfo {
+            &MISFIT
+        }
+
+        fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+            match polygon.color {
+                2 => panic!("misfit"),
+                3 => return Err(Refusal::OutOfRange),
+                5 => sink.span(-1, 0, 1, 1),
+                _ => {}
+            }
+            for _ in 0..if polygon.color == 4 { 2 } else { 1 } {
+                reference::fill(polygon, SampleOffset::CENTRE, sink);
+            }
+            Ok(())
+        }
+    }
+
+    fn square(color: u8) -> Polygon {
+        Polygon::new(vec![Point::new(0, 0), Point::new(2560, 0), Point::new(2560, 2560), Point::new(0, 2560)], color)
+    }
+
+    fn family(polygons: Vec<Polygon>, tilings: Vec<Range<usize>>) -> Family {
+        Family { name: "test", group: Group::Stress, description: "", polygons, tilings, sweep: None }
+    }
+
+    fn tally(family: &Family) -> Tally {
+        let judged = quietly(|| judge(family, &[Contender::Method(&Misfit)], &|| {}));
+        judged.tallies[0].clone().unwrap()
+    }
+
+    #[test]
+    fn an_exact_fill_has_nothing_wrong() {
+        let t = tally(&family(vec![square(1)], vec![]));
+        assert_eq!((t.wrong_pixels, t.overdraw, t.failures, t.faulty_polygons), (0, 0, 0, 0));
+        assert_eq!(t.drawn_pixels, 100);
+        assert_eq!(t.bias.mean(), Some((0.0, 0.0)));
+    }
+
+    #[test]
+    fn panics_and_stray_spans_are_failures_and_refusals_are_not() {
+        let t = tally(&family(vec![square(2), square(3), square(5)], vec![]));
+        assert_eq!((t.failures, t.refusals, t.faulty_polygons), (2, 1, 2));
+        assert_eq!(t.first_failure.as_deref(), Some("polygon 0: panicked: misfit"));
+        assert_eq!(t.first_refusal.as_deref(), Some("polygon 1: coordinates out of the method's range"));
+    }
+
+    #[test]
+    fn drawing_twice_is_overdraw_not_wrong() {
+        let t = tally(&family(vec![square(4)], vec![]));
+        assert_eq!((t.wrong_pixels, t.overdraw, t.faulty_polygons), (0, 100, 1));
+    }
+
+    #[test]
+    fn tilings_count_overdraw_and_gaps_between_tiles() {
+        // Two copies of one square overlap everywhere; a declined tile
+        // leaves its region as a gap.
+        let t = tally(&family(vec![square(1), square(1), square(3)], vec![0..3]));
+        assert_eq!((t.overdraw, t.gaps, t.wrong_pixels), (100, 0, 0));
+        let t = tally(&family(vec![square(3)], vec![0..1]));
+        assert_eq!((t.overdraw, t.gaps), (0, 100));
+    }
+
+    #[test]
+    fn failed_polygons_are_not_timed() {
+        let judged = quietly(|| judge(&family(vec![square(1), square(2), square(3)], vec![]), &[Contender::Method(&Misfit)], &|| {}));
+        assert_eq!(judged.timed[0], vec![0, 2]);
+        assert_eq!(judged.exact.len(), 3);
+    }
+}

@@ -1,0 +1,260 @@
+//! The peers: the fills most Rust users would reach for, run on the same
+//! polygons as our methods and judged by the same reference.
+//!
+//! - tiny-skia 0.12, aliased: `Mask::fill_path` with `anti_alias = false`
+//!   (Skia's non-AA scan converter: pixel centres, 26.6 fixed-point edges).
+//!   Its paths are `f32`, built from our subpixels before timing starts.
+//! - embedded-graphics 0.8: a filled `Triangle` (vertices rounded to whole
+//!   pixels, its only input), for triangle families only. Its draw target
+//!   writes through the same [`SpanSink`] as our methods, into the same
+//!   320x200 [`raster::Framebuffer`] when timed.
+
+use std::hint::black_box;
+
+use embedded_graphics::pixelcolor::Gray8;
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::{PrimitiveStyle, Rectangle, Styled, Triangle};
+use raster::reference::SampleOffset;
+use raster::{FillRule, Framebuffer, Polygon, SpanSink, SCREEN};
+use tiny_skia::{Mask, Path, PathBuilder, Transform};
+
+/// A peer library.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Peer {
+    TinySkia,
+    EmbeddedGraphics,
+}
+
+impl Peer {
+    pub const ALL: [Peer; 2] = [Peer::TinySkia, Peer::EmbeddedGraphics];
+
+    pub const fn name(self) -> &'static str {
+        match self {
+            Peer::TinySkia => "tiny-skia",
+            Peer::EmbeddedGraphics => "embedded-graphics",
+        }
+    }
+
+    pub const fn source(self) -> &'static str {
+        match self {
+            Peer::TinySkia => "tiny-skia 0.12 Mask::fill_path, anti_alias false",
+            Peer::EmbeddedGraphics => "embedded-graphics 0.8 Triangle with fill style",
+        }
+    }
+
+    /// Where the peer samples a pixel: tiny-skia at centres; embedded-
+    /// graphics puts pixel (x, y) at the whole-pixel point (x, y).
+    pub const fn sample(self) -> SampleOffset {
+        match self {
+            Peer::TinySkia => SampleOffset::CENTRE,
+            Peer::EmbeddedGraphics => SampleOffset { x: 0, y: 0 },
+        }
+    }
+
+    /// Whether the peer can draw `polygon` at all (embedded-graphics only
+    /// draws triangles).
+    pub fn accepts(self, polygon: &Polygon) -> bool {
+        match self {
+            Peer::TinySkia => true,
+            Peer::EmbeddedGraphics => triangle(polygon).is_some(),
+        }
+    }
+
+    /// Draws `polygon` into `sink`, or says why nothing could be drawn.
+    pub fn draw(self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str> {
+        match self {
+            Peer::TinySkia => {
+                let path = path(polygon).ok_or("tiny-skia builds no path from it")?;
+                let mut mask = new_mask();
+                mask.fill_path(&path, fill_rule(polygon.rule), false, Transform::identity());
+                emit_runs(&mask, polygon.color, sink);
+                Ok(())
+            }
+            Peer::EmbeddedGraphics => {
+                let shape = triangle(polygon).ok_or("not a triangle")?;
+                draw_triangle(&shape, sink);
+                Ok(())
+            }
+        }
+    }
+
+    /// One timed pass: fills every polygon it accepts of `polygons`, in
+    /// order, into its own target. Inputs are converted before the pass.
+    pub fn pass<'a>(self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a> {
+        match self {
+            Peer::TinySkia => {
+                let paths: Vec<(Path, tiny_skia::FillRule)> =
+                    polygons.iter().filter_map(|p| Some((path(p)?, fill_rule(p.rule)))).collect();
+                let mut mask = new_mask();
+                Box::new(move || {
+                    for (path, rule) in &paths {
+                        mask.fill_path(path, *rule, false, Transform::identity());
+                    }
+                    black_box(&mut mask);
+                })
+            }
+            Peer::EmbeddedGraphics => {
+                let shapes: Vec<Styled<Triangle, PrimitiveStyle<Gray8>>> = polygons.iter().filter_map(|p| triangle(p)).collect();
+                let mut screen = Framebuffer::new(SCREEN);
+                Box::new(move || {
+                    for shape in &shapes {
+                        draw_triangle(shape, &mut screen);
+                    }
+                    black_box(&mut screen);
+                })
+            }
+        }
+    }
+}
+
+fn new_mask() -> Mask {
+    Mask::new(SCREEN.width as u32, SCREEN.height as u32).expect("a 320x200 mask is a valid size")
+}
+
+fn fill_rule(rule: FillRule) -> tiny_skia::FillRule {
+    match rule {
+        FillRule::EvenOdd => tiny_skia::FillRule::EvenOdd,
+        FillRule::NonZero => tiny_skia::FillRule::Winding,
+    }
+}
+
+/// The polygon as a tiny-skia path in pixels, one closed subpath per
+/// contour; `None` where tiny-skia makes no path (nothing to draw).
+fn path(polygon: &Polygon) -> Option<Path> {
+    let one = raster::SUBPIXEL_ONE as f32;
+    let mut builder = PathBuilder::new();
+    for contour in &polygon.contours {
+        let Some((first, rest)) = contour.split_first() else { continue };
+        builder.move_to(first.x as f32 / one, first.y as f32 / one);
+        for p in rest {
+            builder.line_to(p.x as f32 / one, p.y as f32 / one);
+        }
+        builder.close();
+    }
+    builder.finish()
+}
+
+/// Every run of set mask bytes, as spans into `sink`.
+fn emit_runs(mask: &Mask, color: u8, sink: &mut dyn SpanSink) {
+    let width = mask.width() as usize;
+    for (y, row) in mask.data().chunks_exact(width).enumerate() {
+        let mut x = 0;
+        while let Some(start) = row[x..].iter().position(|&v| v != 0).map(|i| x + i) {
+            let end = row[start..].iter().position(|&v| v == 0).map_or(width, |i| start + i);
+            sink.span(y as i32, start as i32, end as i32, color);
+            x = end;
+            if x == width {
+                break;
+            }
+        }
+    }
+}
+
+/// The polygon as a filled embedded-graphics triangle, vertices rounded to
+/// whole pixels, or `None` unless it is one contour of three vertices.
+fn triangle(polygon: &Polygon) -> Option<Styled<Triangle, PrimitiveStyle<Gray8>>> {
+    let [a, b, c] = polygon.single_contour()? else { return None };
+    let corner = |p: &raster::Point| {
+        let q = p.round_to_pixel();
+        embedded_graphics::geometry::Point::new(q.x, q.y)
+    };
+    Some(Triangle::new(corner(a), corner(b), corner(c)).into_styled(PrimitiveStyle::with_fill(Gray8::new(polygon.color))))
+}
+
+fn draw_triangle(shape: &Styled<Triangle, PrimitiveStyle<Gray8>>, sink: &mut dyn SpanSink) {
+    let Ok(()) = shape.draw(&mut SpanTarget { sink });
+}
+
+/// An embedded-graphics draw target over a [`SpanSink`]: rows of a solid
+/// rectangle become spans, single pixels one-pixel spans. As the
+/// `DrawTarget` contract asks, whatever falls outside is dropped.
+struct SpanTarget<'a> {
+    sink: &'a mut dyn SpanSink,
+}
+
+impl SpanTarget<'_> {
+    fn screen(&self) -> Rectangle {
+        let size = self.sink.size();
+        Rectangle::new(embedded_graphics::geometry::Point::zero(), Size::new(size.width as u32, size.height as u32))
+    }
+}
+
+impl Dimensions for SpanTarget<'_> {
+    fn bounding_box(&self) -> Rectangle {
+        self.screen()
+    }
+}
+
+impl DrawTarget for SpanTarget<'_> {
+    type Color = Gray8;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = Pixel<Gray8>>,
+    {
+        let screen = self.screen();
+        for Pixel(p, color) in pixels {
+            if screen.contains(p) {
+                self.sink.span(p.y, p.x, p.x + 1, color.luma());
+            }
+        }
+        Ok(())
+    }
+
+    fn fill_solid(&mut self, area: &Rectangle, color: Gray8) -> Result<(), Self::Error> {
+        let visible = area.intersection(&self.screen());
+        let columns = visible.columns();
+        if !columns.is_empty() {
+            for y in visible.rows() {
+                self.sink.span(y, columns.start, columns.end, color.luma());
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Spans recorded as `(y, x_start, x_end)`.
+    struct Spans(Vec<(i32, i32, i32)>);
+
+    impl SpanSink for Spans {
+        fn size(&self) -> raster::Size {
+            SCREEN
+        }
+        fn span(&mut self, y: i32, x_start: i32, x_end: i32, _color: u8) {
+            self.0.push((y, x_start, x_end));
+        }
+    }
+
+    fn square(x: i32, y: i32, side: i32) -> Polygon {
+        Polygon::from_pixels(&[(x, y), (x + side, y), (x + side, y + side), (x, y + side)], (0, 0), 7)
+    }
+
+    #[test]
+    fn tiny_skia_fills_a_grid_square_by_its_pixel_centres() {
+        let mut spans = Spans(vec![]);
+        Peer::TinySkia.draw(&square(2, 3, 4), &mut spans).unwrap();
+        assert_eq!(spans.0, vec![(3, 2, 6), (4, 2, 6), (5, 2, 6), (6, 2, 6)]);
+    }
+
+    #[test]
+    fn tiny_skia_has_no_path_without_vertices() {
+        assert!(Peer::TinySkia.draw(&Polygon::default(), &mut Spans(vec![])).is_err());
+    }
+
+    #[test]
+    fn embedded_graphics_takes_only_triangles_and_clips() {
+        assert!(!Peer::EmbeddedGraphics.accepts(&square(0, 0, 4)));
+        // Small enough for its i32 arithmetic: debug builds panic on the
+        // square of a cross product beyond 46340 (intersection_params.rs).
+        let corner = Polygon::from_pixels(&[(-10, -10), (100, -10), (-10, 100)], (0, 0), 1);
+        let mut spans = Spans(vec![]);
+        Peer::EmbeddedGraphics.draw(&corner, &mut spans).unwrap();
+        assert!(spans.0.iter().all(|&(y, x0, x1)| (0..200).contains(&y) && 0 <= x0 && x0 < x1 && x1 <= 320));
+        assert_eq!(spans.0.first(), Some(&(0, 0, 91)));
+    }
+}

@@ -1,0 +1,249 @@
+//! What a lab run found, as written to results.json: one row per
+//! contender (method, peer or bound) per family, and the sweep points the
+//! rotation and scaling charts draw. The report and the charts read only
+//! this.
+
+use serde::Serialize;
+
+use crate::contender::Contender;
+use crate::corpus::{Axis, Family, Group};
+use crate::measure::{Judged, Tally};
+use crate::spans;
+use crate::timing::{Bound, Speeds};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Kind {
+    Method,
+    Peer,
+    Bound,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Results {
+    pub seed: u64,
+    pub quick: bool,
+    pub families: Vec<FamilyInfo>,
+    pub contenders: Vec<ContenderInfo>,
+    pub rows: Vec<Row>,
+    pub sweeps: Vec<SweepPoint>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct FamilyInfo {
+    pub name: &'static str,
+    pub group: Group,
+    pub description: &'static str,
+    pub polygons: usize,
+    pub tilings: usize,
+    /// Pixels of the exact fill, our convention.
+    pub pixels: u64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct ContenderInfo {
+    pub name: &'static str,
+    pub kind: Kind,
+    /// Seed file, crate, or what the bound does.
+    pub source: &'static str,
+    pub summary: String,
+    /// Own sample point in subpixels from the pixel's corner (none for bounds).
+    pub sample: Option<(i32, i32)>,
+}
+
+/// One contender on one family. Accuracy fields are `None` for the bounds;
+/// `gaps` is `None` on families that do not tile.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    pub name: &'static str,
+    pub kind: Kind,
+    pub family: &'static str,
+    pub group: Group,
+    pub polygons: u64,
+    /// Pixels of the exact fill of the family (our convention).
+    pub pixels: u64,
+    /// Polygons timed: all but the failed ones.
+    pub timed_polygons: u64,
+    pub ns_per_polygon: Option<f64>,
+    /// Exact pixels of the timed polygons per second of fill.
+    pub pixels_per_second: Option<f64>,
+    /// Time over the memset bound's on the same polygons.
+    pub time_vs_memset: Option<f64>,
+    /// Time over the span-write bound's on the same polygons.
+    pub time_vs_span_write: Option<f64>,
+    pub wrong_pixels: Option<u64>,
+    pub wrong_pixels_own: Option<u64>,
+    pub overdraw: Option<u64>,
+    pub gaps: Option<u64>,
+    pub failures: Option<u64>,
+    pub refusals: Option<u64>,
+    pub faulty_polygons: Option<u64>,
+    pub drawn_pixels: Option<u64>,
+    /// Mean (dx, dy) of drawn minus exact centroids, in pixels.
+    pub centroid_bias: Option<(f64, f64)>,
+    pub first_failure: Option<String>,
+    pub first_refusal: Option<String>,
+}
+
+impl Row {
+    /// Wrong pixels per exact pixel (our convention), where measured.
+    pub fn error_rate(&self) -> Option<f64> {
+        Some(self.wrong_pixels? as f64 / self.pixels.max(1) as f64)
+    }
+
+    /// Share of polygons failed or drawn wrong by the contender's own convention.
+    pub fn fault_rate(&self) -> Option<f64> {
+        Some(self.faulty_polygons? as f64 / self.polygons.max(1) as f64)
+    }
+}
+
+/// One contender at one value of a sweep.
+#[derive(Clone, Debug, Serialize)]
+pub struct SweepPoint {
+    pub name: &'static str,
+    pub kind: Kind,
+    pub family: &'static str,
+    pub axis: Axis,
+    pub value: f64,
+    pub polygons: u64,
+    pub pixels: u64,
+    pub wrong_pixels: Option<u64>,
+    pub wrong_pixels_own: Option<u64>,
+    pub faulty_polygons: Option<u64>,
+    /// Only for the axes timed per value (area, vertex count).
+    pub ns_per_polygon: Option<f64>,
+}
+
+impl Results {
+    pub fn new(seed: u64, quick: bool, contenders: &[Contender]) -> Self {
+        let mut infos: Vec<ContenderInfo> = contenders
+            .iter()
+            .map(|c| ContenderInfo {
+                name: c.name(),
+                kind: if c.is_peer() { Kind::Peer } else { Kind::Method },
+                source: c.source(),
+                summary: c.summary(),
+                sample: Some((c.sample().x, c.sample().y)),
+            })
+            .collect();
+        infos.extend(Bound::ALL.map(|b| ContenderInfo {
+            name: b.name(),
+            kind: Kind::Bound,
+            source: b.source(),
+            summary: String::new(),
+            sample: None,
+        }));
+        Self { seed, quick, families: vec![], contenders: infos, rows: vec![], sweeps: vec![] }
+    }
+
+    /// Adds what was measured on `family`.
+    pub fn add_family(&mut self, family: &Family, contenders: &[Contender], judged: &Judged, speeds: &Speeds) {
+        let pixels_of = |indices: &mut dyn Iterator<Item = usize>| indices.map(|i| spans::pixel_count(&judged.exact[i])).sum::<u64>();
+        let pixels = pixels_of(&mut (0..family.polygons.len()));
+        self.families.push(FamilyInfo {
+            name: family.name,
+            group: family.group,
+            description: family.description,
+            polygons: family.polygons.len(),
+            tilings: family.tilings.len(),
+            pixels,
+        });
+        let bound_ns = |bound: Bound| speeds.bounds[bound as usize];
+        let ratio = |ns: Option<f64>, bound: Bound| Some(ns? / bound_ns(bound)?);
+        let row = |name, kind, polygons: u64, timed: u64, timed_pixels: u64, ns: Option<f64>| Row {
+            name,
+            kind,
+            family: family.name,
+            group: family.group,
+            polygons,
+            pixels,
+            timed_polygons: timed,
+            ns_per_polygon: ns,
+            pixels_per_second: ns.map(|ns| timed_pixels as f64 / (ns * timed as f64) * 1e9),
+            time_vs_memset: ratio(ns, Bound::Memset),
+            time_vs_span_write: ratio(ns, Bound::SpanWrite),
+            wrong_pixels: None,
+            wrong_pixels_own: None,
+            overdraw: None,
+            gaps: None,
+            failures: None,
+            refusals: None,
+            faulty_polygons: None,
+            drawn_pixels: None,
+            centroid_bias: None,
+            first_failure: None,
+            first_refusal: None,
+        };
+        for (c, contender) in contenders.iter().enumerate() {
+            let Some(tally) = &judged.tallies[c] else { continue };
+            let timed = &judged.timed[c];
+            let kind = if contender.is_peer() { Kind::Peer } else { Kind::Method };
+            let ns = speeds.contenders[c];
+            let base = row(contender.name(), kind, tally.polygons, timed.len() as u64, pixels_of(&mut timed.iter().copied()), ns);
+            self.rows.push(with_tally(base, tally, !family.tilings.is_empty()));
+        }
+        for bound in Bound::ALL {
+            let n = family.polygons.len() as u64;
+            self.rows.push(row(bound.name(), Kind::Bound, n, n, pixels, bound_ns(bound)));
+        }
+        self.add_sweeps(family, contenders, judged, speeds);
+    }
+
+    fn add_sweeps(&mut self, family: &Family, contenders: &[Contender], judged: &Judged, speeds: &Speeds) {
+        let Some(sweep) = &family.sweep else { return };
+        for (r, (value, range)) in judged.runs.iter().enumerate() {
+            let pixels = range.clone().map(|i| spans::pixel_count(&judged.exact[i])).sum();
+            let point = |name, kind, tally: Option<&Tally>, ns| SweepPoint {
+                name,
+                kind,
+                family: family.name,
+                axis: sweep.axis,
+                value: *value,
+                polygons: range.len() as u64,
+                pixels,
+                wrong_pixels: tally.map(|t| t.wrong_pixels),
+                wrong_pixels_own: tally.map(|t| t.wrong_pixels_own),
+                faulty_polygons: tally.map(|t| t.faulty_polygons),
+                ns_per_polygon: ns,
+            };
+            let run_speeds = speeds.runs.get(r);
+            for (c, contender) in contenders.iter().enumerate() {
+                let Some(tally) = judged.run_tallies[c].get(r) else { continue };
+                let kind = if contender.is_peer() { Kind::Peer } else { Kind::Method };
+                self.sweeps.push(point(contender.name(), kind, Some(tally), run_speeds.and_then(|s| s.contenders[c])));
+            }
+            if let Some(run_speeds) = run_speeds {
+                for bound in Bound::ALL {
+                    self.sweeps.push(point(bound.name(), Kind::Bound, None, run_speeds.bounds[bound as usize]));
+                }
+            }
+        }
+    }
+
+    /// Rows of contender `name`.
+    pub fn rows_of<'a>(&'a self, name: &'a str) -> impl Iterator<Item = &'a Row> + 'a {
+        self.rows.iter().filter(move |r| r.name == name)
+    }
+
+    /// The row of contender `name` on `family`.
+    pub fn row(&self, name: &str, family: &str) -> Option<&Row> {
+        self.rows.iter().find(|r| r.name == name && r.family == family)
+    }
+}
+
+fn with_tally(row: Row, tally: &Tally, tiled: bool) -> Row {
+    Row {
+        wrong_pixels: Some(tally.wrong_pixels),
+        wrong_pixels_own: Some(tally.wrong_pixels_own),
+        overdraw: Some(tally.overdraw),
+        gaps: tiled.then_some(tally.gaps),
+        failures: Some(tally.failures),
+        refusals: Some(tally.refusals),
+        faulty_polygons: Some(tally.faulty_polygons),
+        drawn_pixels: Some(tally.drawn_pixels),
+        centroid_bias: tally.bias.mean(),
+        first_failure: tally.first_failure.clone(),
+        first_refusal: tally.first_refusal.clone(),
+        ..row
+    }
+}

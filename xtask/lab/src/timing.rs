@@ -1,0 +1,210 @@
+//! Wall-clock timing of fill passes, and the two bounds every fill is
+//! compared with. Nothing here is ever asserted: speed is reported only.
+
+use std::hint::black_box;
+use std::ops::Range;
+use std::time::{Duration, Instant};
+
+use raster::{Framebuffer, Polygon, SpanSink, SCREEN};
+
+use crate::contender::Contender;
+use crate::corpus::Family;
+use crate::measure::Judged;
+use crate::spans::{self, Span};
+use crate::stats::median;
+
+/// How hard to time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Timing {
+    /// Repeats whose median is reported.
+    pub repeats: usize,
+    /// Each repeat runs the pass as often as it takes to last this long.
+    pub min_repeat: Duration,
+}
+
+impl Timing {
+    pub const FULL: Timing = Timing { repeats: 7, min_repeat: Duration::from_millis(20) };
+    pub const QUICK: Timing = Timing { repeats: 3, min_repeat: Duration::from_millis(2) };
+
+    /// Nanoseconds per polygon of `pass`, which fills `polygons` polygons:
+    /// one warm-up pass, then the median of the repeats. `None` for no
+    /// polygons.
+    pub fn ns_per_polygon(&self, pass: &mut dyn FnMut(), polygons: usize) -> Option<f64> {
+        if polygons == 0 {
+            return None;
+        }
+        let start = Instant::now();
+        pass();
+        let once = start.elapsed().max(Duration::from_nanos(1));
+        let passes = (self.min_repeat.as_nanos() / once.as_nanos()).clamp(1, 1 << 20) as u32;
+        let samples: Vec<f64> = (0..self.repeats)
+            .map(|_| {
+                let start = Instant::now();
+                for _ in 0..passes {
+                    pass();
+                }
+                start.elapsed().as_nanos() as f64 / f64::from(passes) / polygons as f64
+            })
+            .collect();
+        median(&samples)
+    }
+}
+
+/// What a fill cannot beat: writing its pixels and nothing else.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Bound {
+    /// One `memset` (`<[u8]>::fill`, the safe `write_bytes`) of each
+    /// polygon's exact pixel count.
+    Memset,
+    /// The exact reference's spans replayed into a 320x200 framebuffer
+    /// through `&mut dyn SpanSink`, as a method emits them.
+    SpanWrite,
+}
+
+impl Bound {
+    pub const ALL: [Bound; 2] = [Bound::Memset, Bound::SpanWrite];
+
+    pub const fn name(self) -> &'static str {
+        match self {
+            Bound::Memset => "memset bound",
+            Bound::SpanWrite => "span-write bound",
+        }
+    }
+
+    pub const fn source(self) -> &'static str {
+        match self {
+            Bound::Memset => "write_bytes of each polygon's exact pixel count",
+            Bound::SpanWrite => "the reference's spans replayed into a Framebuffer",
+        }
+    }
+
+    /// One pass over the polygons whose exact spans are `exact`.
+    pub fn pass<'a>(self, exact: &[&'a [Span]]) -> Box<dyn FnMut() + 'a> {
+        match self {
+            Bound::Memset => {
+                let counts: Vec<usize> = exact.iter().map(|s| spans::pixel_count(s) as usize).collect();
+                let mut bytes = vec![0u8; SCREEN.width as usize * SCREEN.height as usize];
+                Box::new(move || {
+                    for &count in &counts {
+                        let len = count.min(bytes.len());
+                        black_box(&mut bytes[..len]).fill(0x55);
+                    }
+                })
+            }
+            Bound::SpanWrite => {
+                let exact = exact.to_vec();
+                let mut screen = Framebuffer::new(SCREEN);
+                Box::new(move || {
+                    let sink: &mut dyn SpanSink = black_box(&mut screen);
+                    for spans in &exact {
+                        spans::replay(spans, 0x55, sink);
+                    }
+                })
+            }
+        }
+    }
+}
+
+/// Nanoseconds per polygon of every contender and bound on a family.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Speeds {
+    /// Per contender, in the order given; `None` where nothing was timed.
+    pub contenders: Vec<Option<f64>>,
+    /// Per bound, in [`Bound::ALL`] order.
+    pub bounds: Vec<Option<f64>>,
+    /// On sweeps timed per value: the same, for each run of the sweep.
+    pub runs: Vec<Speeds>,
+}
+
+/// How many timing jobs [`time_family`] runs on `family`, for progress.
+pub fn jobs(family: &Family, contenders: usize) -> u64 {
+    let lanes = (contenders + Bound::ALL.len()) as u64;
+    match &family.sweep {
+        Some(sweep) if sweep.axis.timed_per_value() => lanes * sweep.runs().len() as u64,
+        _ => lanes,
+    }
+}
+
+/// Times every contender that takes `family` on the polygons it did not
+/// fail on, and the bounds on all of them; per sweep value where the
+/// family's axis asks for it, the family's figure then being the mean over
+/// its polygons. `progress` is told of each job done.
+pub fn time_family(family: &Family, judged: &Judged, contenders: &[Contender], timing: Timing, progress: &dyn Fn()) -> Speeds {
+    let per_value = family.sweep.as_ref().is_some_and(|s| s.axis.timed_per_value());
+    if !per_value {
+        return time_range(family, judged, contenders, timing, 0..family.polygons.len(), progress);
+    }
+    let runs: Vec<Speeds> = judged
+        .runs
+        .iter()
+        .map(|(_, range)| time_range(family, judged, contenders, timing, range.clone(), progress))
+        .collect();
+    let mean = |pick: &dyn Fn(&Speeds) -> Option<f64>, counts: &dyn Fn(usize) -> usize| {
+        let (mut time, mut n) = (0.0, 0);
+        for (r, speeds) in runs.iter().enumerate() {
+            if let Some(ns) = pick(speeds) {
+                time += ns * counts(r) as f64;
+                n += counts(r);
+            }
+        }
+        (n > 0).then(|| time / n as f64)
+    };
+    let contender_means = (0..contenders.len())
+        .map(|c| {
+            let timed_in = |r: usize| judged.timed[c].iter().filter(|&&i| judged.runs[r].1.contains(&i)).count();
+            mean(&|s| s.contenders[c], &timed_in)
+        })
+        .collect();
+    let bound_means = (0..Bound::ALL.len()).map(|b| mean(&|s| s.bounds[b], &|r| judged.runs[r].1.len())).collect();
+    Speeds { contenders: contender_means, bounds: bound_means, runs }
+}
+
+fn time_range(
+    family: &Family,
+    judged: &Judged,
+    contenders: &[Contender],
+    timing: Timing,
+    range: Range<usize>,
+    progress: &dyn Fn(),
+) -> Speeds {
+    let contender_speeds = contenders
+        .iter()
+        .enumerate()
+        .map(|(c, contender)| {
+            let polygons: Vec<&Polygon> =
+                judged.timed[c].iter().filter(|i| range.contains(i)).map(|&i| &family.polygons[i]).collect();
+            let ns = judged.tallies[c].as_ref().and_then(|_| timing.ns_per_polygon(&mut *contender.pass(&polygons), polygons.len()));
+            progress();
+            ns
+        })
+        .collect();
+    let exact: Vec<&[Span]> = judged.exact[range.clone()].iter().map(Vec::as_slice).collect();
+    let bound_speeds = Bound::ALL
+        .iter()
+        .map(|bound| {
+            let ns = timing.ns_per_polygon(&mut *bound.pass(&exact), exact.len());
+            progress();
+            ns
+        })
+        .collect();
+    Speeds { contenders: contender_speeds, bounds: bound_speeds, runs: vec![] }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn no_polygons_take_no_time() {
+        assert_eq!(Timing::QUICK.ns_per_polygon(&mut || {}, 0), None);
+    }
+
+    #[test]
+    fn every_repeat_runs_the_pass_at_least_once() {
+        let mut runs = 0;
+        let timing = Timing { repeats: 3, min_repeat: Duration::ZERO };
+        let ns = timing.ns_per_polygon(&mut || runs += 1, 10).unwrap();
+        assert_eq!(runs, 4);
+        assert!(ns >= 0.0);
+    }
+}

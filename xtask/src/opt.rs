@@ -1,0 +1,69 @@
+//! The command line.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+
+/// The developer's hands: run the demo, build the image, dump, render, test.
+#[derive(Parser, Debug)]
+#[command(name = "xtask", bin_name = "cargo xtask")]
+pub struct Cli {
+    #[command(subcommand)]
+    pub action: Action,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Action {
+    /// The demo in QEMU: in a window when a display is available; otherwise
+    /// headless, writing each page to target/run/<page>.png.
+    Run(RunOpt),
+    /// Builds the raw BIOS image (for QEMU or a USB stick); prints its path last.
+    Image,
+    /// Boots the kernel, draws a scene, and writes DIR/NAME.png (the kernel's
+    /// dump) and DIR/NAME.screen.png (QEMU's screendump).
+    Dump(DumpOpt),
+    /// Renders a scene on the host with the same raster code.
+    Render(RenderOpt),
+    /// Installs what is missing, builds the image once, and runs every test.
+    Test(TestOpt),
+}
+
+#[derive(Args, Debug)]
+pub struct RunOpt {
+    /// Run headless even when a display is available.
+    #[arg(long)]
+    pub headless: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct DumpOpt {
+    /// A built-in scene.
+    #[arg(long)]
+    pub scene: String,
+    /// Fill method (default: the demo's).
+    #[arg(long)]
+    pub method: Option<String>,
+    /// Directory for the two PNGs.
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+#[derive(Args, Debug)]
+pub struct RenderOpt {
+    /// A built-in scene, or the path of a scene file.
+    #[arg(long, value_name = "NAME|FILE")]
+    pub scene: String,
+    /// Fill method (default: the demo's).
+    #[arg(long)]
+    pub method: Option<String>,
+    /// The PNG to write.
+    #[arg(long, value_name = "FILE.png")]
+    pub out: PathBuf,
+}
+
+#[derive(Args, Debug)]
+pub struct TestOpt {
+    /// Passed on to `cargo test` (e.g. `-- --nocapture`).
+    #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+    pub cargo_args: Vec<String>,
+}
