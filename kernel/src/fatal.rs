@@ -1,5 +1,5 @@
 //! The end of the road for panics and CPU exceptions: one `FATAL` frame
-//! saying what happened, then QEMU exits with [`QemuExitCode::Failed`]
+//! saying what happened, then QEMU exits with [`protocol::EXIT_FAILURE`]
 //! (a real PC halts). DESIGN.md: "A panic or CPU exception prints over
 //! serial and exits QEMU with a failure code."
 
@@ -7,7 +7,7 @@ use core::fmt::{self, Write};
 use core::panic::PanicInfo;
 use core::sync::atomic::{AtomicBool, Ordering};
 
-use crate::exit::{exit_qemu, QemuExitCode};
+use crate::exit::exit_qemu;
 use crate::serial;
 
 /// Longest `FATAL` text; the rest is cut. A stack buffer, not the heap:
@@ -26,7 +26,7 @@ pub fn fatal(what: fmt::Arguments<'_>) -> ! {
         let _ = message.write_fmt(what);
         serial::send_fatal(&message.bytes[..message.len]);
     }
-    exit_qemu(QemuExitCode::Failed as u8)
+    exit_qemu(protocol::EXIT_FAILURE)
 }
 
 #[panic_handler]

@@ -5,16 +5,8 @@ use std::time::Duration;
 
 use anyhow::{ensure, Result};
 use harness::{Qemu, QemuOptions, Reply};
-use protocol::{Command, FaultKind};
+use protocol::{qemu_status, Command, FaultKind, EXIT_FAILURE as FAILED, EXIT_SUCCESS as SUCCESS};
 
-/// isa-debug-exit turns the kernel's code n into QEMU status (n << 1) | 1.
-const fn qemu_status(code: u8) -> i32 {
-    ((code as i32) << 1) | 1
-}
-/// The code the host sends to end a run cleanly.
-const SUCCESS: u8 = 0x10;
-/// The kernel's code for a panic or CPU exception.
-const FAILED: u8 = 0x11;
 /// Longest wait for QEMU to exit once the kernel has asked it to.
 const EXIT_TIMEOUT: Duration = Duration::from_secs(30);
 

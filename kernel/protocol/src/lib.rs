@@ -21,6 +21,17 @@ pub const DUMP_LEN: usize = FRAMEBUFFER_LEN + 768;
 /// The byte that starts every frame header.
 pub const FRAME_MARK: u8 = b'@';
 
+/// The exit code a host sends with `EXIT` to end a run cleanly.
+pub const EXIT_SUCCESS: u8 = 0x10;
+/// The exit code the kernel uses after a panic or CPU exception.
+pub const EXIT_FAILURE: u8 = 0x11;
+
+/// The process status QEMU's isa-debug-exit gives for kernel exit `code`:
+/// `(code << 1) | 1`, so 0x10 gives 33 and 0x11 gives 35.
+pub const fn qemu_status(code: u8) -> i32 {
+    ((code as i32) << 1) | 1
+}
+
 /// Which CPU fault the test-only `FAULT` command provokes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FaultKind {
