@@ -12,7 +12,7 @@ use alloc::vec::Vec;
 
 use crate::geometry::{Point, Polygon};
 use crate::method::{Class, Refusal};
-use crate::methods::exact::{fill_active_edges, fill_monotone};
+use crate::methods::exact::{fill_active_edges, fill_monotone, fill_triangle};
 use crate::sink::SpanSink;
 
 /// The class of `polygon`: [`Class::Degenerate`] when no contour encloses
@@ -41,18 +41,34 @@ pub fn classify(polygon: &Polygon) -> Class {
 /// nothing, triangles and monotone contours take the two-chain path,
 /// everything else the active edge table. Simple and complex polygons share
 /// that path, so telling them apart would cost without saving anything.
+///
+/// The common case, one contour, is sent on before [`Shape::of`]'s
+/// collinearity test, which only decides between drawing nothing and the
+/// two-chain path there: a contour of three vertices goes to the triangle
+/// fill, one monotone in y to the monotone fill, and both draw nothing for
+/// a collinear contour (its two crossings on a row are at one column).
 pub fn fill_auto(polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
     let size = sink.size();
     if size.width <= 0 || size.height <= 0 {
         return Ok(());
     }
+    if let [contour] = polygon.contours.as_slice() {
+        if let &[a, b, c] = contour.as_slice() {
+            fill_triangle([a, b, c], polygon.color, size, sink);
+            return Ok(());
+        }
+        if is_monotone(contour) {
+            fill_monotone(contour, polygon.color, size, sink);
+            return Ok(());
+        }
+    }
     match Shape::of(polygon) {
         Shape::Empty => Ok(()),
         Shape::Monotone(contour) => {
-            fill_monotone(contour, polygon.color, sink);
+            fill_monotone(contour, polygon.color, size, sink);
             Ok(())
         }
-        Shape::Contour(_) | Shape::Contours => fill_active_edges(polygon, sink),
+        Shape::Contour(_) | Shape::Contours => fill_active_edges(polygon, size, sink),
     }
 }
 

@@ -51,6 +51,12 @@ impl CoverageSink {
         }
     }
 
+    /// Spans so far that broke the [`SpanSink`] contract: outside the
+    /// target, or empty.
+    pub fn out_of_bounds(&self) -> usize {
+        self.out_of_bounds
+    }
+
     /// Compares what was drawn here with the pixels drawn at least once
     /// into `target` (a sink of the same size, e.g. the reference's).
     pub fn report(&self, target: &CoverageSink) -> CoverageReport {
@@ -64,12 +70,14 @@ impl CoverageSink {
         report
     }
 
-    /// One line per row: `.` for pixels never drawn, the count for the rest
-    /// (`+` past 9). Small targets only: for readable test failures.
+    /// One line per row: `.` for pixels never drawn, `#` for pixels drawn
+    /// once, the count for the rest (`+` past 9). Small targets only: for
+    /// pictures in tests and readable test failures.
     pub fn ascii(&self) -> String {
         self.picture(|count, _| match count {
             0 => '.',
-            1..=9 => char::from_digit(count, 10).unwrap_or('+'),
+            1 => '#',
+            2..=9 => char::from_digit(count, 10).unwrap_or('+'),
             _ => '+',
         })
     }
@@ -135,7 +143,7 @@ mod tests {
         let mut sink = CoverageSink::new(SIZE);
         sink.span(0, 0, 3, 1);
         sink.span(0, 2, 4, 1);
-        assert_eq!(sink.ascii(), "1121\n....\n");
+        assert_eq!(sink.ascii(), "##2#\n....\n");
         assert_eq!(sink.count(2, 0), 2);
         assert_eq!(sink.report(&sink.clone()).overdrawn, 1);
     }
@@ -148,7 +156,8 @@ mod tests {
         sink.span(0, 3, 3, 1);
         sink.span(0, 3, 1, 1);
         sink.span(0, 3, 9, 1);
-        assert_eq!(sink.ascii(), "...1\n11..\n");
+        assert_eq!(sink.ascii(), "...#\n##..\n");
+        assert_eq!(sink.out_of_bounds(), 5);
         assert_eq!(sink.report(&sink.clone()).out_of_bounds, 5);
     }
 

@@ -141,7 +141,7 @@ mod tests {
     #[test]
     fn centre_samples_take_the_pixels_inside_a_grid_rectangle() {
         let rectangle = Polygon::from_pixels(&[(1, 1), (4, 1), (4, 3), (1, 3)], (0, 0), 1);
-        assert_eq!(draw(&rectangle, SampleOffset::CENTRE), "......\n.111..\n.111..\n......\n");
+        assert_eq!(draw(&rectangle, SampleOffset::CENTRE), "......\n.###..\n.###..\n......\n");
     }
 
     #[test]
@@ -149,11 +149,11 @@ mod tests {
         // Abrash's convention: the rectangle's own top-left corner points are
         // on its edges and in; its right and bottom edges are out.
         let rectangle = Polygon::from_pixels(&[(1, 1), (4, 1), (4, 3), (1, 3)], (0, 0), 1);
-        assert_eq!(draw(&rectangle, SampleOffset { x: 0, y: 0 }), "......\n.111..\n.111..\n......\n");
+        assert_eq!(draw(&rectangle, SampleOffset { x: 0, y: 0 }), "......\n.###..\n.###..\n......\n");
         // Shifted by half a pixel, centres and corners disagree.
         let shifted = Polygon::new(rectangle.contours[0].iter().map(|p| Point::new(p.x + 128, p.y + 128)).collect(), 1);
-        assert_eq!(draw(&shifted, SampleOffset::CENTRE), "......\n.111..\n.111..\n......\n");
-        assert_eq!(draw(&shifted, SampleOffset { x: 0, y: 0 }), "......\n......\n..111.\n..111.\n");
+        assert_eq!(draw(&shifted, SampleOffset::CENTRE), "......\n.###..\n.###..\n......\n");
+        assert_eq!(draw(&shifted, SampleOffset { x: 0, y: 0 }), "......\n......\n..###.\n..###.\n");
     }
 
     #[test]
@@ -167,14 +167,14 @@ mod tests {
         // Worked by hand: on row 1 the crossings are at x = 5/6 (up), 2.25
         // (up), 3.75 (down), 31/6 (down), so centres 2.5 and 3.5 have two
         // crossings to their left, both upward.
-        assert_eq!(even_odd, "......\n.1..1.\n...1..\n.1..1.\n");
-        assert_eq!(non_zero, "......\n.1111.\n..11..\n.1..1.\n");
+        assert_eq!(even_odd, "......\n.#..#.\n...#..\n.#..#.\n");
+        assert_eq!(non_zero, "......\n.####.\n..##..\n.#..#.\n");
     }
 
     #[test]
     fn extreme_coordinates_cover_the_whole_target() {
         let (lo, hi) = (i32::MIN, i32::MAX);
         let square = Polygon::new(alloc::vec![Point::new(lo, lo), Point::new(hi, lo), Point::new(hi, hi), Point::new(lo, hi)], 1);
-        assert_eq!(draw(&square, SampleOffset::CENTRE), "111111\n111111\n111111\n111111\n");
+        assert_eq!(draw(&square, SampleOffset::CENTRE), "######\n######\n######\n######\n");
     }
 }

@@ -227,39 +227,27 @@ mod tests {
     use super::*;
     use crate::geometry::Point;
     use crate::methods::abrash_int::AbrashInt;
+    use crate::methods::test_support::{assert_clipping_changes_no_pixel, empty, fill, full, SMALL};
     use crate::scenes;
-    use crate::sink::{Framebuffer, Size, SCREEN};
-    use alloc::string::String;
-    use alloc::vec;
+    use crate::sink::{Framebuffer, SCREEN};
 
-    const SMALL: Size = Size { width: 8, height: 6 };
-
-    fn polygon(contours: &[&[(i32, i32)]], offset: (i32, i32)) -> Polygon {
-        let contours = contours
-            .iter()
-            .map(|c| c.iter().map(|&(x, y)| Point::from_pixels(x + offset.0, y + offset.1)).collect())
-            .collect();
+    /// A polygon of whole-pixel `contours`.
+    fn polygon(contours: &[&[(i32, i32)]]) -> Polygon {
+        let contours = contours.iter().map(|c| c.iter().map(|&(x, y)| Point::from_pixels(x, y)).collect()).collect();
         Polygon { contours, color: 1, rule: FillRule::EvenOdd }
     }
 
-    fn draw(polygon: &Polygon, size: Size) -> Framebuffer {
-        let mut fb = Framebuffer::new(size);
-        AbrashAet.fill(polygon, &mut fb).unwrap();
-        assert_eq!(fb.stray_spans(), 0);
-        fb
-    }
-
-    fn ascii(fb: &Framebuffer) -> String {
-        let row = |r: &[u8]| r.iter().map(|&p| if p == 0 { '.' } else { '#' }).chain(['\n']).collect::<String>();
-        fb.pixels().chunks(8).map(row).collect()
+    /// The picture of `contours` (whole pixels) filled into [`SMALL`].
+    fn draw(contours: &[&[(i32, i32)]]) -> alloc::string::String {
+        fill(&AbrashAet, &polygon(contours), SMALL).ascii()
     }
 
     #[test]
     fn triangle_keeps_left_and_top_and_drops_right_and_bottom() {
         // Row 1 meets the left edge at x=2 (drawn) and the right at x=4 (not);
         // the pointed top's row 0 pairs two crossings at x=3 and draws nothing.
-        let fb = draw(&polygon(&[&[(3, 0), (6, 3), (0, 3)]], (0, 0)), SMALL);
-        assert_eq!(ascii(&fb), "........\n..##....\n.####...\n........\n........\n........\n");
+        let picture = draw(&[&[(3, 0), (6, 3), (0, 3)]]);
+        assert_eq!(picture, "........\n..##....\n.####...\n........\n........\n........\n");
     }
 
     #[test]
@@ -267,16 +255,16 @@ mod tests {
         // Polygon2 of Listing 40.4 in small: in along (0,0)-(2,2), round the
         // hole, and back out along the same edge.
         let rectangle_with_hole = [(0, 0), (8, 0), (8, 6), (0, 6), (0, 0), (2, 2), (6, 2), (6, 4), (2, 4), (2, 2)];
-        let fb = draw(&polygon(&[&rectangle_with_hole], (0, 0)), SMALL);
-        assert_eq!(ascii(&fb), "########\n########\n##....##\n##....##\n########\n########\n");
+        let picture = draw(&[&rectangle_with_hole]);
+        assert_eq!(picture, "########\n########\n##....##\n##....##\n########\n########\n");
     }
 
     #[test]
     fn overlapping_contours_cancel_under_odd_even() {
         let a: &[(i32, i32)] = &[(0, 0), (5, 0), (5, 4), (0, 4)];
         let b: &[(i32, i32)] = &[(3, 2), (8, 2), (8, 6), (3, 6)];
-        let fb = draw(&polygon(&[a, b], (0, 0)), SMALL);
-        assert_eq!(ascii(&fb), "#####...\n#####...\n###..###\n###..###\n...#####\n...#####\n");
+        let picture = draw(&[a, b]);
+        assert_eq!(picture, "#####...\n#####...\n###..###\n###..###\n...#####\n...#####\n");
     }
 
     #[test]
@@ -284,8 +272,8 @@ mod tests {
         // The diagonals cross at (4,3). Row 1 meets them at ceil(4/3) = 2 and
         // 8 - floor(4/3) = 7: the left lobe gets x 0-1 (its right crossing is
         // out), the right lobe x 7 only (its right side is the edge at 8).
-        let fb = draw(&polygon(&[&[(0, 0), (8, 6), (8, 0), (0, 6)]], (0, 0)), SMALL);
-        assert_eq!(ascii(&fb), "........\n##.....#\n###...##\n########\n###...##\n##.....#\n");
+        let picture = draw(&[&[(0, 0), (8, 6), (8, 0), (0, 6)]]);
+        assert_eq!(picture, "........\n##.....#\n###...##\n########\n###...##\n##.....#\n");
     }
 
     #[test]
@@ -303,7 +291,7 @@ mod tests {
         // Two edges start at (2,0): the contour's edge 1 (vertex 1 to 0) and
         // edge 2 (vertex 2 to 1) are built in that order; the book inserts
         // edge 2 before edge 1.
-        let kite = polygon(&[&[(0, 3), (2, 0), (4, 3), (0, 6)]], (0, 0));
+        let kite = polygon(&[&[(0, 3), (2, 0), (4, 3), (0, 6)]]);
         let get = build_get(&kite, 10).unwrap();
         let heads: Vec<(i32, i32, i32)> = get.iter().map(|e| (e.start_y, e.step.x, e.step.direction)).collect();
         assert_eq!(heads, [(0, 2, 1), (0, 2, -1), (3, 0, -1), (3, 4, -1)]);
@@ -324,41 +312,14 @@ mod tests {
         let inner: &[(i32, i32)] = &[(100, 500), (200, 1300), (250, 900)];
         let shapes: [&[&[(i32, i32)]]; 3] = [&[&polygon1], &[&polygon3], &[outer, inner]];
         for shape in shapes {
-            let whole = draw(&polygon(shape, (0, 0)), Size { width: 320, height: 2000 });
-            let clipped = draw(&polygon(shape, (0, -1000)), Size { width: 320, height: 200 });
-            assert!(clipped.pixels().contains(&1));
-            assert_eq!(clipped.pixels(), &whole.pixels()[320 * 1000..320 * 1200]);
+            assert_clipping_changes_no_pixel(&AbrashAet, &polygon(shape));
         }
     }
 
     #[test]
     fn huge_and_off_screen_polygons_are_clipped() {
         let big = 1 << 22;
-        let fb = draw(&polygon(&[&[(-big, -big), (big, -big), (big, big), (-big, big)]], (0, 0)), SMALL);
-        assert!(fb.pixels().iter().all(|&p| p == 1));
-        let fb = draw(&polygon(&[&[(100, 100), (120, 100), (120, 120)], &[(0, -9), (5, -9), (5, -1)]], (0, 0)), SMALL);
-        assert!(fb.pixels().iter().all(|&p| p == 0));
-    }
-
-    #[test]
-    fn hostile_input_neither_panics_nor_strays() {
-        let extremes = [i32::MIN, -1, 0, 1, i32::MAX];
-        let mut polygons: Vec<Polygon> = Vec::new();
-        for &a in &extremes {
-            for &b in &extremes {
-                polygons.push(Polygon::new(vec![Point::new(a, b), Point::new(b, a), Point::new(a, a)], 1));
-            }
-        }
-        polygons.push(Polygon { contours: Vec::new(), color: 1, rule: FillRule::NonZero });
-        polygons.push(polygon(&[&[], &[(3, 3)], &[(1, 1), (5, 5)]], (0, 0)));
-        polygons.push(polygon(&[&[(3, 3), (3, 3), (3, 3)]], (0, 0)));
-        polygons.push(polygon(&[&[(0, 0), (4, 2), (8, 4)]], (0, 0)));
-        let star: Vec<(i32, i32)> = (0..5001).map(|i| (i * 389 % 997 - 300, i * 7919 % 1009 - 400)).collect();
-        polygons.push(polygon(&[&star], (0, 0)));
-        for polygon in &polygons {
-            let mut fb = Framebuffer::new(SCREEN);
-            AbrashAet.fill(polygon, &mut fb).unwrap();
-            assert_eq!(fb.stray_spans(), 0, "{polygon:?}");
-        }
+        assert_eq!(draw(&[&[(-big, -big), (big, -big), (big, big), (-big, big)]]), full());
+        assert_eq!(draw(&[&[(100, 100), (120, 100), (120, 120)], &[(0, -9), (5, -9), (5, -1)]]), empty());
     }
 }

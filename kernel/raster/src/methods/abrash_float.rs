@@ -27,14 +27,17 @@ use crate::sink::SpanSink;
 /// Listing 38.1.
 pub struct AbrashFloat;
 
+/// The convention of chapter 38, which chapter 39 keeps.
+pub(super) const CONVENTION: Convention = Convention {
+    sample_x: 0,
+    sample_y: 0,
+    summary: "integer sample points; left edges and flat tops in, right edges and flat bottoms out",
+};
+
 static INFO: MethodInfo = MethodInfo {
     name: "abrash_float",
     seed: "000_8935c452f75c56ce.txt (Black Book ch. 38, Listing 38.1)",
-    convention: Convention {
-        sample_x: 0,
-        sample_y: 0,
-        summary: "integer sample points; left edges and flat tops in, right edges and flat bottoms out",
-    },
+    convention: CONVENTION,
     numeric: "integer vertices; f64 inverse slope with ceil",
     handles: Class::Convex,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
@@ -46,11 +49,18 @@ impl Method for AbrashFloat {
     }
 
     fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
-        let contour = polygon.single_contour().ok_or(Refusal::MultipleContours)?;
-        let vertices: Vec<PixelPoint> = contour.iter().map(|p| p.round_to_pixel()).collect();
-        fill_convex_polygon(&vertices, polygon.color, sink, scan_edge);
-        Ok(())
+        fill_with(polygon, sink, scan_edge)
     }
+}
+
+/// `Method::fill` of chapters 38 and 39: one contour, its vertices rounded
+/// to the whole pixels the listings take, filled by [`fill_convex_polygon`]
+/// with the chapter's `scan_edge`.
+pub(super) fn fill_with(polygon: &Polygon, sink: &mut dyn SpanSink, scan_edge: ScanEdge) -> Result<(), Refusal> {
+    let contour = polygon.single_contour().ok_or(Refusal::MultipleContours)?;
+    let vertices: Vec<PixelPoint> = contour.iter().map(|p| p.round_to_pixel()).collect();
+    fill_convex_polygon(&vertices, polygon.color, sink, scan_edge);
+    Ok(())
 }
 
 /// One `ScanEdge` call of Listing 38.1: the segment from (`x1`, `y1`) down
@@ -102,7 +112,7 @@ impl LineList {
 /// edges are scanned by `scan_edge`: Listing 38.1's float one here, Listing
 /// 39.2's integer one in `abrash_int` (chapter 39 keeps this driver and
 /// replaces only `ScanEdge`).
-pub(super) fn fill_convex_polygon(v: &[PixelPoint], color: u8, sink: &mut dyn SpanSink, scan_edge: ScanEdge) {
+fn fill_convex_polygon(v: &[PixelPoint], color: u8, sink: &mut dyn SpanSink, scan_edge: ScanEdge) {
     let n = v.len();
     if n == 0 {
         return;
@@ -239,40 +249,38 @@ fn ceil(v: f64) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
-    use crate::sink::{Framebuffer, Size};
+    use crate::methods::test_support::{draw, empty, full};
 
-    fn draw(points: &[(i32, i32)]) -> Framebuffer {
-        let mut fb = Framebuffer::new(Size { width: 8, height: 6 });
-        AbrashFloat.fill(&Polygon::from_pixels(points, (0, 0), 1), &mut fb).unwrap();
-        assert_eq!(fb.stray_spans(), 0);
-        fb
-    }
+    /// Vertices and the picture Listing 38.1's rule gives them. Chapter
+    /// 39's integer `ScanEdge` keeps the pixel choice: `abrash_int` is held
+    /// to the same pictures.
+    pub(in crate::methods) type Picture = (&'static [(i32, i32)], &'static str);
 
-    fn ascii(fb: &Framebuffer) -> alloc::string::String {
-        fb.pixels().chunks(8).map(|row| row.iter().map(|&p| if p == 0 { '.' } else { '#' }).chain(['\n']).collect::<alloc::string::String>()).collect()
-    }
+    /// A rectangle: its right column and bottom row are out.
+    pub(in crate::methods) const RECTANGLE: Picture =
+        (&[(1, 1), (5, 1), (5, 4), (1, 4)], "........\n.####...\n.####...\n.####...\n........\n........\n");
+
+    /// A pointed top: its top line is skipped, and row 1 meets the left
+    /// edge at x=2 (drawn) and the right at x=4 (not).
+    pub(in crate::methods) const POINTED_TOP: Picture =
+        (&[(3, 0), (6, 3), (0, 3)], "........\n..##....\n.####...\n........\n........\n........\n");
 
     #[test]
     fn rectangle_excludes_right_column_and_bottom_row() {
-        let fb = draw(&[(1, 1), (5, 1), (5, 4), (1, 4)]);
-        assert_eq!(ascii(&fb), "........\n.####...\n.####...\n.####...\n........\n........\n");
+        assert_eq!(draw(&AbrashFloat, RECTANGLE.0), RECTANGLE.1);
     }
 
     #[test]
     fn pointed_top_skips_the_top_line_and_right_edge_points() {
-        // Row 1 meets the left edge at x=2 (drawn) and the right at x=4 (not).
-        let fb = draw(&[(3, 0), (6, 3), (0, 3)]);
-        assert_eq!(ascii(&fb), "........\n..##....\n.####...\n........\n........\n........\n");
+        assert_eq!(draw(&AbrashFloat, POINTED_TOP.0), POINTED_TOP.1);
     }
 
     #[test]
     fn off_screen_and_huge_polygons_are_clipped() {
-        let fb = draw(&[(-1 << 22, -1 << 22), (1 << 22, -1 << 22), (1 << 22, 1 << 22), (-1 << 22, 1 << 22)]);
-        assert!(fb.pixels().iter().all(|&p| p == 1));
-        let fb = draw(&[(100, 100), (120, 100), (120, 120)]);
-        assert!(fb.pixels().iter().all(|&p| p == 0));
+        assert_eq!(draw(&AbrashFloat, &[(-1 << 22, -1 << 22), (1 << 22, -1 << 22), (1 << 22, 1 << 22), (-1 << 22, 1 << 22)]), full());
+        assert_eq!(draw(&AbrashFloat, &[(100, 100), (120, 100), (120, 120)]), empty());
     }
 
     #[test]

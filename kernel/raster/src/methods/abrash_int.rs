@@ -25,12 +25,11 @@
 //! line with [`ErrorTermStep::skip`], which gives the X and error term the
 //! stepping would, so clipping moves no pixel.
 
-use alloc::vec::Vec;
 use core::ops::Range;
 
-use super::abrash_float::{fill_convex_polygon, Segment};
-use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::method::{Class, Convention, Method, MethodInfo, Refusal};
+use super::abrash_float::{fill_with, Segment, CONVENTION};
+use crate::geometry::{FillRule, Polygon};
+use crate::method::{Class, Method, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 /// Listings 38.1, 39.1 and 39.2.
@@ -39,11 +38,7 @@ pub struct AbrashInt;
 static INFO: MethodInfo = MethodInfo {
     name: "abrash_int",
     seed: "ABRASH_FACTS.md §3 (Black Book ch. 39, Listings 39.1 and 39.2 in Listing 38.1's driver)",
-    convention: Convention {
-        sample_x: 0,
-        sample_y: 0,
-        summary: "integer sample points; left edges and flat tops in, right edges and flat bottoms out",
-    },
+    convention: CONVENTION,
     numeric: "integer vertices; integer error-term edge stepping (i32)",
     handles: Class::Convex,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
@@ -55,10 +50,7 @@ impl Method for AbrashInt {
     }
 
     fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
-        let contour = polygon.single_contour().ok_or(Refusal::MultipleContours)?;
-        let vertices: Vec<PixelPoint> = contour.iter().map(|p| p.round_to_pixel()).collect();
-        fill_convex_polygon(&vertices, polygon.color, sink, scan_edge);
-        Ok(())
+        fill_with(polygon, sink, scan_edge)
     }
 }
 
@@ -162,38 +154,21 @@ fn scan_edge(segment: &Segment, rows: Range<i64>, xs: &mut [i32]) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Point;
+    use crate::methods::abrash_float::tests::{POINTED_TOP, RECTANGLE};
     use crate::methods::abrash_float::AbrashFloat;
+    use crate::methods::test_support::{assert_clipping_changes_no_pixel, draw, empty, full, TALL_TRIANGLES};
     use crate::scenes;
-    use crate::sink::{Framebuffer, Size, SCREEN};
-    use alloc::string::String;
-    use alloc::vec;
-
-    fn draw(points: &[(i32, i32)], offset: (i32, i32), size: Size) -> Framebuffer {
-        let mut fb = Framebuffer::new(size);
-        AbrashInt.fill(&Polygon::from_pixels(points, offset, 1), &mut fb).unwrap();
-        assert_eq!(fb.stray_spans(), 0);
-        fb
-    }
-
-    fn ascii(fb: &Framebuffer, width: usize) -> String {
-        let row = |r: &[u8]| r.iter().map(|&p| if p == 0 { '.' } else { '#' }).chain(['\n']).collect::<String>();
-        fb.pixels().chunks(width).map(row).collect()
-    }
-
-    const SMALL: Size = Size { width: 8, height: 6 };
+    use crate::sink::{Framebuffer, SCREEN};
+    use alloc::vec::Vec;
 
     #[test]
     fn rectangle_excludes_right_column_and_bottom_row() {
-        let fb = draw(&[(1, 1), (5, 1), (5, 4), (1, 4)], (0, 0), SMALL);
-        assert_eq!(ascii(&fb, 8), "........\n.####...\n.####...\n.####...\n........\n........\n");
+        assert_eq!(draw(&AbrashInt, RECTANGLE.0), RECTANGLE.1);
     }
 
     #[test]
     fn pointed_top_skips_the_top_line_and_right_edge_points() {
-        // Row 1 meets the left edge at x=2 (drawn) and the right at x=4 (not).
-        let fb = draw(&[(3, 0), (6, 3), (0, 3)], (0, 0), SMALL);
-        assert_eq!(ascii(&fb, 8), "........\n..##....\n.####...\n........\n........\n........\n");
+        assert_eq!(draw(&AbrashInt, POINTED_TOP.0), POINTED_TOP.1);
     }
 
     #[test]
@@ -201,8 +176,8 @@ mod tests {
         // Left chain: (0,0)-(3,2) is X-major, X = ceil(3k/2) = 0, 2 on rows
         // 0, 1; (3,2)-(1,5) is Y-major going left, X = 3 + ceil(-2k/3) = 3,
         // 3, 2 on rows 2, 3, 4. The right edge is vertical at 7, less one.
-        let fb = draw(&[(0, 0), (7, 0), (7, 5), (1, 5), (3, 2)], (0, 0), SMALL);
-        assert_eq!(ascii(&fb, 8), "#######.\n..#####.\n...####.\n...####.\n..#####.\n........\n");
+        let picture = draw(&AbrashInt, &[(0, 0), (7, 0), (7, 5), (1, 5), (3, 2)]);
+        assert_eq!(picture, "#######.\n..#####.\n...####.\n...####.\n..#####.\n........\n");
     }
 
     #[test]
@@ -238,51 +213,16 @@ mod tests {
 
     #[test]
     fn clipping_changes_no_pixel() {
-        // X-major edges both ways, Y-major edges both ways, a diagonal and a
-        // vertical, each drawn whole on a tall target and with its first
-        // 1000 rows above a short one.
-        let shapes: &[&[(i32, i32)]] = &[
-            &[(160, 0), (2900, 1999), (-2500, 1999)],
-            &[(5, 0), (250, 1200), (0, 1100)],
-            &[(100, 3), (2000, 1903), (100, 1903)],
-        ];
-        for shape in shapes {
-            let whole = draw(shape, (0, 0), Size { width: 320, height: 2000 });
-            let clipped = draw(shape, (0, -1000), Size { width: 320, height: 200 });
-            assert!(clipped.pixels().contains(&1));
-            assert_eq!(clipped.pixels(), &whole.pixels()[320 * 1000..320 * 1200]);
+        for triangle in TALL_TRIANGLES {
+            assert_clipping_changes_no_pixel(&AbrashInt, &Polygon::from_pixels(triangle, (0, 0), 1));
         }
     }
 
     #[test]
     fn huge_and_off_screen_polygons_are_clipped() {
         let big = 1 << 22;
-        let fb = draw(&[(-big, -big), (big, -big), (big, big), (-big, big)], (0, 0), SMALL);
-        assert!(fb.pixels().iter().all(|&p| p == 1));
-        let fb = draw(&[(100, 100), (120, 100), (120, 120)], (0, 0), SMALL);
-        assert!(fb.pixels().iter().all(|&p| p == 0));
-    }
-
-    #[test]
-    fn hostile_input_neither_panics_nor_strays() {
-        let extremes = [i32::MIN, -1, 0, 1, i32::MAX];
-        let mut polygons: Vec<Polygon> = Vec::new();
-        for &a in &extremes {
-            for &b in &extremes {
-                polygons.push(Polygon::new(vec![Point::new(a, b), Point::new(b, a), Point::new(a, a)], 1));
-            }
-        }
-        polygons.push(Polygon::new(Vec::new(), 1));
-        polygons.push(Polygon::from_pixels(&[(3, 3)], (0, 0), 1));
-        polygons.push(Polygon::from_pixels(&[(3, 3), (3, 3), (3, 3)], (0, 0), 1));
-        polygons.push(Polygon::from_pixels(&[(0, 0), (4, 2), (8, 4)], (0, 0), 1));
-        let zigzag: Vec<(i32, i32)> = (0..5000).map(|i| (i % 7 * 40 - 100, i / 2 - 1000)).collect();
-        polygons.push(Polygon::from_pixels(&zigzag, (0, 0), 1));
-        for polygon in &polygons {
-            let mut fb = Framebuffer::new(SCREEN);
-            AbrashInt.fill(polygon, &mut fb).unwrap();
-            assert_eq!(fb.stray_spans(), 0, "{polygon:?}");
-        }
+        assert_eq!(draw(&AbrashInt, &[(-big, -big), (big, -big), (big, big), (-big, big)]), full());
+        assert_eq!(draw(&AbrashInt, &[(100, 100), (120, 100), (120, 120)]), empty());
     }
 
     #[test]

@@ -9,6 +9,8 @@ pub mod pendleton;
 pub mod exact;
 pub mod lamothe;
 pub mod wgt;
+#[cfg(test)]
+pub(crate) mod test_support;
 
 /// All methods, in the order the demo, the protocol and the lab list them.
 pub static ALL: &[&dyn Method] = &[&abrash_float::AbrashFloat, &abrash_int::AbrashInt, &abrash_aet::AbrashAet, &pendleton::Pendleton, &lamothe::Lamothe, &lamothe::LamotheFixed, &wgt::Wgt, &exact::Exact];

@@ -260,32 +260,19 @@ fn poly(color: u8, pnts: &[FpPoint], sink: &mut dyn SpanSink) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sink::{Framebuffer, Size, SCREEN};
-    use alloc::string::String;
+    use crate::methods::test_support::{assert_clipping_changes_no_pixel, draw, empty, fill, full, SMALL, TALL_TRIANGLES};
+    use crate::coverage::CoverageSink;
 
-    const SMALL: Size = Size { width: 8, height: 6 };
-
-    /// A polygon from coordinates in half pixels.
-    fn halves(points: &[(i32, i32)]) -> Polygon {
-        Polygon::new(points.iter().map(|&(x, y)| Point::new(x * 128, y * 128)).collect(), 1)
-    }
-
-    fn draw(polygon: &Polygon, size: Size) -> Framebuffer {
-        let mut fb = Framebuffer::new(size);
-        Pendleton.fill(polygon, &mut fb).unwrap();
-        assert_eq!(fb.stray_spans(), 0);
-        fb
-    }
-
-    fn ascii(fb: &Framebuffer) -> String {
-        let row = |r: &[u8]| r.iter().map(|&p| if p == 0 { '.' } else { '#' }).chain(['\n']).collect::<String>();
-        fb.pixels().chunks(8).map(row).collect()
+    /// The picture of a polygon from coordinates in half pixels.
+    fn draw_halves(points: &[(i32, i32)]) -> alloc::string::String {
+        let polygon = Polygon::new(points.iter().map(|&(x, y)| Point::new(x * 128, y * 128)).collect(), 1);
+        fill(&Pendleton, &polygon, SMALL).ascii()
     }
 
     #[test]
     fn rectangle_on_pixel_corners_covers_its_pixels() {
-        let fb = draw(&Polygon::from_pixels(&[(1, 1), (5, 1), (5, 4), (1, 4)], (0, 0), 1), SMALL);
-        assert_eq!(ascii(&fb), "........\n.####...\n.####...\n.####...\n........\n........\n");
+        let picture = draw(&Pendleton, &[(1, 1), (5, 1), (5, 4), (1, 4)]);
+        assert_eq!(picture, "........\n.####...\n.####...\n.####...\n........\n........\n");
     }
 
     #[test]
@@ -295,23 +282,23 @@ mod tests {
         // vertices' X, not the centre-line crossings 3.5, 4.5, 5.5. On row 1
         // the ends tie with pixel centres 1.5 (out) and 4.5 (in); row 2
         // reaches the bottom vertices' full width.
-        let fb = draw(&Polygon::from_pixels(&[(3, 0), (6, 3), (0, 3)], (0, 0), 1), SMALL);
-        assert_eq!(ascii(&fb), "........\n..###...\n######..\n........\n........\n........\n");
+        let picture = draw(&Pendleton, &[(3, 0), (6, 3), (0, 3)]);
+        assert_eq!(picture, "........\n..###...\n######..\n........\n........\n........\n");
     }
 
     #[test]
     fn rows_tied_with_a_vertex_go_down() {
         // A rectangle from y 0.5 to 3.5: centre line 0.5 is out, 3.5 in.
-        let fb = draw(&halves(&[(2, 1), (10, 1), (10, 7), (2, 7)]), SMALL);
-        assert_eq!(ascii(&fb), "........\n.####...\n.####...\n.####...\n........\n........\n");
+        let picture = draw_halves(&[(2, 1), (10, 1), (10, 7), (2, 7)]);
+        assert_eq!(picture, "........\n.####...\n.####...\n.####...\n........\n........\n");
     }
 
     #[test]
     fn monotone_hourglass_crosses_over_as_span_orders_each_pair() {
         // One top and one bottom extreme, edges crossing at (4,3). The first
         // and last rows take the vertices' X, so both are full width.
-        let fb = draw(&Polygon::from_pixels(&[(0, 0), (8, 0), (0, 6), (8, 6)], (0, 0), 1), SMALL);
-        assert_eq!(ascii(&fb), "########\n..####..\n...##...\n...##...\n..####..\n########\n");
+        let picture = draw(&Pendleton, &[(0, 0), (8, 0), (0, 6), (8, 6)]);
+        assert_eq!(picture, "########\n..####..\n...##...\n...##...\n..####..\n########\n");
     }
 
     #[test]
@@ -330,50 +317,17 @@ mod tests {
 
     #[test]
     fn clipping_changes_no_pixel() {
-        let shapes: &[&[(i32, i32)]] = &[
-            &[(160, 0), (2900, 1999), (-2500, 1999)],
-            &[(5, 0), (250, 1200), (0, 1100)],
-            &[(100, 3), (2000, 1903), (100, 1903)],
-        ];
-        for shape in shapes {
-            let whole = draw(&Polygon::from_pixels(shape, (0, 0), 1), Size { width: 320, height: 2000 });
-            let clipped = draw(&Polygon::from_pixels(shape, (0, -1000), 1), Size { width: 320, height: 200 });
-            assert!(clipped.pixels().contains(&1));
-            assert_eq!(clipped.pixels(), &whole.pixels()[320 * 1000..320 * 1200]);
+        for triangle in TALL_TRIANGLES {
+            assert_clipping_changes_no_pixel(&Pendleton, &Polygon::from_pixels(triangle, (0, 0), 1));
         }
     }
 
     #[test]
     fn huge_polygons_are_clipped_within_range_and_refused_beyond() {
         let big = 32767;
-        let fb = draw(&Polygon::from_pixels(&[(-big, -big), (big, -big), (big, big), (-big, big)], (0, 0), 1), SMALL);
-        assert!(fb.pixels().iter().all(|&p| p == 1));
-        let fb = draw(&Polygon::from_pixels(&[(100, 100), (120, 100), (120, 120)], (0, 0), 1), SMALL);
-        assert!(fb.pixels().iter().all(|&p| p == 0));
-        let mut fb = Framebuffer::new(SMALL);
+        assert_eq!(draw(&Pendleton, &[(-big, -big), (big, -big), (big, big), (-big, big)]), full());
+        assert_eq!(draw(&Pendleton, &[(100, 100), (120, 100), (120, 120)]), empty());
         let too_far = Polygon::from_pixels(&[(0, 0), (32768, 0), (0, 5)], (0, 0), 1);
-        assert_eq!(Pendleton.fill(&too_far, &mut fb), Err(Refusal::OutOfRange));
-    }
-
-    #[test]
-    fn hostile_input_neither_panics_nor_strays() {
-        let extremes = [i32::MIN, -(1 << 23) - 1, -(1 << 23), -1, 0, 1, (1 << 23) - 1, 1 << 23, i32::MAX];
-        let mut polygons: Vec<Polygon> = Vec::new();
-        for &a in &extremes {
-            for &b in &extremes {
-                polygons.push(Polygon::new(vec![Point::new(a, b), Point::new(b, a), Point::new(a, a)], 1));
-            }
-        }
-        polygons.push(Polygon::new(Vec::new(), 1));
-        polygons.push(Polygon::from_pixels(&[(3, 3), (4, 4)], (0, 0), 1));
-        polygons.push(Polygon::from_pixels(&[(3, 3), (3, 3), (3, 3)], (0, 0), 1));
-        polygons.push(Polygon::from_pixels(&[(0, 0), (4, 2), (8, 4)], (0, 0), 1));
-        let zigzag: Vec<(i32, i32)> = (0..5000).map(|i| (i * 389 % 997 - 300, i * 7919 % 1009 - 400)).collect();
-        polygons.push(Polygon::from_pixels(&zigzag, (0, 0), 1));
-        for polygon in &polygons {
-            let mut fb = Framebuffer::new(SCREEN);
-            let _ = Pendleton.fill(polygon, &mut fb);
-            assert_eq!(fb.stray_spans(), 0, "{polygon:?}");
-        }
+        assert_eq!(Pendleton.fill(&too_far, &mut CoverageSink::new(SMALL)), Err(Refusal::OutOfRange));
     }
 }

@@ -14,8 +14,7 @@ use super::edge::{first_sample_at_or_after, visible_column, visible_rows, EdgeSt
 
 /// Fills `polygon` by its fill rule. Refuses only when memory for the edge
 /// tables cannot be had.
-pub(crate) fn fill_active_edges(polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
-    let size = sink.size();
+pub(crate) fn fill_active_edges(polygon: &Polygon, size: Size, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
     let mut edges = edge_table(polygon, size)?;
     edges.sort_unstable_by_key(|edge| edge.rows.start);
     let mut active: Vec<ActiveEdge> = Vec::new();

@@ -49,9 +49,13 @@ pub(super) fn visible_column(column: i64, width: i32) -> i32 {
 /// `error` by its remainder, with one carry.
 ///
 /// Magnitudes for any `i32` vertices: `dy < 2^32`, so `D < 2^40`; `N` needs
-/// 66 bits, so it is only formed once per edge, in `i128`; `column` stays
-/// within a pixel of the edge's own x range (below 2^24 in size) on every row
-/// the edge meets. Every per-row quantity fits an `i64` with room to spare.
+/// 66 bits in general. [`EdgeStepper::at_row`] forms it in `i64` when the
+/// edge is shorter than 2^31 subpixels both ways (every edge of a polygon
+/// within 2^23 pixels, the screen's included) and in `i128` otherwise; the
+/// two give the same stepper. `column` stays within a pixel of the edge's
+/// own x range (below 2^24 in size) on every row the edge meets, and moves
+/// at most `|dx| / dy + 1 < 2^33` per step, so it fits an `i64` even a step
+/// past the edge's last row, where the fills leave it unused.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct EdgeStepper {
     /// First pixel column at or right of the crossing on the current row.
@@ -67,12 +71,59 @@ pub(super) struct EdgeStepper {
     denominator: i64,
 }
 
+/// Edges shorter than this (in subpixels) on both axes take the `i64` setup.
+const NARROW: u64 = 1 << 31;
+
 impl EdgeStepper {
     /// The edge from `top` down to `bottom` on scan line `row`, which it
     /// must meet (`top.y < bottom.y`, `row` in its rows).
+    #[inline]
     pub fn at_row(top: Point, bottom: Point, row: i64) -> Self {
-        let one = i64::from(SUBPIXEL_ONE);
         let (dx, dy) = (i64::from(bottom.x) - i64::from(top.x), i64::from(bottom.y) - i64::from(top.y));
+        if dx.unsigned_abs() < NARROW && dy.unsigned_abs() < NARROW {
+            Self::narrow(top, dx, dy, row)
+        } else {
+            Self::wide(top, dx, dy, row)
+        }
+    }
+
+    /// [`EdgeStepper::at_row`] for `|dx|, dy < 2^31`, in `i64` with two
+    /// divisions and no `i128`.
+    ///
+    /// Split `x_top - SAMPLE_OFFSET = SUBPIXEL_ONE * q + f - SAMPLE_OFFSET`
+    /// with `f` in `0..SUBPIXEL_ONE`: `N = q * D + n` with
+    /// `n = (f - SAMPLE_OFFSET) * dy + t * dx` and `t = ys - y_top`, so
+    /// `ceil(N / D) = q + ceil(n / D)` and the error `column * D - N` is
+    /// `ceil(n / D) * D - n`. The row meets the edge, so `0 <= t < dy`:
+    /// `|n| < 2^7 * 2^31 + 2^31 * 2^31 < 2^63`, and `D < 2^39`.
+    #[inline]
+    fn narrow(top: Point, dx: i64, dy: i64, row: i64) -> Self {
+        let one = i64::from(SUBPIXEL_ONE);
+        let t = row * one + i64::from(SAMPLE_OFFSET) - i64::from(top.y);
+        let x = i64::from(top.x);
+        let (q, f) = (x >> SUBPIXEL_BITS, x & (one - 1));
+        let denominator = one * dy;
+        let n = (f - i64::from(SAMPLE_OFFSET)) * dy + t * dx;
+        // One truncating division: `n = quotient * D + remainder`, the
+        // remainder of `n`'s sign; the ceiling adds one for a positive one.
+        let (quotient, remainder) = (n / denominator, n % denominator);
+        let (up, error) = if remainder > 0 { (1, denominator - remainder) } else { (0, -remainder) };
+        // `dx, dy` fit `i32` and `dy > 0`: one 32-bit division, no overflow.
+        let (dx32, dy32) = (dx as i32, dy as i32);
+        Self {
+            column: q + quotient + up,
+            error,
+            column_step: dx32.div_euclid(dy32).into(),
+            error_step: one * i64::from(dx32.rem_euclid(dy32)),
+            denominator,
+        }
+    }
+
+    /// [`EdgeStepper::at_row`] for any `i32` edge: `N` in `i128`.
+    #[cold]
+    #[inline(never)]
+    fn wide(top: Point, dx: i64, dy: i64, row: i64) -> Self {
+        let one = i64::from(SUBPIXEL_ONE);
         let sample_y = row * one + i64::from(SAMPLE_OFFSET);
         let denominator = one * dy;
         let numerator = i128::from(i64::from(top.x) - i64::from(SAMPLE_OFFSET)) * i128::from(dy)
@@ -88,14 +139,16 @@ impl EdgeStepper {
         }
     }
 
-    /// Moves to the next scan line.
+    /// Moves to the next scan line. Branch-free: the carry is as likely as
+    /// not on a random slope, so a branch would be mispredicted half the
+    /// time. `error` and `error_step` are in `0..D`, so the difference is in
+    /// `-D..D` and its sign bit is the carry.
+    #[inline(always)]
     pub fn step(&mut self) {
-        self.column += self.column_step;
         self.error -= self.error_step;
-        if self.error < 0 {
-            self.error += self.denominator;
-            self.column += 1;
-        }
+        let borrow = self.error >> 63; // -1 on a carry, else 0
+        self.error += self.denominator & borrow;
+        self.column += self.column_step - borrow;
     }
 }
 
@@ -154,5 +207,46 @@ mod tests {
         assert_eq!(stepper.column, 2);
         let stepper = EdgeStepper::at_row(Point::new(641, 0), Point::new(641, 1000), 1);
         assert_eq!(stepper.column, 3);
+    }
+
+    /// The `i64` setup gives the `i128` one's stepper on every edge it
+    /// takes, up to its limits.
+    #[test]
+    fn narrow_setup_matches_wide_setup() {
+        let limit = (NARROW - 1) as i64;
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let special = [0, 1, 127, 128, 129, 255, 256, limit / 2, limit - 1, limit];
+        for i in 0..200_000 {
+            let pick = |r: u64, s: usize| -> i64 {
+                match r % 4 {
+                    0 => special[s % special.len()],
+                    1 => (r >> 8) as i64 % 4096,
+                    _ => (r >> 8) as i64 % (limit + 1),
+                }
+            };
+            let (r1, r2, r3) = (next(), next(), next());
+            let dy = pick(r1, i).max(1);
+            let dx = if r2 & 1 == 0 { pick(r2 >> 1, i + 3) } else { -pick(r2 >> 1, i + 5) };
+            let x = (r3 as i32) >> (r3 % 24);
+            let y = (r3 >> 32) as i32 >> ((r3 >> 40) % 24);
+            let (Ok(bx), Ok(by)) = (i32::try_from(i64::from(x) + dx), i32::try_from(i64::from(y) + dy)) else {
+                continue;
+            };
+            let (top, bottom) = (Point::new(x, y), Point::new(bx, by));
+            let rows = first_sample_at_or_after(y.into())..first_sample_at_or_after(by.into());
+            if rows.is_empty() {
+                continue;
+            }
+            let row = if next() & 1 == 0 { rows.start } else { rows.end - 1 };
+            let (a, b) = (EdgeStepper::narrow(top, dx, dy, row), EdgeStepper::wide(top, dx, dy, row));
+            let fields = |s: EdgeStepper| (s.column, s.error, s.column_step, s.error_step, s.denominator);
+            assert_eq!(fields(a), fields(b), "{top:?}-{bottom:?} row {row}");
+        }
     }
 }

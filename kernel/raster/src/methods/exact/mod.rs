@@ -29,7 +29,7 @@ mod edge;
 mod monotone;
 
 pub(crate) use active_edges::fill_active_edges;
-pub(crate) use monotone::fill_monotone;
+pub(crate) use monotone::{fill_monotone, fill_triangle};
 
 use crate::geometry::{FillRule, Polygon};
 use crate::method::{Class, Convention, Method, MethodInfo, Refusal};
@@ -65,14 +65,12 @@ impl Method for Exact {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::coverage::CoverageSink;
     use crate::geometry::Point;
+    use crate::methods::test_support::fill;
     use crate::sink::Size;
 
     fn draw(polygon: &Polygon) -> alloc::string::String {
-        let mut sink = CoverageSink::new(Size { width: 8, height: 5 });
-        Exact.fill(polygon, &mut sink).unwrap();
-        sink.ascii()
+        fill(&Exact, polygon, Size { width: 8, height: 5 }).ascii()
     }
 
     #[test]
@@ -83,7 +81,7 @@ mod tests {
     #[test]
     fn rectangle_on_the_pixel_grid_covers_the_pixels_inside_it() {
         let rectangle = Polygon::from_pixels(&[(1, 1), (5, 1), (5, 4), (1, 4)], (0, 0), 1);
-        assert_eq!(draw(&rectangle), "........\n.1111...\n.1111...\n.1111...\n........\n");
+        assert_eq!(draw(&rectangle), "........\n.####...\n.####...\n.####...\n........\n");
     }
 
     #[test]
@@ -93,7 +91,7 @@ mod tests {
         // through centres; the flat bottom runs through row 3's centres.
         let c = |x: i32, y: i32| Point::new(x * 256 + 128, y * 256 + 128);
         let triangle = Polygon::new(alloc::vec![c(3, 0), c(6, 3), c(0, 3)], 1);
-        assert_eq!(draw(&triangle), "........\n..11....\n.1111...\n........\n........\n");
+        assert_eq!(draw(&triangle), "........\n..##....\n.####...\n........\n........\n");
     }
 
     #[test]
@@ -103,11 +101,11 @@ mod tests {
         };
         let mut inner = square(2, 3);
         let mut polygon = Polygon { contours: alloc::vec![square(1, 4), inner.clone()], color: 1, rule: FillRule::EvenOdd };
-        assert_eq!(draw(&polygon), "........\n.111....\n.1.1....\n.111....\n........\n");
+        assert_eq!(draw(&polygon), "........\n.###....\n.#.#....\n.###....\n........\n");
         polygon.rule = FillRule::NonZero;
-        assert_eq!(draw(&polygon), "........\n.111....\n.111....\n.111....\n........\n");
+        assert_eq!(draw(&polygon), "........\n.###....\n.###....\n.###....\n........\n");
         inner.reverse();
         polygon.contours[1] = inner;
-        assert_eq!(draw(&polygon), "........\n.111....\n.1.1....\n.111....\n........\n");
+        assert_eq!(draw(&polygon), "........\n.###....\n.#.#....\n.###....\n........\n");
     }
 }

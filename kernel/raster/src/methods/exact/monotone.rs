@@ -7,29 +7,153 @@
 //! row has exactly two crossings and the inside is the span between them
 //! under either fill rule, even where the chains cross each other. This is
 //! chapter 39's two-chain walk, done with the exact steppers of [`super::edge`].
+//!
+//! Nothing here allocates. The rows are walked in runs between vertices:
+//! within a run both chains keep their edge, so a row costs two steps and
+//! the span, with no test for the next vertex; clamping to the target is
+//! only done for polygons that reach outside it on x.
+
+use core::cmp::Ordering;
+use core::ops::Range;
 
 use crate::geometry::Point;
-use crate::sink::SpanSink;
+use crate::sink::{Size, SpanSink};
 
 use super::edge::{first_sample_at_or_after, visible_column, visible_rows, EdgeStepper};
 
+/// Fills the triangle `a b c` with one span per row. Any three points are
+/// taken, so no test of the class is needed first: on every row the long
+/// edge (top to bottom vertex) and the one short edge meeting the row are
+/// the only crossings, and three points on one line enclose nothing.
+pub(crate) fn fill_triangle([a, b, c]: [Point; 3], color: u8, size: Size, sink: &mut dyn SpanSink) {
+    // Sorted by y: `top.y <= middle.y <= bottom.y`.
+    let (a, b) = if b.y < a.y { (b, a) } else { (a, b) };
+    let (b, c) = if c.y < b.y { (c, b) } else { (b, c) };
+    let (top, middle, bottom) = if b.y < a.y { (b, a, c) } else { (a, b, c) };
+
+    // The long edge meets exactly the rows of the triangle; the upper short
+    // edge the ones above the middle vertex's first row, the lower one the
+    // rest (`middle` is clamped into the visible rows, so each part is
+    // visible and empty when it has no rows).
+    let rows = visible_rows(top.y, bottom.y, size.height);
+    if rows.is_empty() {
+        return;
+    }
+    // Which side of the long edge the middle vertex is on: the sign of the
+    // cross product (exact in `i128`: 33-bit differences, 66-bit products).
+    // Right of it, the long edge is the left one on every row, as the
+    // triangle lies between the two crossings and a ceiling keeps their
+    // order; on it, nothing is enclosed.
+    let d = |p: Point, q: Point| (i128::from(q.x) - i128::from(p.x), i128::from(q.y) - i128::from(p.y));
+    let ((lx, ly), (mx, my)) = (d(top, bottom), d(top, middle));
+    let long_is_left = match (mx * ly).cmp(&(lx * my)) {
+        Ordering::Greater => true,
+        Ordering::Less => false,
+        Ordering::Equal => return,
+    };
+    let clip = !columns_fit(a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x), size.width);
+    let middle_row = first_sample_at_or_after(middle.y.into()).clamp(rows.start, rows.end);
+    let mut long = EdgeStepper::at_row(top, bottom, rows.start);
+    if rows.start < middle_row {
+        let mut upper = EdgeStepper::at_row(top, middle, rows.start);
+        let (left, right) = if long_is_left { (&mut long, &mut upper) } else { (&mut upper, &mut long) };
+        emit_ordered(rows.start..middle_row, left, right, clip, color, size.width, sink);
+    }
+    if middle_row < rows.end {
+        let mut lower = EdgeStepper::at_row(middle, bottom, middle_row);
+        let (left, right) = if long_is_left { (&mut long, &mut lower) } else { (&mut lower, &mut long) };
+        emit_ordered(middle_row..rows.end, left, right, clip, color, size.width, sink);
+    }
+}
+
 /// Fills `contour`, which must be monotone in y, with one span per row.
-pub(crate) fn fill_monotone(contour: &[Point], color: u8, sink: &mut dyn SpanSink) {
-    let size = sink.size();
+pub(crate) fn fill_monotone(contour: &[Point], color: u8, size: Size, sink: &mut dyn SpanSink) {
     let Some((top, top_y)) = contour.iter().enumerate().map(|(i, p)| (i, p.y)).min_by_key(|&(_, y)| y) else {
         return;
     };
-    let bottom_y = contour.iter().map(|p| p.y).max().unwrap_or(top_y);
-    let mut forward = Chain::new(contour, top, Walk::Forward);
-    let mut backward = Chain::new(contour, top, Walk::Backward);
-    for row in visible_rows(top_y, bottom_y, size.height) {
-        let (Some(a), Some(b)) = (forward.column(row), backward.column(row)) else {
+    let (mut bottom_y, mut min_x, mut max_x) = (top_y, i32::MAX, i32::MIN);
+    for p in contour {
+        (bottom_y, min_x, max_x) = (bottom_y.max(p.y), min_x.min(p.x), max_x.max(p.x));
+    }
+    let clip = !columns_fit(min_x, max_x, size.width);
+    let rows = visible_rows(top_y, bottom_y, size.height);
+    let mut forward = Chain { contour, walk: Walk::Forward, vertex: top, edges_left: contour.len() };
+    let mut backward = Chain { contour, walk: Walk::Backward, vertex: top, edges_left: contour.len() };
+    let mut row = rows.start;
+    if row >= rows.end {
+        return;
+    }
+    // A chain that runs out of edges above the bottom row (which a monotone
+    // contour never does) ends the fill.
+    let (Some(mut a), Some(mut b)) = (forward.seek(row), backward.seek(row)) else {
+        return;
+    };
+    loop {
+        // Both edges meet every row up to the first one either leaves.
+        let run_end = a.end_row.min(b.end_row).min(rows.end);
+        // The chains may cross: the left crossing is the smaller column.
+        if clip {
+            span_rows::<false, true>(row..run_end, &mut a.stepper, &mut b.stepper, color, size.width, sink);
+        } else {
+            span_rows::<false, false>(row..run_end, &mut a.stepper, &mut b.stepper, color, size.width, sink);
+        }
+        row = run_end;
+        if row >= rows.end {
             return;
-        };
-        let (start, end) = (visible_column(a.min(b), size.width), visible_column(a.max(b), size.width));
+        }
+        if a.end_row == row {
+            let Some(next) = forward.seek(row) else { return };
+            a = next;
+        }
+        if b.end_row == row {
+            let Some(next) = backward.seek(row) else { return };
+            b = next;
+        }
+    }
+}
+
+/// Whether every crossing column of edges with x in `min_x..=max_x` lies in
+/// the target's `0..=width`, so that no column needs clamping: a crossing
+/// lies on its edge, and [`first_sample_at_or_after`] keeps order.
+fn columns_fit(min_x: i32, max_x: i32, width: i32) -> bool {
+    first_sample_at_or_after(min_x.into()) >= 0 && first_sample_at_or_after(max_x.into()) <= i64::from(width)
+}
+
+/// [`span_rows`] for `left` never right of `right`.
+#[inline(always)]
+fn emit_ordered(rows: Range<i64>, left: &mut EdgeStepper, right: &mut EdgeStepper, clip: bool, color: u8, width: i32, sink: &mut dyn SpanSink) {
+    if clip {
+        span_rows::<true, true>(rows, left, right, color, width, sink);
+    } else {
+        span_rows::<true, false>(rows, left, right, color, width, sink);
+    }
+}
+
+/// Emits the span between two crossings on each of `rows`, stepping both
+/// edges after each row; the edges must meet every row of `rows`.
+/// `ORDERED`: `a` is never right of `b`, so no comparison is needed.
+/// `CLIP`: columns may lie outside `0..=width` and are clamped to it.
+/// Clamping every crossing keeps the inside test of each visible pixel
+/// unchanged (see [`visible_column`]).
+#[inline(always)]
+fn span_rows<const ORDERED: bool, const CLIP: bool>(
+    rows: Range<i64>,
+    a: &mut EdgeStepper,
+    b: &mut EdgeStepper,
+    color: u8,
+    width: i32,
+    sink: &mut dyn SpanSink,
+) {
+    for row in rows {
+        let (start, end) = if ORDERED { (a.column, b.column) } else { (a.column.min(b.column), a.column.max(b.column)) };
+        // Without `CLIP` both are in `0..=width`, so they fit an `i32`.
+        let (start, end) = if CLIP { (visible_column(start, width), visible_column(end, width)) } else { (start as i32, end as i32) };
         if start < end {
+            // `row` is in `0..height`, an `i32`.
             sink.span(row as i32, start, end, color);
         }
+        a.step();
+        b.step();
     }
 }
 
@@ -40,7 +164,7 @@ enum Walk {
     Backward,
 }
 
-/// One boundary chain, walked down one scan line at a time.
+/// One boundary chain, walked down from the top vertex an edge at a time.
 struct Chain<'a> {
     contour: &'a [Point],
     walk: Walk,
@@ -48,41 +172,32 @@ struct Chain<'a> {
     vertex: usize,
     /// Edges not taken yet: bounds the walk on any input.
     edges_left: usize,
-    /// The current edge and the row it ends before.
-    edge: Option<(EdgeStepper, i64)>,
 }
 
-impl<'a> Chain<'a> {
-    fn new(contour: &'a [Point], top: usize, walk: Walk) -> Self {
-        Self { contour, walk, vertex: top, edges_left: contour.len(), edge: None }
-    }
+/// A chain's edge on the current row, and the row it ends before.
+struct ChainEdge {
+    stepper: EdgeStepper,
+    end_row: i64,
+}
 
-    /// The chain's crossing column on `row`. Rows must come one after the
-    /// other, top down. `None` only if the chain runs out of edges, which a
-    /// monotone contour never does above its bottom row.
-    fn column(&mut self, row: i64) -> Option<i64> {
-        match &mut self.edge {
-            Some((stepper, end_row)) if row < *end_row => stepper.step(),
-            _ => self.seek(row)?,
-        }
-        self.edge.map(|(stepper, _)| stepper.column)
-    }
-
+impl Chain<'_> {
     /// Takes edges until one meets `row`, and puts its stepper on that row.
-    fn seek(&mut self, row: i64) -> Option<()> {
-        let n = self.contour.len();
+    /// `None` only if the chain runs out of edges.
+    fn seek(&mut self, row: i64) -> Option<ChainEdge> {
+        let last = self.contour.len() - 1;
         while self.edges_left > 0 {
             self.edges_left -= 1;
             let next = match self.walk {
-                Walk::Forward => (self.vertex + 1) % n,
-                Walk::Backward => (self.vertex + n - 1) % n,
+                Walk::Forward if self.vertex == last => 0,
+                Walk::Forward => self.vertex + 1,
+                Walk::Backward if self.vertex == 0 => last,
+                Walk::Backward => self.vertex - 1,
             };
             let (top, bottom) = (self.contour[self.vertex], self.contour[next]);
             self.vertex = next;
             let end_row = first_sample_at_or_after(bottom.y.into());
             if first_sample_at_or_after(top.y.into()) <= row && row < end_row {
-                self.edge = Some((EdgeStepper::at_row(top, bottom, row), end_row));
-                return Some(());
+                return Some(ChainEdge { stepper: EdgeStepper::at_row(top, bottom, row), end_row });
             }
         }
         None

@@ -110,10 +110,9 @@ impl EdgePair for FloatEdges {
 
 #[cfg(test)]
 mod tests {
-    use super::super::test_support::{assert_survives_hostile_input, draw, Hits};
     use super::*;
     use crate::geometry::Point;
-    use crate::sink::Size;
+    use crate::methods::test_support::{draw, empty, fill, full, SMALL};
 
     #[test]
     fn flat_bottom_truncates_and_counts_from_the_truncated_start() {
@@ -138,8 +137,7 @@ mod tests {
     #[test]
     fn split_triangle_draws_the_middle_row_twice() {
         // new_x = 1 + (int)(0.5 + 2 * 1 / 4) = 2 on row 2, drawn by both halves.
-        let hits = Hits::drawn(&Lamothe, &[(1, 0), (6, 2), (2, 4)]);
-        assert_eq!(hits.picture(), ".#......\n.###....\n..22222.\n..###...\n..#.....\n........\n");
+        assert_eq!(draw(&Lamothe, &[(1, 0), (6, 2), (2, 4)]), ".#......\n.###....\n..22222.\n..###...\n..#.....\n........\n");
     }
 
     #[test]
@@ -147,8 +145,7 @@ mod tests {
         // Draw_QuadFP_2D's split: (0, 1, 3) and (1, 2, 3), diagonal 1-3.
         // The second half's right edge is x = 6, but its no-x-clip count
         // starts from the truncated left end: column 6 is lost on rows 1-3.
-        let hits = Hits::drawn(&Lamothe, &[(1, 0), (6, 0), (6, 4), (1, 4)]);
-        assert_eq!(hits.picture(), ".#####2.\n.###22..\n.##22#..\n.#2###..\n.2#####.\n........\n");
+        assert_eq!(draw(&Lamothe, &[(1, 0), (6, 0), (6, 4), (1, 4)]), ".#####2.\n.###22..\n.##22#..\n.#2###..\n.2#####.\n........\n");
     }
 
     #[test]
@@ -165,22 +162,13 @@ mod tests {
     #[test]
     fn pentagon_is_filled_as_a_fan_from_vertex_zero() {
         // Triangles (0,1,2), (0,2,3), (0,3,4): vertex 0 is drawn three times.
-        let hits = Hits::drawn(&Lamothe, &[(3, 0), (6, 2), (5, 5), (1, 5), (0, 2)]);
-        assert_eq!(hits.picture(), "...3....\n.#2##...\n2233222.\n#22###..\n#2##2#..\n#2####..\n");
+        assert_eq!(draw(&Lamothe, &[(3, 0), (6, 2), (5, 5), (1, 5), (0, 2)]), "...3....\n.#2##...\n2233222.\n#22###..\n#2##2#..\n#2####..\n");
     }
 
     #[test]
     fn huge_triangles_are_clipped_and_distant_ones_rejected() {
-        let mut hits = Hits::new(Size { width: 8, height: 6 });
         let far = [Point::new(i32::MIN, i32::MIN), Point::new(i32::MAX, i32::MIN), Point::new(0, i32::MAX)];
-        Lamothe.fill(&Polygon::new(far.to_vec(), 1), &mut hits).unwrap();
-        assert_eq!(hits.picture(), "########\n########\n########\n########\n########\n########\n");
-        let off = Hits::drawn(&Lamothe, &[(100, 100), (120, 100), (120, 120)]);
-        assert_eq!(off.picture(), "........\n".repeat(6));
-    }
-
-    #[test]
-    fn survives_hostile_input() {
-        assert_survives_hostile_input(&Lamothe);
+        assert_eq!(fill(&Lamothe, &Polygon::new(far.to_vec(), 1), SMALL).ascii(), full());
+        assert_eq!(draw(&Lamothe, &[(100, 100), (120, 100), (120, 120)]), empty());
     }
 }

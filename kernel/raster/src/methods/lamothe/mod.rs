@@ -57,8 +57,6 @@
 
 mod fixed;
 mod float;
-#[cfg(test)]
-pub(crate) mod test_support;
 
 pub use fixed::LamotheFixed;
 pub use float::Lamothe;
