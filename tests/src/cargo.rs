@@ -44,6 +44,14 @@ pub fn pinned(program: &str) -> Command {
     command
 }
 
+/// The cargo that runs the xtask (the stable toolchain, for the host
+/// crates), run from the workspace root.
+pub fn host() -> Command {
+    let mut command = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()));
+    command.current_dir(workspace::root());
+    command
+}
+
 /// One release build of a workspace package with the pinned nightly.
 #[derive(Clone, Copy, Debug)]
 pub struct NightlyBuild<'a> {

@@ -3,6 +3,7 @@
 //! library, shared with the tests.
 
 mod dump;
+mod lab;
 mod opt;
 mod render;
 mod run;
@@ -25,5 +26,6 @@ fn main() -> Result<()> {
         Action::Dump(opt) => dump::dump(&opt),
         Action::Render(opt) => render::render(&opt),
         Action::Test(opt) => test::test(&opt),
+        Action::Lab(opt) => lab::lab(&opt),
     }
 }

@@ -26,6 +26,9 @@ pub enum Action {
     Render(RenderOpt),
     /// Installs what is missing, builds the image once, and runs every test.
     Test(TestOpt),
+    /// Measures every method for speed and accuracy (release build) and
+    /// writes results.json, report.md and charts under --out.
+    Lab(LabOpt),
 }
 
 #[derive(Args, Debug)]
@@ -66,4 +69,14 @@ pub struct TestOpt {
     /// Passed on to `cargo test` (e.g. `-- --nocapture`).
     #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
     pub cargo_args: Vec<String>,
+}
+
+#[derive(Args, Debug)]
+pub struct LabOpt {
+    /// A small corpus and short timing, for CI (a few minutes).
+    #[arg(long)]
+    pub quick: bool,
+    /// Where results.json, report.md and the charts go.
+    #[arg(long, default_value = "target/lab")]
+    pub out: PathBuf,
 }

@@ -25,8 +25,7 @@ const NIGHTLY_ONLY: [&str; 2] = ["kernel", "boot"];
 /// `cargo test` over every host crate of the workspace, run by the cargo
 /// (the stable toolchain) that runs the xtask.
 fn test_command(cargo_args: &[String]) -> Command {
-    let mut command = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()));
-    command.current_dir(harness::workspace::root());
+    let mut command = harness::cargo::host();
     command.args(["test", "--workspace"]);
     for package in NIGHTLY_ONLY {
         command.args(["--exclude", package]);

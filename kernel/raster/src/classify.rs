@@ -42,11 +42,14 @@ pub fn classify(polygon: &Polygon) -> Class {
 /// everything else the active edge table. Simple and complex polygons share
 /// that path, so telling them apart would cost without saving anything.
 ///
-/// The common case, one contour, is sent on before [`Shape::of`]'s
-/// collinearity test, which only decides between drawing nothing and the
-/// two-chain path there: a contour of three vertices goes to the triangle
-/// fill, one monotone in y to the monotone fill, and both draw nothing for
-/// a collinear contour (its two crossings on a row are at one column).
+/// The common case, one contour, skips [`Shape::of`]'s collinearity test,
+/// which there only tells drawing nothing from filling: a contour of three
+/// vertices goes to the triangle fill, one monotone in y to the monotone
+/// fill, any other to the active edge table, and each draws nothing for a
+/// collinear contour. All its crossings on a row are at one column, so no
+/// pixel lies between them (the edge table drops edges right of the target
+/// whole, so on a row it keeps all of them or the column is past the
+/// target).
 pub fn fill_auto(polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
     let size = sink.size();
     if size.width <= 0 || size.height <= 0 {
@@ -61,6 +64,7 @@ pub fn fill_auto(polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refus
             fill_monotone(contour, polygon.color, size, sink);
             return Ok(());
         }
+        return fill_active_edges(polygon, size, sink);
     }
     match Shape::of(polygon) {
         Shape::Empty => Ok(()),
@@ -114,22 +118,27 @@ fn is_collinear(contour: &[Point]) -> bool {
 /// test). A closed contour that is not horizontal everywhere reverses at
 /// least twice, at its top and its bottom.
 fn is_monotone(contour: &[Point]) -> bool {
-    let following = contour.iter().cycle().skip(1);
-    let mut directions = contour.iter().zip(following).map(|(a, b)| a.y.cmp(&b.y)).filter(|&d| d != Ordering::Equal);
-    let Some(first) = directions.next() else {
-        return false;
-    };
-    let (mut reversals, mut last) = (0, first);
-    for direction in directions {
-        if direction != last {
-            reversals += 1;
-            last = direction;
+    let (mut first, mut last, mut reversals) = (Ordering::Equal, Ordering::Equal, 0);
+    let following = contour.iter().skip(1).chain(contour.first());
+    for (a, b) in contour.iter().zip(following) {
+        let direction = a.y.cmp(&b.y);
+        if direction == Ordering::Equal || direction == last {
+            continue;
+        }
+        if first == Ordering::Equal {
+            (first, last) = (direction, direction);
+            continue;
+        }
+        reversals += 1;
+        last = direction;
+        if reversals > 2 {
+            return false;
         }
     }
     if last != first {
         reversals += 1;
     }
-    reversals == 2
+    first != Ordering::Equal && reversals == 2
 }
 
 /// The contour without vertices equal to the one before them (the last

@@ -1,2 +1,474 @@
-use crate::results::Results;
-pub fn draw_all(_r: &Results, _o: &std::path::Path) -> anyhow::Result<()> { Ok(()) }
+//! The four charts, each drawn once as SVG and once as PNG from the same
+//! code: speed against accuracy, the stability map, the rotation sweep and
+//! the scaling of cost with area and vertex count.
+
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+
+use crate::corpus::{Axis, Group};
+use crate::results::{Kind, Results};
+use crate::stats::pareto_front;
+use crate::EXACT;
+
+const FONT: &str = "sans-serif";
+
+/// Error rates below this are drawn on the floor of the log axis, as 0.
+const ZERO_FLOOR: f64 = 1e-4;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Chart {
+    SpeedVsAccuracy,
+    Stability,
+    Rotation,
+    Scaling,
+}
+
+impl Chart {
+    pub const ALL: [Chart; 4] = [Chart::SpeedVsAccuracy, Chart::Stability, Chart::Rotation, Chart::Scaling];
+
+    /// The file name, without extension.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Chart::SpeedVsAccuracy => "speed_vs_accuracy",
+            Chart::Stability => "stability",
+            Chart::Rotation => "rotation",
+            Chart::Scaling => "scaling",
+        }
+    }
+
+    const fn size(self) -> (u32, u32) {
+        match self {
+            Chart::SpeedVsAccuracy => (1200, 800),
+            Chart::Stability => (1300, 640),
+            Chart::Rotation => (1200, 900),
+            Chart::Scaling => (1400, 700),
+        }
+    }
+
+    fn draw<DB: DrawingBackend>(self, root: &DrawingArea<DB, Shift>, results: &Results) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE)?;
+        match self {
+            Chart::SpeedVsAccuracy => speed_vs_accuracy(root, results),
+            Chart::Stability => stability(root, results),
+            Chart::Rotation => rotation(root, results),
+            Chart::Scaling => scaling(root, results),
+        }
+    }
+}
+
+/// Draws every chart into `out` as `NAME.svg` and `NAME.png`.
+pub fn draw_all(results: &Results, out: &Path) -> Result<()> {
+    for chart in Chart::ALL {
+        let svg = out.join(format!("{}.svg", chart.name()));
+        let root = SVGBackend::new(&svg, chart.size()).into_drawing_area();
+        chart.draw(&root, results).with_context(|| format!("failed to draw {}", svg.display()))?;
+        root.present().with_context(|| format!("failed to write {}", svg.display()))?;
+        drop(root);
+        let png = out.join(format!("{}.png", chart.name()));
+        let root = BitMapBackend::new(&png, chart.size()).into_drawing_area();
+        chart.draw(&root, results).with_context(|| format!("failed to draw {}", png.display()))?;
+        root.present().with_context(|| format!("failed to write {}", png.display()))?;
+    }
+    Ok(())
+}
+
+/// Methods and peers, in results order, each with its colour.
+fn contenders(results: &Results) -> Vec<(&'static str, Kind, RGBColor)> {
+    const PALETTE: [RGBColor; 11] = [
+        RGBColor(31, 119, 180),
+        RGBColor(255, 127, 14),
+        RGBColor(44, 160, 44),
+        RGBColor(214, 39, 40),
+        RGBColor(148, 103, 189),
+        RGBColor(140, 86, 75),
+        RGBColor(227, 119, 194),
+        RGBColor(188, 189, 34),
+        RGBColor(23, 190, 207),
+        RGBColor(255, 187, 120),
+        RGBColor(152, 223, 138),
+    ];
+    let mut next = PALETTE.iter().cycle();
+    results
+        .contenders
+        .iter()
+        .filter(|c| c.kind != Kind::Bound)
+        .map(|c| (c.name, c.kind, if c.name == EXACT { BLACK } else { *next.next().unwrap_or(&BLACK) }))
+        .collect()
+}
+
+/// A marker for a point of `kind`: circles for methods, triangles for peers.
+fn marker<DB: DrawingBackend, C: Clone + 'static>(kind: Kind, at: C, color: RGBColor) -> DynElement<'static, DB, C> {
+    match kind {
+        Kind::Peer => TriangleMarker::new(at, 7, color.filled()).into_dyn(),
+        _ => Circle::new(at, 5, color.filled()).into_dyn(),
+    }
+}
+
+/// Numbers for log axes: 1, 10, 100, 1k, 10k, 1M ...; `0` at the zero floor.
+fn compact(v: f64) -> String {
+    let magnitude = v.abs();
+    if magnitude >= 1e6 {
+        format!("{}M", trim(v / 1e6))
+    } else if magnitude >= 1e3 {
+        format!("{}k", trim(v / 1e3))
+    } else {
+        trim(v)
+    }
+}
+
+fn trim(v: f64) -> String {
+    let text = format!("{v:.3}");
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    text.to_string()
+}
+
+/// A log range around `values`, padded by a factor on each side.
+fn log_range(values: impl Iterator<Item = f64>, floor: f64) -> std::ops::Range<f64> {
+    let (low, high) = values.fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    if low > high {
+        return floor.max(1e-3)..1.0;
+    }
+    (low / 1.6).max(floor)..(high * 1.6).max(low * 2.0)
+}
+
+fn speed_vs_accuracy<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, results: &Results) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let points = results.speed_accuracy_points(ZERO_FLOOR);
+    let x_range = log_range(points.iter().map(|(_, p)| p.0).chain([1.0]), 1e-3);
+    let y_range = log_range(points.iter().map(|(_, p)| p.1), ZERO_FLOOR / 2.0);
+    let mut chart = ChartBuilder::on(root)
+        .caption("Speed against accuracy: one point per method per family", (FONT, 26))
+        .margin(20)
+        .x_label_area_size(55)
+        .y_label_area_size(80)
+        .build_cartesian_2d(x_range.clone().log_scale(), y_range.clone().log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("time per polygon ÷ memset bound's time (log; 1 = writing the pixels alone)")
+        .y_desc("wrong pixels, % of exact pixels (log; bottom row = none)")
+        .x_label_formatter(&|v| compact(*v))
+        .y_label_formatter(&|v| if *v <= ZERO_FLOOR * 1.01 { "0".to_string() } else { compact(*v) })
+        .label_style((FONT, 15))
+        .axis_desc_style((FONT, 17))
+        .draw()?;
+
+    chart
+        .draw_series(DashedLineSeries::new([(1.0, y_range.start), (1.0, y_range.end)], 8, 5, BLACK.stroke_width(2)))?
+        .label("memset bound (x = 1)")
+        .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], BLACK.stroke_width(2)));
+
+    let coordinates: Vec<(f64, f64)> = points.iter().map(|(_, p)| *p).collect();
+    let front: Vec<(f64, f64)> = pareto_front(&coordinates).into_iter().map(|i| coordinates[i]).collect();
+    let mut staircase = Vec::new();
+    for (i, &(x, y)) in front.iter().enumerate() {
+        staircase.push((x, y));
+        if let Some(&(next_x, _)) = front.get(i + 1) {
+            staircase.push((next_x, y));
+        }
+    }
+    chart
+        .draw_series(LineSeries::new(staircase, RGBColor(120, 120, 120).stroke_width(2)))?
+        .label("Pareto front")
+        .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], RGBColor(120, 120, 120).stroke_width(2)));
+
+    for (name, kind, color) in contenders(results) {
+        let mine: Vec<(f64, f64)> = points.iter().filter(|(r, _)| r.name == name).map(|(_, p)| *p).collect();
+        if mine.is_empty() {
+            continue;
+        }
+        chart
+            .draw_series(mine.into_iter().map(|p| marker::<DB, _>(kind, p, color)))?
+            .label(if kind == Kind::Peer { format!("{name} (peer)") } else { name.to_string() })
+            .legend(move |(x, y)| marker::<DB, _>(kind, (x + 9, y), color));
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK.mix(0.3))
+        .label_font((FONT, 15))
+        .draw()?;
+    Ok(())
+}
+
+fn stability<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, results: &Results) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let families: Vec<&str> = results.families.iter().filter(|f| f.group == Group::Stress).map(|f| f.name).collect();
+    let rows: Vec<(&str, Kind, RGBColor)> = contenders(results);
+    let (width, height) = root.dim_in_pixel();
+    let (left, top, bottom) = (190i32, 120i32, 60i32);
+    let cell_w = (width as i32 - left - 20) / families.len().max(1) as i32;
+    let cell_h = (height as i32 - top - bottom) / rows.len().max(1) as i32;
+    let centred = |size: i32| TextStyle::from((FONT, size).into_font()).pos(Pos::new(HPos::Center, VPos::Center));
+
+    root.draw(&Text::new(
+        "Stability: pixels wrong by the method's own convention, overdrawn or left as gaps",
+        (width as i32 / 2, 24),
+        centred(24),
+    ))?;
+    for (j, family) in families.iter().enumerate() {
+        let x = left + j as i32 * cell_w + cell_w / 2;
+        for (line, part) in split_name(family).iter().enumerate() {
+            root.draw(&Text::new(part.clone(), (x, top - 42 + line as i32 * 18), centred(15)))?;
+        }
+    }
+    for (i, (name, _, _)) in rows.iter().enumerate() {
+        let y = top + i as i32 * cell_h + cell_h / 2;
+        let style = TextStyle::from((FONT, 16).into_font()).pos(Pos::new(HPos::Right, VPos::Center));
+        root.draw(&Text::new(name.to_string(), (left - 10, y), style))?;
+        for (j, family) in families.iter().enumerate() {
+            let (x0, y0) = (left + j as i32 * cell_w, top + i as i32 * cell_h);
+            let cell = [(x0 + 1, y0 + 1), (x0 + cell_w - 1, y0 + cell_h - 1)];
+            let centre = (x0 + cell_w / 2, y0 + cell_h / 2);
+            let Some(row) = results.row(name, family) else {
+                root.draw(&Rectangle::new(cell, RGBColor(225, 225, 225).filled()))?;
+                root.draw(&Text::new("n/a", centre, centred(14)))?;
+                continue;
+            };
+            let damaged = row.damaged_pixels().unwrap_or(0);
+            // Where the exact fill draws nothing, any pixel drawn is all wrong.
+            let (rate, label) = match row.damage_rate() {
+                Some(rate) => (rate, percent(rate)),
+                None => (if damaged > 0 { 1.0 } else { 0.0 }, format!("{damaged} px")),
+            };
+            let shade = heat(rate);
+            root.draw(&Rectangle::new(cell, shade.filled()))?;
+            let failures = row.failures.unwrap_or(0);
+            if failures > 0 {
+                root.draw(&Rectangle::new([(x0 + 3, y0 + 3), (x0 + cell_w - 3, y0 + cell_h - 3)], BLACK.stroke_width(3)))?;
+            }
+            let dark = u32::from(shade.0) + u32::from(shade.1) + u32::from(shade.2) < 400;
+            let text_color = if dark { WHITE } else { BLACK };
+            let mut lines = vec![label];
+            if failures > 0 {
+                lines.push(format!("{failures} failed"));
+            }
+            if row.refusals.unwrap_or(0) > 0 {
+                lines.push(format!("{} declined", row.refusals.unwrap_or(0)));
+            }
+            let first = centre.1 - (lines.len() as i32 - 1) * 8;
+            for (k, line) in lines.into_iter().enumerate() {
+                let size = if k == 0 { 16 } else { 12 };
+                root.draw(&Text::new(line, (centre.0, first + k as i32 * 16), centred(size).color(&text_color)))?;
+            }
+        }
+    }
+    root.draw(&Text::new(
+        "share of the exact pixels (a count where there are none), log colour scale: white 0, yellow 0.1%, red ≥ 100%; \
+         black frame: failures (panics, stray spans); grey: peer does not take the family",
+        (width as i32 / 2, height as i32 - bottom / 2),
+        centred(15),
+    ))?;
+    Ok(())
+}
+
+/// A family name on at most two lines, split at an underscore.
+fn split_name(name: &str) -> Vec<String> {
+    match name.split_once('_') {
+        Some((a, b)) => vec![a.to_string(), b.replace('_', " ")],
+        None => vec![name.to_string()],
+    }
+}
+
+/// A rate as a percentage with two significant digits.
+fn percent(rate: f64) -> String {
+    let p = rate * 100.0;
+    match p {
+        0.0 => "0".to_string(),
+        p if p >= 10.0 => format!("{p:.0}%"),
+        p if p >= 1.0 => format!("{p:.1}%"),
+        p => format!("{:.1$}%", p, (1 - p.log10().floor() as i32).max(0) as usize),
+    }
+}
+
+/// White at 0, then on a log scale from white at 1e-6 through yellow at
+/// 1e-3 to red at 1 and beyond.
+fn heat(rate: f64) -> RGBColor {
+    if rate <= 0.0 {
+        return WHITE;
+    }
+    let t = ((rate.log10() + 6.0) / 6.0).clamp(0.0, 1.0);
+    let channel = |from: f64, to: f64, t: f64| (from + (to - from) * t).round() as u8;
+    if t < 0.5 {
+        let u = t * 2.0;
+        RGBColor(255, channel(255.0, 220.0, u), channel(255.0, 60.0, u))
+    } else {
+        let u = (t - 0.5) * 2.0;
+        RGBColor(channel(255.0, 190.0, u), channel(220.0, 20.0, u), channel(60.0, 30.0, u))
+    }
+}
+
+fn rotation<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, results: &Results) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let families: Vec<&str> = results
+        .families
+        .iter()
+        .filter(|f| results.sweeps.iter().any(|s| s.family == f.name && s.axis == Axis::Angle))
+        .map(|f| f.name)
+        .collect();
+    let panels = root.split_evenly((families.len().max(1), 1));
+    for (panel, family) in panels.iter().zip(&families) {
+        let points = |name: &str| -> Vec<(f64, f64)> {
+            results
+                .sweeps
+                .iter()
+                .filter(|s| s.family == *family && s.name == name)
+                .filter_map(|s| Some((s.value, s.wrong_pixels_own? as f64)))
+                .collect()
+        };
+        let top = results
+            .sweeps
+            .iter()
+            .filter(|s| s.family == *family)
+            .filter_map(|s| s.wrong_pixels_own)
+            .max()
+            .unwrap_or(1)
+            .max(1) as f64;
+        let mut chart = ChartBuilder::on(panel)
+            .caption(format!("Rotation sweep, {family}: wrong pixels against angle"), (FONT, 22))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            // Headroom above the lines for the legend.
+            .build_cartesian_2d(0.0..360.0, 0.0..top * 1.6)?;
+        chart
+            .configure_mesh()
+            .x_labels(13)
+            .x_label_formatter(&|v| format!("{v:.0}°"))
+            .x_desc("rotation (degrees)")
+            .y_desc("wrong pixels (own convention)")
+            .y_label_formatter(&|v| compact(*v))
+            .label_style((FONT, 14))
+            .axis_desc_style((FONT, 16))
+            .draw()?;
+        for (name, _, color) in contenders(results) {
+            let line = points(name);
+            if line.is_empty() {
+                continue;
+            }
+            let width = if name == EXACT { 3 } else { 2 };
+            chart
+                .draw_series(LineSeries::new(line, color.stroke_width(width)))?
+                .label(name)
+                .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], color.stroke_width(3)));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK.mix(0.3))
+            .label_font((FONT, 13))
+            .draw()?;
+    }
+    Ok(())
+}
+
+fn scaling<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, results: &Results) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let panels = root.split_evenly((1, 2));
+    for (panel, axis) in panels.iter().zip([Axis::Area, Axis::Vertices]) {
+        let sweeps: Vec<_> = results.sweeps.iter().filter(|s| s.axis == axis && s.ns_per_polygon.is_some()).collect();
+        let x_range = log_range(sweeps.iter().map(|s| s.value), 1e-3);
+        let y_range = log_range(sweeps.iter().filter_map(|s| s.ns_per_polygon), 1e-2);
+        let mut chart = ChartBuilder::on(panel)
+            .caption(format!("Time per polygon against {}", axis.label()), (FONT, 22))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc(format!("{} (log)", axis.label()))
+            .y_desc("ns per polygon (log)")
+            .x_label_formatter(&|v| compact(*v))
+            .y_label_formatter(&|v| compact(*v))
+            .label_style((FONT, 14))
+            .axis_desc_style((FONT, 16))
+            .draw()?;
+        let line = |name: &str| -> Vec<(f64, f64)> {
+            sweeps.iter().filter(|s| s.name == name).filter_map(|s| Some((s.value, s.ns_per_polygon?))).collect()
+        };
+        for (name, kind, color) in contenders(results) {
+            let points = line(name);
+            if points.is_empty() {
+                continue;
+            }
+            let width = if name == EXACT { 3 } else { 2 };
+            let label = if kind == Kind::Peer { format!("{name} (peer)") } else { name.to_string() };
+            chart
+                .draw_series(LineSeries::new(points, color.stroke_width(width)))?
+                .label(label)
+                .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], color.stroke_width(3)));
+        }
+        let dashes = [(10, 5, BLACK), (3, 4, RGBColor(110, 110, 110))];
+        for (bound, (dash, gap, color)) in results.contenders.iter().filter(|c| c.kind == Kind::Bound).zip(dashes) {
+            let points = line(bound.name);
+            if points.is_empty() {
+                continue;
+            }
+            let style = color.stroke_width(2);
+            chart
+                .draw_series(DashedLineSeries::new(points, dash, gap, style))?
+                .label(bound.name)
+                .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], style));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK.mix(0.3))
+            .label_font((FONT, 13))
+            .draw()?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn compact_numbers_read_like_axis_labels() {
+        assert_eq!(compact(1500.0), "1.5k");
+        assert_eq!(compact(2_000_000.0), "2M");
+        assert_eq!(compact(0.25), "0.25");
+        assert_eq!(compact(10.0), "10");
+    }
+
+    #[test]
+    fn heat_runs_from_white_to_red() {
+        assert_eq!(heat(0.0), RGBColor(255, 255, 255));
+        assert_eq!(heat(1e-3), RGBColor(255, 220, 60));
+        assert_eq!(heat(1.0), RGBColor(190, 20, 30));
+        assert_eq!(heat(5.0), heat(1.0));
+    }
+
+    #[test]
+    fn percentages_keep_two_significant_digits() {
+        assert_eq!(percent(0.0), "0");
+        assert_eq!(percent(0.5), "50%");
+        assert_eq!(percent(0.0123), "1.2%");
+        assert_eq!(percent(0.000123), "0.012%");
+    }
+
+    #[test]
+    fn long_family_names_split_at_the_first_underscore() {
+        assert_eq!(split_name("subpixel_translation"), ["subpixel", "translation"]);
+        assert_eq!(split_name("degenerate"), ["degenerate"]);
+    }
+}

@@ -100,14 +100,6 @@ pub struct Family {
     pub sweep: Option<Sweep>,
 }
 
-impl Family {
-    /// Whether every polygon is one contour of three vertices (the peers
-    /// that only draw triangles run on such families).
-    pub fn is_triangles(&self) -> bool {
-        self.polygons.iter().all(|p| p.single_contour().is_some_and(|c| c.len() == 3))
-    }
-}
-
 /// How much of each kind the corpus holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Budget {

@@ -3,15 +3,20 @@
 //! contender's own sample point, with `raster::CoverageSink` counting
 //! overdraw, gaps and stray spans.
 //!
-//! A polygon is drawn once into a [`Recorder`]; its spans are then replayed
-//! into a fresh coverage sink (that polygon alone) and, on tiling families,
-//! into the tiling's sink, where overdraw and gaps between tiles show.
+//! A polygon is drawn once into a [`Recorder`]. Spans equal to the
+//! reference's up to order and splitting need no counting; others are
+//! replayed into a fresh coverage sink (that polygon alone). On tiling
+//! families they also go into the tiling's sink, where overdraw and gaps
+//! between tiles show. Polygons are judged on every core; timing is not.
 
+use std::cell::OnceCell;
 use std::ops::Range;
 use std::panic::{self, AssertUnwindSafe};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::thread;
 
 use raster::reference::{self, SampleOffset};
-use raster::{CoverageSink, Polygon, SCREEN};
+use raster::{CoverageReport, CoverageSink, Polygon, SCREEN};
 
 use crate::contender::Contender;
 use crate::corpus::Family;
@@ -67,6 +72,26 @@ struct Outcome {
 }
 
 impl Tally {
+    /// Adds `later`, a tally of the polygons after these.
+    fn merge(&mut self, later: &Tally) {
+        self.polygons += later.polygons;
+        self.refusals += later.refusals;
+        self.failures += later.failures;
+        self.wrong_pixels += later.wrong_pixels;
+        self.wrong_pixels_own += later.wrong_pixels_own;
+        self.overdraw += later.overdraw;
+        self.gaps += later.gaps;
+        self.faulty_polygons += later.faulty_polygons;
+        self.drawn_pixels += later.drawn_pixels;
+        self.bias.merge(&later.bias);
+        if self.first_failure.is_none() {
+            self.first_failure.clone_from(&later.first_failure);
+        }
+        if self.first_refusal.is_none() {
+            self.first_refusal.clone_from(&later.first_refusal);
+        }
+    }
+
     fn record(&mut self, index: usize, outcome: &Outcome, count_overdraw: bool) {
         self.polygons += 1;
         self.wrong_pixels += outcome.wrong;
@@ -115,15 +140,33 @@ pub struct Judged {
 struct Exact {
     sample: SampleOffset,
     spans: Vec<Span>,
-    coverage: CoverageSink,
+    /// The spans in normal form, to spot a fill that matches them exactly.
+    normal: Option<Vec<Span>>,
+    /// Built the first time a fill differs: most of `exact`'s never do.
+    coverage: OnceCell<CoverageSink>,
 }
 
 impl Exact {
     fn of(polygon: &Polygon, sample: SampleOffset) -> Self {
         let mut recorder = Recorder::default();
         reference::fill(polygon, sample, &mut recorder);
-        let coverage = coverage_of(&recorder.spans);
-        Self { sample, spans: recorder.spans, coverage }
+        let normal = spans::normal_form(&recorder.spans);
+        Self { sample, spans: recorder.spans, normal, coverage: OnceCell::new() }
+    }
+
+    fn coverage(&self) -> &CoverageSink {
+        self.coverage.get_or_init(|| coverage_of(&self.spans))
+    }
+
+    /// How `drawn` (with `normal`, its normal form, and `coverage`, its
+    /// coverage) compares with this fill.
+    fn compare(&self, normal: &Option<Vec<Span>>, coverage: &OnceCell<CoverageSink>, drawn: &[Span]) -> CoverageReport {
+        // The same spans up to order and splitting: the same pixels, each
+        // once, all inside (a normal form exists only for such spans).
+        if normal.is_some() && *normal == self.normal {
+            return CoverageReport::default();
+        }
+        coverage.get_or_init(|| coverage_of(drawn)).report(self.coverage())
     }
 }
 
@@ -133,77 +176,159 @@ fn coverage_of(spans: &[Span]) -> CoverageSink {
     coverage
 }
 
-/// Judges every contender on every polygon of `family`; `progress` is told
-/// of each polygon done. Panics are caught and counted as failures; the
-/// caller should silence the panic hook (see [`quietly`]).
-pub fn judge(family: &Family, contenders: &[Contender], progress: &dyn Fn()) -> Judged {
-    let mut samples = vec![SampleOffset::CENTRE];
-    for c in contenders {
-        if !samples.contains(&c.sample()) {
-            samples.push(c.sample());
-        }
-    }
-    let own: Vec<usize> = contenders.iter().map(|c| samples.iter().position(|&s| s == c.sample()).unwrap_or(0)).collect();
-    let takes: Vec<bool> = contenders.iter().map(|c| c.accepts(family)).collect();
-    let runs = family.sweep.as_ref().map(|s| s.runs()).unwrap_or_default();
-    let run_of: Vec<usize> = runs.iter().enumerate().flat_map(|(r, (_, range))| range.clone().map(move |_| r)).collect();
-
-    let mut judged = Judged {
-        exact: Vec::with_capacity(family.polygons.len()),
-        tallies: takes.iter().map(|&t| t.then(Tally::default)).collect(),
-        run_tallies: takes.iter().map(|&t| if t { vec![Tally::default(); runs.len()] } else { vec![] }).collect(),
-        runs,
-        timed: vec![Vec::new(); contenders.len()],
+/// Judges every contender on every polygon of `family`, on every core;
+/// `progress` is told of each polygon done. Panics are caught and counted
+/// as failures; the caller should silence the panic hook (see [`quietly`]).
+pub fn judge(family: &Family, contenders: &[Contender], progress: &(dyn Fn() + Sync)) -> Judged {
+    let plan = Plan::new(family, contenders);
+    let canvases: Vec<Range<usize>> = if plan.tiled() {
+        family.tilings.clone()
+    } else {
+        (0..family.polygons.len()).map(|i| i..i + 1).collect()
     };
-
-    let tiled = !family.tilings.is_empty();
-    let canvases: Vec<Range<usize>> =
-        if tiled { family.tilings.clone() } else { (0..family.polygons.len()).map(|i| i..i + 1).collect() };
-    for canvas in canvases {
-        // On tiling families: what the tiles drew together, per contender,
-        // and the region they tile, per sample point.
-        let mut drawn_together: Vec<CoverageSink> = Vec::new();
-        let mut region: Vec<CoverageSink> = Vec::new();
-        if tiled {
-            drawn_together = contenders.iter().map(|_| CoverageSink::new(SCREEN)).collect();
-            region = samples.iter().map(|_| CoverageSink::new(SCREEN)).collect();
-        }
-        for index in canvas {
-            let polygon = &family.polygons[index];
-            let exact: Vec<Exact> = samples.iter().map(|&s| Exact::of(polygon, s)).collect();
-            for (sink, e) in region.iter_mut().zip(&exact) {
-                spans::replay(&e.spans, 1, sink);
-            }
-            for (c, contender) in contenders.iter().enumerate() {
-                if !takes[c] {
-                    continue;
-                }
-                let (outcome, drawn) = judge_one(contender, polygon, &exact[0], &exact[own[c]]);
-                if tiled {
-                    spans::replay(&drawn, 1, &mut drawn_together[c]);
-                }
-                if !matches!(outcome.status, Status::Failed(_)) {
-                    judged.timed[c].push(index);
-                }
-                if let Some(tally) = &mut judged.tallies[c] {
-                    tally.record(index, &outcome, !tiled);
-                }
-                if let Some(&run) = run_of.get(index) {
-                    judged.run_tallies[c][run].record(index, &outcome, !tiled);
-                }
-            }
-            judged.exact.push(exact.into_iter().next().map(|e| e.spans).unwrap_or_default());
-            progress();
-        }
-        for (c, together) in drawn_together.iter().enumerate() {
-            let report = together.report(&region[own[c]]);
-            if let Some(tally) = &mut judged.tallies[c] {
-                tally.overdraw += report.overdrawn as u64;
-                tally.gaps += report.gaps as u64;
-            }
-        }
+    // Contiguous blocks of canvases, taken in turn by the workers and merged
+    // back in order, so that "first failure" means the same on any machine.
+    let workers = thread::available_parallelism().map_or(1, |n| n.get());
+    let blocks: Vec<&[Range<usize>]> = canvases.chunks(canvases.len().div_ceil(workers * 8).max(1)).collect();
+    let next = AtomicUsize::new(0);
+    let mut parts: Vec<(usize, Judged)> = thread::scope(|scope| {
+        let handles: Vec<_> = (0..workers)
+            .map(|_| {
+                scope.spawn(|| {
+                    let mut done = Vec::new();
+                    loop {
+                        let b = next.fetch_add(1, Ordering::Relaxed);
+                        let Some(block) = blocks.get(b) else { return done };
+                        done.push((b, plan.judge(block, progress)));
+                    }
+                })
+            })
+            .collect();
+        handles.into_iter().flat_map(|h| h.join().expect("judging catches every panic")).collect()
+    });
+    parts.sort_by_key(|(block, _)| *block);
+    let mut judged = plan.empty();
+    for (_, part) in parts {
+        judged.merge(part);
     }
     judged
+}
+
+/// What judging a family needs besides its polygons.
+struct Plan<'a> {
+    family: &'a Family,
+    contenders: &'a [Contender],
+    /// Every sample point in use, ours first.
+    samples: Vec<SampleOffset>,
+    /// Per contender: its own sample point, as an index into `samples`.
+    own: Vec<usize>,
+    /// Per contender: whether it takes the family.
+    takes: Vec<bool>,
+    runs: Vec<(f64, Range<usize>)>,
+    /// Per polygon: its sweep run (empty without a sweep).
+    run_of: Vec<usize>,
+}
+
+impl<'a> Plan<'a> {
+    fn new(family: &'a Family, contenders: &'a [Contender]) -> Self {
+        let mut samples = vec![SampleOffset::CENTRE];
+        for c in contenders {
+            if !samples.contains(&c.sample()) {
+                samples.push(c.sample());
+            }
+        }
+        let own = contenders.iter().map(|c| samples.iter().position(|&s| s == c.sample()).unwrap_or(0)).collect();
+        let runs = family.sweep.as_ref().map(|s| s.runs()).unwrap_or_default();
+        let run_of = runs.iter().enumerate().flat_map(|(r, (_, range))| range.clone().map(move |_| r)).collect();
+        let takes = contenders.iter().map(|c| c.accepts(family)).collect();
+        Self { family, contenders, samples, own, takes, runs, run_of }
+    }
+
+    fn tiled(&self) -> bool {
+        !self.family.tilings.is_empty()
+    }
+
+    /// Nothing judged yet.
+    fn empty(&self) -> Judged {
+        Judged {
+            exact: Vec::new(),
+            tallies: self.takes.iter().map(|&t| t.then(Tally::default)).collect(),
+            run_tallies: self.takes.iter().map(|&t| if t { vec![Tally::default(); self.runs.len()] } else { vec![] }).collect(),
+            runs: self.runs.clone(),
+            timed: vec![Vec::new(); self.contenders.len()],
+        }
+    }
+
+    /// Judges the polygons of `canvases`, consecutive runs of polygons.
+    fn judge(&self, canvases: &[Range<usize>], progress: &(dyn Fn() + Sync)) -> Judged {
+        let mut judged = self.empty();
+        let tiled = self.tiled();
+        for canvas in canvases {
+            // On tiling families: what the tiles drew together, per
+            // contender, and the region they tile, per sample point.
+            let mut drawn_together: Vec<CoverageSink> = Vec::new();
+            let mut region: Vec<CoverageSink> = Vec::new();
+            if tiled {
+                drawn_together = self.contenders.iter().map(|_| CoverageSink::new(SCREEN)).collect();
+                region = self.samples.iter().map(|_| CoverageSink::new(SCREEN)).collect();
+            }
+            for index in canvas.clone() {
+                let polygon = &self.family.polygons[index];
+                let exact: Vec<Exact> = self.samples.iter().map(|&s| Exact::of(polygon, s)).collect();
+                for (sink, e) in region.iter_mut().zip(&exact) {
+                    spans::replay(&e.spans, 1, sink);
+                }
+                for (c, contender) in self.contenders.iter().enumerate() {
+                    if !self.takes[c] {
+                        continue;
+                    }
+                    let (outcome, drawn) = judge_one(contender, polygon, &exact[0], &exact[self.own[c]]);
+                    if tiled {
+                        spans::replay(&drawn, 1, &mut drawn_together[c]);
+                    }
+                    if !matches!(outcome.status, Status::Failed(_)) {
+                        judged.timed[c].push(index);
+                    }
+                    if let Some(tally) = &mut judged.tallies[c] {
+                        tally.record(index, &outcome, !tiled);
+                    }
+                    if let Some(&run) = self.run_of.get(index) {
+                        judged.run_tallies[c][run].record(index, &outcome, !tiled);
+                    }
+                }
+                judged.exact.push(exact.into_iter().next().map(|e| e.spans).unwrap_or_default());
+                progress();
+            }
+            for (c, together) in drawn_together.iter().enumerate() {
+                let report = together.report(&region[self.own[c]]);
+                if let Some(tally) = &mut judged.tallies[c] {
+                    tally.overdraw += report.overdrawn as u64;
+                    tally.gaps += report.gaps as u64;
+                }
+            }
+        }
+        judged
+    }
+}
+
+impl Judged {
+    /// Appends `later`, judged on the polygons right after these.
+    fn merge(&mut self, later: Judged) {
+        self.exact.extend(later.exact);
+        for (mine, theirs) in self.tallies.iter_mut().zip(&later.tallies) {
+            if let (Some(mine), Some(theirs)) = (mine, theirs) {
+                mine.merge(theirs);
+            }
+        }
+        for (mine, theirs) in self.run_tallies.iter_mut().zip(&later.run_tallies) {
+            for (mine, theirs) in mine.iter_mut().zip(theirs) {
+                mine.merge(theirs);
+            }
+        }
+        for (mine, theirs) in self.timed.iter_mut().zip(later.timed) {
+            mine.extend(theirs);
+        }
+    }
 }
 
 /// Draws `polygon` with `contender` and compares it with the reference
@@ -217,9 +342,9 @@ fn judge_one(contender: &Contender, polygon: &Polygon, ours: &Exact, own: &Exact
         Err(payload) => Status::Failed(format!("panicked: {}", panic_message(payload.as_ref()))),
     };
     let drawn = recorder.spans;
-    let coverage = coverage_of(&drawn);
-    let against_ours = coverage.report(&ours.coverage);
-    let against_own = if own.sample == ours.sample { against_ours } else { coverage.report(&own.coverage) };
+    let (normal, coverage) = (spans::normal_form(&drawn), OnceCell::new());
+    let against_ours = ours.compare(&normal, &coverage, &drawn);
+    let against_own = if own.sample == ours.sample { against_ours } else { own.compare(&normal, &coverage, &drawn) };
     let status = match status {
         Status::Drawn | Status::Refused(_) if against_ours.out_of_bounds > 0 => {
             Status::Failed(format!("{} spans outside the 320x200 target", against_ours.out_of_bounds))
@@ -338,9 +463,10 @@ mod tests {
     fn tilings_count_overdraw_and_gaps_between_tiles() {
         // Two copies of one square overlap everywhere; a declined tile
         // leaves its region as a gap.
-        let t = tally(&family(vec![square(1), square(1), square(3)], vec![0..3]));
+        let one_tiling = |n| std::iter::once(0..n).collect();
+        let t = tally(&family(vec![square(1), square(1), square(3)], one_tiling(3)));
         assert_eq!((t.overdraw, t.gaps, t.wrong_pixels), (100, 0, 0));
-        let t = tally(&family(vec![square(3)], vec![0..1]));
+        let t = tally(&family(vec![square(3)], one_tiling(1)));
         assert_eq!((t.overdraw, t.gaps), (0, 100));
     }
 

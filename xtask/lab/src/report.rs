@@ -1,2 +1,270 @@
-use crate::results::Results;
-pub fn markdown(_r: &Results) -> String { String::new() }
+//! report.md: the corpus, the contenders, tables of every measure, how
+//! `exact` stands against its goals, and one sentence per classic method
+//! on where it fails, tied to its seed. Every number comes from
+//! [`Results`]; nothing here measures.
+
+use std::fmt::Write;
+
+use crate::corpus::Group;
+use crate::results::{Kind, Results, Row};
+use crate::stats::pareto_front;
+use crate::EXACT;
+
+/// The whole report.
+pub fn markdown(results: &Results) -> String {
+    let mut out = String::new();
+    let mode = if results.quick { "quick (`--quick`, a small corpus)" } else { "full" };
+    let _ = writeln!(out, "# Polygon-fill lab\n");
+    let _ = writeln!(
+        out,
+        "Run: {mode}; corpus seed `{:#x}`. Host wall-clock times in release, median of repeats, \
+         filling into a 320x200 framebuffer; accuracy against `raster::reference`. \
+         Charts: speed_vs_accuracy, stability, rotation, scaling (.svg and .png beside this file).\n",
+        results.seed
+    );
+    corpus_table(&mut out, results);
+    contender_table(&mut out, results);
+    exact_goals(&mut out, results);
+    classic_failures(&mut out, results);
+    measure_table(&mut out, results, "Speed: ns per polygon", true, |r| r.ns_per_polygon.map(duration));
+    measure_table(&mut out, results, "Speed: time over the memset bound's", false, |r| {
+        r.time_vs_memset.map(|x| format!("{x:.1}×"))
+    });
+    measure_table(&mut out, results, "Wrong pixels: our convention / the method's own", false, |r| {
+        Some(format!("{} / {}", count(r.wrong_pixels?), count(r.wrong_pixels_own?)))
+    });
+    measure_table(&mut out, results, "Overdraw / gaps (gaps on tilings only)", false, |r| {
+        let gaps = r.gaps.map_or("–".to_string(), count);
+        Some(format!("{} / {gaps}", count(r.overdraw?)))
+    });
+    measure_table(&mut out, results, "Failures / declined polygons", false, |r| {
+        Some(format!("{} / {}", count(r.failures?), count(r.refusals?)))
+    });
+    measure_table(&mut out, results, "Mean centroid bias (dx, dy) in pixels", false, |r| {
+        r.centroid_bias.map(|(dx, dy)| format!("{dx:+.2}, {dy:+.2}"))
+    });
+    pareto_list(&mut out, results);
+    out
+}
+
+fn corpus_table(out: &mut String, results: &Results) {
+    let _ = writeln!(out, "## Corpus\n\n| family | group | polygons | exact pixels | what |\n|---|---|---:|---:|---|");
+    for f in &results.families {
+        let _ = writeln!(out, "| {} | {} | {} | {} | {} |", f.name, group(f.group), count(f.polygons as u64), count(f.pixels), f.description);
+    }
+    out.push('\n');
+}
+
+fn contender_table(out: &mut String, results: &Results) {
+    let _ = writeln!(out, "## Contenders\n\n| name | kind | source | arithmetic and convention |\n|---|---|---|---|");
+    for c in &results.contenders {
+        let kind = match c.kind {
+            Kind::Method => "method",
+            Kind::Peer => "peer",
+            Kind::Bound => "bound",
+        };
+        let _ = writeln!(out, "| {} | {kind} | {} | {} |", c.name, c.source, c.summary);
+    }
+    out.push('\n');
+}
+
+/// Where `exact` stands against the issue's goals, in numbers.
+fn exact_goals(out: &mut String, results: &Results) {
+    let _ = writeln!(out, "## `{EXACT}` against its goals\n");
+    let rows: Vec<&Row> = results.rows_of(EXACT).collect();
+    if rows.is_empty() {
+        let _ = writeln!(out, "No `{EXACT}` method in `raster::methods::ALL` yet.\n");
+        return;
+    }
+    let sum = |pick: fn(&Row) -> Option<u64>| rows.iter().filter_map(|r| pick(r)).sum::<u64>();
+    let _ = writeln!(
+        out,
+        "- Whole corpus: {} wrong pixels, {} overdrawn, {} gaps, {} failures, {} declined polygons.",
+        count(sum(|r| r.wrong_pixels)),
+        count(sum(|r| r.overdraw)),
+        count(sum(|r| r.gaps)),
+        count(sum(|r| r.failures)),
+        count(sum(|r| r.refusals)),
+    );
+    let ratio = |family: &str, other: &str| -> Option<f64> {
+        Some(results.row(other, family)?.ns_per_polygon? / results.row(EXACT, family)?.ns_per_polygon?)
+    };
+    let goal = |out: &mut String, text: &str, value: Option<f64>, target: &str| {
+        let value = value.map_or("not measured".to_string(), |v| format!("{v:.2}×"));
+        let _ = writeln!(out, "- {text}: {value} (goal {target}).");
+    };
+    goal(out, "Small triangles, tiny-skia's time over exact's", ratio("small_triangles", "tiny-skia"), "≥ 10×");
+    goal(out, "Small triangles, embedded-graphics' time over exact's", ratio("small_triangles", "embedded-graphics"), "> 1×");
+    goal(
+        out,
+        "Small triangles, exact's time over the span-write bound's",
+        results.row(EXACT, "small_triangles").and_then(|r| r.time_vs_span_write),
+        "≤ 4×",
+    );
+    goal(
+        out,
+        "Large convex, the memset bound's time over exact's",
+        results.row(EXACT, "large_convex").and_then(|r| Some(1.0 / r.time_vs_memset?)),
+        "≥ 0.9×",
+    );
+    let slower: Vec<String> = results
+        .rows
+        .iter()
+        .filter(|r| r.kind == Kind::Peer)
+        .filter_map(|peer| {
+            let mine = results.row(EXACT, peer.family)?.ns_per_polygon?;
+            (peer.ns_per_polygon? < mine).then(|| format!("{} on {}", peer.name, peer.family))
+        })
+        .collect();
+    if slower.is_empty() {
+        let _ = writeln!(out, "- Faster than every peer on every family.\n");
+    } else {
+        let _ = writeln!(out, "- Slower than a peer on: {}.\n", slower.join(", "));
+    }
+}
+
+/// One sentence per classic method: how far it is from exact under our
+/// convention and its own, where it is worst, what it draws twice or
+/// leaves out, what it declines and where it fails.
+fn classic_failures(out: &mut String, results: &Results) {
+    let _ = writeln!(
+        out,
+        "## Where each classic method fails\n\nTotals over the whole corpus; \"own convention\" samples where the method \
+         does (see Contenders); declined polygons draw nothing and are not counted as wrong.\n"
+    );
+    for c in results.contenders.iter().filter(|c| c.kind == Kind::Method && c.name != EXACT) {
+        let rows: Vec<&Row> = results.rows_of(c.name).collect();
+        let sum = |pick: fn(&Row) -> Option<u64>| rows.iter().filter_map(|r| pick(r)).sum::<u64>();
+        let mut parts = vec![format!(
+            "differs from the exact fill in {} pixels under our convention and {} under its own",
+            count(sum(|r| r.wrong_pixels)),
+            count(sum(|r| r.wrong_pixels_own)),
+        )];
+        let worst = rows
+            .iter()
+            .filter(|r| r.pixels > 0 && r.wrong_pixels_own.unwrap_or(0) > 0)
+            .max_by(|a, b| own_rate(a).total_cmp(&own_rate(b)));
+        if let Some(w) = worst {
+            parts.push(format!(
+                "it is worst on {}, wrong by its own convention in {:.1}% of the exact pixels ({} of {} polygons faulty)",
+                w.family,
+                own_rate(w) * 100.0,
+                count(w.faulty_polygons.unwrap_or(0)),
+                count(w.polygons),
+            ));
+        }
+        for r in rows.iter().filter(|r| r.pixels == 0 && r.wrong_pixels_own.unwrap_or(0) > 0) {
+            parts.push(format!(
+                "it draws {} pixels on {}, where the exact fill draws none",
+                count(r.wrong_pixels_own.unwrap_or(0)),
+                r.family
+            ));
+        }
+        let overdraw = sum(|r| r.overdraw);
+        if overdraw > 0 {
+            parts.push(format!("draws {} pixels twice", count(overdraw)));
+        }
+        let gaps = sum(|r| r.gaps);
+        if gaps > 0 {
+            parts.push(format!("leaves {} pixels of tilings undrawn", count(gaps)));
+        }
+        let refused = sum(|r| r.refusals);
+        if let Some(first) = rows.iter().find_map(|r| Some(format!("{}, {}", r.family, r.first_refusal.as_ref()?))) {
+            parts.push(format!("declines {} polygons (first: {first})", count(refused)));
+        }
+        let failed = sum(|r| r.failures);
+        match rows.iter().find_map(|r| Some(format!("{}, {}", r.family, r.first_failure.as_ref()?))) {
+            Some(first) => parts.push(format!("and fails {} times (first: {first})", count(failed))),
+            None => parts.push("and never fails".to_string()),
+        }
+        let _ = writeln!(out, "- **{}** (seed: {}) {}.", c.name, c.source, parts.join("; "));
+    }
+    out.push('\n');
+}
+
+fn own_rate(r: &Row) -> f64 {
+    r.wrong_pixels_own.unwrap_or(0) as f64 / r.pixels as f64
+}
+
+/// A table of one measure, families down, contenders across.
+fn measure_table(out: &mut String, results: &Results, title: &str, with_bounds: bool, cell: impl Fn(&Row) -> Option<String>) {
+    let columns: Vec<&str> = results
+        .contenders
+        .iter()
+        .filter(|c| with_bounds || c.kind != Kind::Bound)
+        .map(|c| c.name)
+        .collect();
+    let _ = writeln!(out, "## {title}\n\n| family | {} |", columns.join(" | "));
+    let _ = writeln!(out, "|---|{}", "---:|".repeat(columns.len()));
+    for f in &results.families {
+        let cells: Vec<String> =
+            columns.iter().map(|c| results.row(c, f.name).and_then(&cell).unwrap_or_else(|| "–".to_string())).collect();
+        let _ = writeln!(out, "| {} | {} |", f.name, cells.join(" | "));
+    }
+    out.push('\n');
+}
+
+fn pareto_list(out: &mut String, results: &Results) {
+    let points = results.speed_accuracy_points(0.0);
+    let coordinates: Vec<(f64, f64)> = points.iter().map(|(_, p)| *p).collect();
+    let front: Vec<String> = pareto_front(&coordinates)
+        .into_iter()
+        .map(|i| {
+            let (row, (x, y)) = points[i];
+            format!("{} on {} ({x:.1}× memset, {y:.3}% wrong)", row.name, row.family)
+        })
+        .collect();
+    let _ = writeln!(out, "## Pareto front of speed_vs_accuracy\n\n{}\n", front.join("; "));
+}
+
+fn group(g: Group) -> &'static str {
+    match g {
+        Group::Scene => "scene",
+        Group::Random => "random",
+        Group::Tiling => "tiling",
+        Group::Stress => "stress",
+    }
+}
+
+/// Nanoseconds, readably.
+fn duration(ns: f64) -> String {
+    if ns >= 1e6 {
+        format!("{:.2} ms", ns / 1e6)
+    } else if ns >= 1e3 {
+        format!("{:.2} µs", ns / 1e3)
+    } else {
+        format!("{ns:.0} ns")
+    }
+}
+
+/// An integer with thin thousands separators.
+fn count(n: u64) -> String {
+    let digits = n.to_string();
+    let mut grouped = String::new();
+    for (i, d) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            grouped.push(',');
+        }
+        grouped.push(d);
+    }
+    grouped
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_group_thousands() {
+        assert_eq!(count(0), "0");
+        assert_eq!(count(999), "999");
+        assert_eq!(count(1_234_567), "1,234,567");
+    }
+
+    #[test]
+    fn durations_pick_their_unit() {
+        assert_eq!(duration(820.4), "820 ns");
+        assert_eq!(duration(1_500.0), "1.50 µs");
+        assert_eq!(duration(2_500_000.0), "2.50 ms");
+    }
+}

@@ -91,9 +91,16 @@ impl Row {
         Some(self.wrong_pixels? as f64 / self.pixels.max(1) as f64)
     }
 
-    /// Share of polygons failed or drawn wrong by the contender's own convention.
-    pub fn fault_rate(&self) -> Option<f64> {
-        Some(self.faulty_polygons? as f64 / self.polygons.max(1) as f64)
+    /// Pixels drawn wrong by the contender's own convention, drawn twice,
+    /// or left as gaps: how badly it breaks.
+    pub fn damaged_pixels(&self) -> Option<u64> {
+        Some(self.wrong_pixels_own? + self.overdraw? + self.gaps.unwrap_or(0))
+    }
+
+    /// [`Row::damaged_pixels`] per exact pixel; `None` where the exact fill
+    /// draws nothing (wholly off-screen polygons).
+    pub fn damage_rate(&self) -> Option<f64> {
+        (self.pixels > 0).then_some(self.damaged_pixels()? as f64 / self.pixels as f64)
     }
 }
 
@@ -218,6 +225,20 @@ impl Results {
                 }
             }
         }
+    }
+
+    /// The speed-against-accuracy points: one per method or peer per
+    /// everyday family (scenes, random, tilings), at (time over the memset
+    /// bound, wrong pixels in % of exact pixels, at least `zero_floor`).
+    /// Rows with a refusal or failure are left out: they drew less work,
+    /// and their point would flatter them.
+    pub fn speed_accuracy_points(&self, zero_floor: f64) -> Vec<(&Row, (f64, f64))> {
+        let everyday = |group: Group| matches!(group, Group::Scene | Group::Random | Group::Tiling);
+        self.rows
+            .iter()
+            .filter(|r| everyday(r.group) && r.refusals == Some(0) && r.failures == Some(0))
+            .filter_map(|r| Some((r, (r.time_vs_memset?, (r.error_rate()? * 100.0).max(zero_floor)))))
+            .collect()
     }
 
     /// Rows of contender `name`.

@@ -35,6 +35,28 @@ pub fn replay(spans: &[Span], color: u8, sink: &mut dyn SpanSink) {
     }
 }
 
+/// The spans sorted by row and start, with spans that touch end to start
+/// joined: two fills have the same normal form exactly when they write the
+/// same pixels, each once. `None` when a span overlaps another, is empty
+/// or leaves the screen (those need counting, not comparing).
+pub fn normal_form(spans: &[Span]) -> Option<Vec<Span>> {
+    let mut sorted = spans.to_vec();
+    sorted.sort_unstable_by_key(|s| (s.y, s.x_start));
+    let mut normal: Vec<Span> = Vec::with_capacity(sorted.len());
+    for s in sorted {
+        let inside = (0..SCREEN.height).contains(&s.y) && 0 <= s.x_start && s.x_start < s.x_end && s.x_end <= SCREEN.width;
+        if !inside {
+            return None;
+        }
+        match normal.last_mut() {
+            Some(last) if last.y == s.y && last.x_end > s.x_start => return None,
+            Some(last) if last.y == s.y && last.x_end == s.x_start => last.x_end = s.x_end,
+            _ => normal.push(s),
+        }
+    }
+    Some(normal)
+}
+
 /// The part of a span on the screen, if any.
 fn visible(s: &Span) -> Option<(i64, i64, i64)> {
     let (x0, x1) = (s.x_start.max(0), s.x_end.min(SCREEN.width));
@@ -74,6 +96,22 @@ mod tests {
         recorder.span(-1, 5, 900, 3);
         recorder.span(2, 1, 2, 3);
         assert_eq!(recorder.spans, vec![span(-1, 5, 900), span(2, 1, 2)]);
+    }
+
+    #[test]
+    fn normal_form_ignores_order_and_splitting() {
+        let split = [span(3, 5, 7), span(1, 0, 2), span(3, 2, 5)];
+        assert_eq!(normal_form(&split), Some(vec![span(1, 0, 2), span(3, 2, 7)]));
+        assert_eq!(normal_form(&split), normal_form(&[span(1, 0, 2), span(3, 2, 7)]));
+    }
+
+    #[test]
+    fn normal_form_refuses_what_must_be_counted() {
+        assert_eq!(normal_form(&[span(0, 0, 5), span(0, 4, 6)]), None);
+        assert_eq!(normal_form(&[span(0, 0, 5), span(0, 0, 5)]), None);
+        assert_eq!(normal_form(&[span(0, 3, 3)]), None);
+        assert_eq!(normal_form(&[span(0, 300, 321)]), None);
+        assert_eq!(normal_form(&[span(-1, 0, 1)]), None);
     }
 
     #[test]

@@ -28,6 +28,13 @@ impl MeanVector {
         self.count += 1;
     }
 
+    /// Adds every value `other` has seen.
+    pub fn merge(&mut self, other: &MeanVector) {
+        self.sum.0 += other.sum.0;
+        self.sum.1 += other.sum.1;
+        self.count += other.count;
+    }
+
     /// The mean, or `None` before the first value.
     pub fn mean(&self) -> Option<(f64, f64)> {
         (self.count > 0).then(|| (self.sum.0 / self.count as f64, self.sum.1 / self.count as f64))
@@ -74,6 +81,10 @@ mod tests {
         mean.add((1.0, -2.0));
         mean.add((3.0, 4.0));
         assert_eq!(mean.mean(), Some((2.0, 1.0)));
+        let mut other = MeanVector::default();
+        other.add((5.0, 1.0));
+        mean.merge(&other);
+        assert_eq!(mean.mean(), Some((3.0, 1.0)));
     }
 
     #[test]

@@ -73,7 +73,7 @@ impl Bound {
 
     pub const fn source(self) -> &'static str {
         match self {
-            Bound::Memset => "write_bytes of each polygon's exact pixel count",
+            Bound::Memset => "one memset (slice fill) of each polygon's exact pixel count",
             Bound::SpanWrite => "the reference's spans replayed into a Framebuffer",
         }
     }

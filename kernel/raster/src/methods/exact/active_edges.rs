@@ -1,8 +1,18 @@
 //! The exact method's general path: any number of contours, crossing or
 //! not, under either fill rule. An edge table sorted by first scan line
 //! feeds an active edge table (Black Book ch. 40's global and active edge
-//! tables); each row sorts the active crossings, sums their directions from
-//! the left and emits the runs the fill rule calls inside as whole spans.
+//! tables), kept sorted by crossing column; the directions summed from the
+//! left decide which crossings open and close the runs the fill rule calls
+//! inside, and each run is emitted as one whole span.
+//!
+//! The rows go in runs between events (an edge starting or ending): within
+//! a run the active edges stay the same, and unless two of them cross their
+//! order does too, and so does the part each plays (opening a run, closing
+//! one, or neither). A row then costs one pass over the active edges that
+//! emits, steps and checks the order at once; only a row where the order
+//! changed sorts again and works the parts out again. A run of two edges
+//! with the inside between them (most rows of most simple polygons) takes
+//! the monotone path's two-edge loop instead.
 
 use alloc::vec::Vec;
 
@@ -11,6 +21,7 @@ use crate::method::Refusal;
 use crate::sink::{Size, SpanSink};
 
 use super::edge::{first_sample_at_or_after, visible_column, visible_rows, EdgeStepper};
+use super::monotone::span_rows;
 
 /// Fills `polygon` by its fill rule. Refuses only when memory for the edge
 /// tables cannot be had.
@@ -19,38 +30,86 @@ pub(crate) fn fill_active_edges(polygon: &Polygon, size: Size, sink: &mut dyn Sp
     edges.sort_unstable_by_key(|edge| edge.rows.start);
     let mut active: Vec<ActiveEdge> = Vec::new();
     active.try_reserve_exact(edges.len()).map_err(|_| Refusal::OutOfMemory)?;
+    let mut sorter = Sorter::for_edges(edges.len(), size.width)?;
+    let target = Target { color: polygon.color, width: size.width };
+    match polygon.rule {
+        FillRule::EvenOdd => walk::<false>(&edges, &mut active, &mut sorter, target, sink),
+        FillRule::NonZero => walk::<true>(&edges, &mut active, &mut sorter, target, sink),
+    }
+    Ok(())
+}
 
-    let mut pending = edges.iter().peekable();
+/// What every span shares.
+#[derive(Clone, Copy)]
+struct Target {
+    color: u8,
+    width: i32,
+}
+
+/// Walks the rows of the edge table, top down. `NON_ZERO` picks the rule.
+fn walk<const NON_ZERO: bool>(
+    edges: &[TableEdge],
+    active: &mut Vec<ActiveEdge>,
+    sorter: &mut Sorter,
+    target: Target,
+    sink: &mut dyn SpanSink,
+) {
+    let mut next = 0;
     let mut row = 0;
     loop {
         if active.is_empty() {
             // Nothing crosses the rows in between: go to the next edge's first.
-            match pending.peek() {
+            match edges.get(next) {
                 Some(edge) => row = edge.rows.start,
-                None => return Ok(()),
+                None => return,
             }
         }
-        while let Some(edge) = pending.next_if(|edge| edge.rows.start <= row) {
+        while let Some(edge) = edges.get(next).filter(|edge| edge.rows.start <= row) {
+            let stepper = if edge.rows.end - row == 1 {
+                EdgeStepper::at_last_row(edge.top, edge.bottom, row)
+            } else {
+                EdgeStepper::at_row(edge.top, edge.bottom, row)
+            };
             active.push(ActiveEdge {
-                stepper: EdgeStepper::at_row(edge.top, edge.bottom, row),
+                stepper,
+                // Visible rows end at the target's height, an `i32`.
+                end_row: edge.rows.end as i32,
                 winding: edge.winding,
-                end_row: edge.rows.end,
+                part: Part::Neither,
             });
+            next += 1;
         }
-        // The list comes sorted from the previous row except where edges
-        // started or crossed. The book bubble-sorts it (ch. 40), which goes
-        // quadratic when many edges cross; this sort stays O(n log n) and
-        // sees an already sorted list in one pass.
-        active.sort_unstable_by_key(|edge| edge.stepper.column);
-        emit_row(row, &active, polygon.rule, polygon.color, size.width, sink);
-        active.retain_mut(|edge| {
-            let continues = row + 1 < edge.end_row;
-            if continues {
-                edge.stepper.step();
+        // Every active edge meets `row` and every pending one starts below
+        // it, so the run has at least this row.
+        let starts = edges.get(next).map_or(i64::MAX, |edge| edge.rows.start);
+        let run_end = active.iter().map(|edge| i64::from(edge.end_row)).fold(starts, i64::min);
+        sorter.sort(active, target.width);
+        let mut open_at_end = assign_parts::<NON_ZERO>(active);
+        if let ([a, b], false) = (active.as_mut_slice(), open_at_end) {
+            // Two crossings, outside right of both: whatever their order
+            // (they may cross), the inside is the span between them, as on
+            // the monotone path.
+            span_rows::<false, true>(row..run_end, &mut a.stepper, &mut b.stepper, target.color, target.width, sink);
+            row = run_end;
+        }
+        let mut sorted = true;
+        while row < run_end {
+            if !sorted {
+                sorter.sort(active, target.width);
+                open_at_end = assign_parts::<NON_ZERO>(active);
             }
-            continues
-        });
-        row += 1;
+            sorted = emit_and_step(row, active, open_at_end, target, sink);
+            row += 1;
+        }
+        // Drop the edges that ended, keeping the order of the rest.
+        let mut kept = 0;
+        for i in 0..active.len() {
+            if i64::from(active[i].end_row) > row {
+                active[kept] = active[i];
+                kept += 1;
+            }
+        }
+        active.truncate(kept);
     }
 }
 
@@ -59,15 +118,29 @@ struct TableEdge {
     top: Point,
     bottom: Point,
     /// +1 where the contour runs down the edge, -1 where it runs up.
-    winding: i64,
+    winding: i8,
     rows: core::ops::Range<i64>,
 }
 
 /// An edge crossing the current row.
+#[derive(Clone, Copy)]
 struct ActiveEdge {
     stepper: EdgeStepper,
-    winding: i64,
-    end_row: i64,
+    end_row: i32,
+    /// +1 or -1, as [`TableEdge::winding`].
+    winding: i8,
+    part: Part,
+}
+
+/// What a crossing does to the run of inside pixels, in the current order.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Part {
+    /// Outside on its left, inside from it on.
+    Opens,
+    /// Inside on its left, outside from it on.
+    Closes,
+    /// Leaves the pixels on both sides alike.
+    Neither,
 }
 
 /// Every edge that meets a visible row and can lie left of a visible pixel
@@ -90,44 +163,175 @@ fn edge_table(polygon: &Polygon, size: Size) -> Result<Vec<TableEdge>, Refusal> 
     Ok(edges)
 }
 
-/// Emits the inside runs of one row. `active` is sorted by column; all
-/// crossings at one column are summed before the rule is asked, so runs
-/// that touch are emitted as one span and no pixel is emitted twice. Edges
-/// right of the target are not in the table, so a run may still be open at
-/// the end: it reaches the right border.
-fn emit_row(row: i64, active: &[ActiveEdge], rule: FillRule, color: u8, width: i32, sink: &mut dyn SpanSink) {
-    let mut emit = |start: i64, end: i64| {
-        let (start, end) = (visible_column(start, width), visible_column(end, width));
-        if start < end {
-            sink.span(row as i32, start, end, color);
+/// Sorts the active edges by visible column (the column clamped to the
+/// target, see [`visible_column`]). That is the order the inside test
+/// needs: the crossings at or left of a visible pixel are a prefix of it.
+///
+/// The list comes sorted but for edges that just started or crossed, so a
+/// short one takes an insertion sort, about one pass and no call. A long
+/// one, where many edges may cross at once (insertion sort would go
+/// quadratic, as the book's bubble sort does in ch. 40), is counted into
+/// place when the target is narrow next to the edge count (`O(n + width)`),
+/// and otherwise sorted in `O(n log n)` by 64-bit keys, visible column
+/// above index, then moved into that order once: cheaper than sorting the
+/// edges themselves, six times larger.
+struct Sorter {
+    /// Per visible column, edges at it, then where the next of them goes.
+    counts: Vec<u32>,
+    keys: Vec<u64>,
+    scratch: Vec<ActiveEdge>,
+}
+
+/// The longest active list sorted by insertion.
+const SHORT: usize = 16;
+
+impl Sorter {
+    /// Room for `edges` active edges on a target `width` wide, so that
+    /// sorting never allocates: a count per visible column when there are
+    /// at most four per edge, or a key per edge.
+    fn for_edges(edges: usize, width: i32) -> Result<Self, Refusal> {
+        let (mut counts, mut keys, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
+        if edges > SHORT && u32::try_from(edges).is_ok() {
+            scratch.try_reserve_exact(edges).map_err(|_| Refusal::OutOfMemory)?;
+            let columns = width.max(0) as usize + 1;
+            if columns / 4 <= edges {
+                counts.try_reserve_exact(columns).map_err(|_| Refusal::OutOfMemory)?;
+                counts.resize(columns, 0);
+            } else {
+                keys.try_reserve_exact(edges).map_err(|_| Refusal::OutOfMemory)?;
+            }
         }
-    };
-    let mut winding = 0i64;
-    let mut span_start = 0;
-    let mut i = 0;
-    while i < active.len() {
-        let column = active[i].stepper.column;
-        let was_inside = is_inside(rule, winding);
-        while i < active.len() && active[i].stepper.column == column {
-            winding += active[i].winding;
-            i += 1;
+        Ok(Self { counts, keys, scratch })
+    }
+
+    fn sort(&mut self, active: &mut Vec<ActiveEdge>, width: i32) {
+        let column = |edge: &ActiveEdge| visible_column(edge.stepper.column, width) as usize;
+        if active.len() <= SHORT {
+            // By the unclamped column: that order is also by the clamped one.
+            for i in 1..active.len() {
+                let mut j = i;
+                while j > 0 && active[j - 1].stepper.column > active[j].stepper.column {
+                    active.swap(j - 1, j);
+                    j -= 1;
+                }
+            }
+            return;
         }
-        match (was_inside, is_inside(rule, winding)) {
-            (false, true) => span_start = column,
-            (true, false) => emit(span_start, column),
-            _ => {}
+        // Room was made for every edge and fewer than 2^32 of them (else
+        // neither buffer has room and the library sort takes over), so
+        // nothing below allocates and every count and index fits a `u32`.
+        if active.len() > self.scratch.capacity() {
+            active.sort_unstable_by_key(column);
+        } else if !self.counts.is_empty() {
+            self.counts.fill(0);
+            for edge in active.iter() {
+                self.counts[column(edge)] += 1;
+            }
+            let mut next = 0;
+            for count in &mut self.counts {
+                (*count, next) = (next, next + *count);
+            }
+            self.scratch.clear();
+            self.scratch.extend_from_slice(active);
+            for edge in active.iter() {
+                let slot = &mut self.counts[column(edge)];
+                self.scratch[*slot as usize] = *edge;
+                *slot += 1;
+            }
+            core::mem::swap(active, &mut self.scratch);
+        } else {
+            // Visible columns are below 2^31 and indices below 2^32.
+            self.keys.clear();
+            self.keys.extend(active.iter().enumerate().map(|(i, edge)| (column(edge) as u64) << 32 | i as u64));
+            self.keys.sort_unstable();
+            self.scratch.clear();
+            self.scratch.extend(self.keys.iter().map(|&key| active[(key & u64::from(u32::MAX)) as usize]));
+            core::mem::swap(active, &mut self.scratch);
         }
     }
-    if is_inside(rule, winding) {
-        emit(span_start, width.into());
+}
+
+/// Works out each crossing's [`Part`] in the current order: the winding
+/// sum of the crossings before it and up to it, under the rule. A pixel's
+/// inside test sums every crossing at or left of it; where several share
+/// a column, the states between them cover no pixel, so any order of
+/// theirs gives the same pixels. Returns whether the pixels right of the
+/// last crossing are inside (edges right of the target are not in the
+/// table, so the sum need not come back to zero).
+fn assign_parts<const NON_ZERO: bool>(active: &mut [ActiveEdge]) -> bool {
+    // Each crossing adds +1 or -1: no `i64` overflow for any edge count.
+    let mut winding = 0i64;
+    for edge in active {
+        let was_inside = is_inside::<NON_ZERO>(winding);
+        winding += i64::from(edge.winding);
+        edge.part = match (was_inside, is_inside::<NON_ZERO>(winding)) {
+            (false, true) => Part::Opens,
+            (true, false) => Part::Closes,
+            _ => Part::Neither,
+        };
+    }
+    is_inside::<NON_ZERO>(winding)
+}
+
+/// Emits the inside runs of `row` and steps every edge to the next row.
+/// Returns whether the visible columns are still in order there.
+///
+/// Runs that touch (one closes at the column where the next opens) are
+/// emitted as one span, so no pixel is emitted twice and the spans are the
+/// maximal runs. A run still open after the last crossing (`open_at_end`)
+/// reaches the right border. Columns are clamped to the target, which
+/// changes no visible pixel's inside test.
+#[inline]
+fn emit_and_step(row: i64, active: &mut [ActiveEdge], open_at_end: bool, target: Target, sink: &mut dyn SpanSink) -> bool {
+    let width = i64::from(target.width);
+    // The open run's start, and the run waiting to be emitted: the next one
+    // may touch it. `-1`, left of every visible column, stands for none.
+    let (mut start, mut pending) = (0, (-1, -1));
+    let (mut sorted, mut previous) = (true, 0);
+    for edge in active.iter_mut() {
+        let column = edge.stepper.column.clamp(0, width);
+        match edge.part {
+            Part::Opens => start = column,
+            Part::Closes if pending.1 == start => pending.1 = column,
+            Part::Closes => {
+                emit(row, pending, target, sink);
+                pending = (start, column);
+            }
+            Part::Neither => {}
+        }
+        edge.stepper.step();
+        let next = edge.stepper.column.clamp(0, width);
+        sorted &= previous <= next;
+        previous = next;
+    }
+    if open_at_end {
+        if pending.1 == start {
+            pending.1 = width;
+        } else {
+            emit(row, pending, target, sink);
+            pending = (start, width);
+        }
+    }
+    emit(row, pending, target, sink);
+    sorted
+}
+
+/// Emits a run of `row`, columns in `-1..=width`, unless it is empty.
+#[inline(always)]
+fn emit(row: i64, (start, end): (i64, i64), target: Target, sink: &mut dyn SpanSink) {
+    if start < end {
+        // `row` is a visible row, in `0..height`; `0 <= start < end <= width`.
+        sink.span(row as i32, start as i32, end as i32, target.color);
     }
 }
 
 /// Whether a winding sum (signed crossings left of a centre) means inside.
 /// Every crossing is +1 or -1, so the sum's parity is the crossing count's.
-fn is_inside(rule: FillRule, winding: i64) -> bool {
-    match rule {
-        FillRule::EvenOdd => winding & 1 != 0,
-        FillRule::NonZero => winding != 0,
+#[inline(always)]
+fn is_inside<const NON_ZERO: bool>(winding: i64) -> bool {
+    if NON_ZERO {
+        winding != 0
+    } else {
+        winding & 1 != 0
     }
 }

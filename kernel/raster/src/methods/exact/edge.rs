@@ -79,12 +79,30 @@ impl EdgeStepper {
     /// must meet (`top.y < bottom.y`, `row` in its rows).
     #[inline]
     pub fn at_row(top: Point, bottom: Point, row: i64) -> Self {
+        Self::new(top, bottom, row, true)
+    }
+
+    /// [`EdgeStepper::at_row`] when `row` is the last row the edge meets
+    /// that will be read: `column` is exact there, and stepping leaves it
+    /// as it is. Saves the step's division, most of the setup of an edge
+    /// that meets one row only (polygons of many vertices have many).
+    #[inline]
+    pub fn at_last_row(top: Point, bottom: Point, row: i64) -> Self {
+        Self::new(top, bottom, row, false)
+    }
+
+    #[inline(always)]
+    fn new(top: Point, bottom: Point, row: i64, stepped: bool) -> Self {
         let (dx, dy) = (i64::from(bottom.x) - i64::from(top.x), i64::from(bottom.y) - i64::from(top.y));
-        if dx.unsigned_abs() < NARROW && dy.unsigned_abs() < NARROW {
-            Self::narrow(top, dx, dy, row)
+        let mut stepper = if dx.unsigned_abs() < NARROW && dy.unsigned_abs() < NARROW {
+            Self::narrow(top, dx, dy, row, stepped)
         } else {
             Self::wide(top, dx, dy, row)
+        };
+        if !stepped {
+            (stepper.column_step, stepper.error_step) = (0, 0);
         }
+        stepper
     }
 
     /// [`EdgeStepper::at_row`] for `|dx|, dy < 2^31`, in `i64` with two
@@ -96,8 +114,9 @@ impl EdgeStepper {
     /// `ceil(N / D) = q + ceil(n / D)` and the error `column * D - N` is
     /// `ceil(n / D) * D - n`. The row meets the edge, so `0 <= t < dy`:
     /// `|n| < 2^7 * 2^31 + 2^31 * 2^31 < 2^63`, and `D < 2^39`.
-    #[inline]
-    fn narrow(top: Point, dx: i64, dy: i64, row: i64) -> Self {
+    /// Without `stepped`, the step is left zero.
+    #[inline(always)]
+    fn narrow(top: Point, dx: i64, dy: i64, row: i64, stepped: bool) -> Self {
         let one = i64::from(SUBPIXEL_ONE);
         let t = row * one + i64::from(SAMPLE_OFFSET) - i64::from(top.y);
         let x = i64::from(top.x);
@@ -110,13 +129,9 @@ impl EdgeStepper {
         let (up, error) = if remainder > 0 { (1, denominator - remainder) } else { (0, -remainder) };
         // `dx, dy` fit `i32` and `dy > 0`: one 32-bit division, no overflow.
         let (dx32, dy32) = (dx as i32, dy as i32);
-        Self {
-            column: q + quotient + up,
-            error,
-            column_step: dx32.div_euclid(dy32).into(),
-            error_step: one * i64::from(dx32.rem_euclid(dy32)),
-            denominator,
-        }
+        let (column_step, error_step) =
+            if stepped { (dx32.div_euclid(dy32).into(), one * i64::from(dx32.rem_euclid(dy32))) } else { (0, 0) };
+        Self { column: q + quotient + up, error, column_step, error_step, denominator }
     }
 
     /// [`EdgeStepper::at_row`] for any `i32` edge: `N` in `i128`.
@@ -244,7 +259,7 @@ mod tests {
                 continue;
             }
             let row = if next() & 1 == 0 { rows.start } else { rows.end - 1 };
-            let (a, b) = (EdgeStepper::narrow(top, dx, dy, row), EdgeStepper::wide(top, dx, dy, row));
+            let (a, b) = (EdgeStepper::narrow(top, dx, dy, row, true), EdgeStepper::wide(top, dx, dy, row));
             let fields = |s: EdgeStepper| (s.column, s.error, s.column_step, s.error_step, s.denominator);
             assert_eq!(fields(a), fields(b), "{top:?}-{bottom:?} row {row}");
         }

@@ -7,7 +7,8 @@
 //!   their signed sum (non-zero). Ties go to left and top edges, so polygons
 //!   sharing an edge draw every pixel once and only once.
 //! - Arithmetic: integers only. Vertices in 1/256 px (`i32`); each edge's
-//!   setup is one `i128` division, then every row is an `i64` step with an
+//!   setup is two `i64` divisions (one `i128` division for an edge longer
+//!   than 2^23 px), then every row is a branch-free `i64` step with an
 //!   error term (`edge.rs` gives the bounds).
 //! - Range: exact for every `i32` vertex coordinate and every target
 //!   [`Size`](crate::Size), so nothing is refused as out of range; the only
@@ -19,10 +20,14 @@
 //!   polygon spanning the whole `i32` plane costs the target's rows times
 //!   its edges, never 2^24 rows; no pixel is emitted twice within a fill.
 //!
+//! - Speed: triangles and monotone polygons allocate nothing and cost two
+//!   edge steps and one span per row; the rest cost one pass over the
+//!   crossings per row, sorting only where edges cross.
+//!
 //! Stages, one file each: `edge` (scan lines and exact crossing columns),
-//! `monotone` (the two-chain path for triangles and monotone polygons),
-//! `active_edges` (the edge-table path for the rest). The choice between
-//! them is [`fill_auto`](crate::classify::fill_auto)'s.
+//! `monotone` (the triangle fill and the two-chain path for monotone
+//! polygons), `active_edges` (the edge-table path for the rest). The choice
+//! between them is [`fill_auto`](crate::classify::fill_auto)'s.
 
 mod active_edges;
 mod edge;
@@ -46,7 +51,7 @@ static INFO: MethodInfo = MethodInfo {
         sample_y: edge::SAMPLE_OFFSET,
         summary: "pixel centres, exact; left edges and flat tops in, right edges and flat bottoms out",
     },
-    numeric: "i32 vertices in 1/256 px; i128 edge setup, i64 error-term stepping; no floats",
+    numeric: "i32 vertices in 1/256 px; i64 edge setup (i128 for edges over 2^23 px), i64 error-term stepping; no floats",
     handles: Class::Complex,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
 };

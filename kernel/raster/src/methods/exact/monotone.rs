@@ -68,11 +68,15 @@ pub(crate) fn fill_triangle([a, b, c]: [Point; 3], color: u8, size: Size, sink: 
 
 /// Fills `contour`, which must be monotone in y, with one span per row.
 pub(crate) fn fill_monotone(contour: &[Point], color: u8, size: Size, sink: &mut dyn SpanSink) {
-    let Some((top, top_y)) = contour.iter().enumerate().map(|(i, p)| (i, p.y)).min_by_key(|&(_, y)| y) else {
+    let Some(&first) = contour.first() else {
         return;
     };
-    let (mut bottom_y, mut min_x, mut max_x) = (top_y, i32::MAX, i32::MIN);
-    for p in contour {
+    // The top vertex (the first of the highest), the bottom, the x range.
+    let (mut top, mut top_y, mut bottom_y, mut min_x, mut max_x) = (0, first.y, first.y, first.x, first.x);
+    for (i, p) in contour.iter().enumerate() {
+        if p.y < top_y {
+            (top, top_y) = (i, p.y);
+        }
         (bottom_y, min_x, max_x) = (bottom_y.max(p.y), min_x.min(p.x), max_x.max(p.x));
     }
     let clip = !columns_fit(min_x, max_x, size.width);
@@ -136,7 +140,7 @@ fn emit_ordered(rows: Range<i64>, left: &mut EdgeStepper, right: &mut EdgeSteppe
 /// Clamping every crossing keeps the inside test of each visible pixel
 /// unchanged (see [`visible_column`]).
 #[inline(always)]
-fn span_rows<const ORDERED: bool, const CLIP: bool>(
+pub(super) fn span_rows<const ORDERED: bool, const CLIP: bool>(
     rows: Range<i64>,
     a: &mut EdgeStepper,
     b: &mut EdgeStepper,
@@ -144,17 +148,20 @@ fn span_rows<const ORDERED: bool, const CLIP: bool>(
     width: i32,
     sink: &mut dyn SpanSink,
 ) {
+    // Local copies: the steppers then need not be stored on every row.
+    let (mut a_, mut b_) = (*a, *b);
     for row in rows {
-        let (start, end) = if ORDERED { (a.column, b.column) } else { (a.column.min(b.column), a.column.max(b.column)) };
+        let (start, end) = if ORDERED { (a_.column, b_.column) } else { (a_.column.min(b_.column), a_.column.max(b_.column)) };
         // Without `CLIP` both are in `0..=width`, so they fit an `i32`.
         let (start, end) = if CLIP { (visible_column(start, width), visible_column(end, width)) } else { (start as i32, end as i32) };
         if start < end {
             // `row` is in `0..height`, an `i32`.
             sink.span(row as i32, start, end, color);
         }
-        a.step();
-        b.step();
+        a_.step();
+        b_.step();
     }
+    (*a, *b) = (a_, b_);
 }
 
 /// Which way round the contour a chain goes from the top vertex.
@@ -197,7 +204,9 @@ impl Chain<'_> {
             self.vertex = next;
             let end_row = first_sample_at_or_after(bottom.y.into());
             if first_sample_at_or_after(top.y.into()) <= row && row < end_row {
-                return Some(ChainEdge { stepper: EdgeStepper::at_row(top, bottom, row), end_row });
+                let stepper =
+                    if end_row - row == 1 { EdgeStepper::at_last_row(top, bottom, row) } else { EdgeStepper::at_row(top, bottom, row) };
+                return Some(ChainEdge { stepper, end_row });
             }
         }
         None
