@@ -3,6 +3,7 @@
 //! library, shared with the tests.
 
 mod dump;
+mod kbench;
 mod lab;
 mod opt;
 mod render;
@@ -27,5 +28,6 @@ fn main() -> Result<()> {
         Action::Render(opt) => render::render(&opt),
         Action::Test(opt) => test::test(&opt),
         Action::Lab(opt) => lab::lab(&opt),
+        Action::Kbench(opt) => kbench::kbench(&opt),
     }
 }

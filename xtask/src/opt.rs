@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
+use protocol::{BENCH_DEFAULT_REPEATS, BENCH_MAX_REPEATS};
 
 /// The developer's hands: run the demo, build the image, dump, render, test.
 #[derive(Parser, Debug)]
@@ -29,6 +30,10 @@ pub enum Action {
     /// Measures every method for speed and accuracy (release build) and
     /// writes results.json, report.md and charts under --out.
     Lab(LabOpt),
+    /// Boots the kernel, times every method on every demo scene with
+    /// `BENCH` (rdtsc cycles under QEMU TCG, apart from the host lab) and
+    /// writes kernel_bench.md and kernel_bench.json under --out.
+    Kbench(KbenchOpt),
 }
 
 #[derive(Args, Debug)]
@@ -77,6 +82,20 @@ pub struct LabOpt {
     #[arg(long)]
     pub quick: bool,
     /// Where results.json, report.md and the charts go.
+    #[arg(long, default_value = "target/lab")]
+    pub out: PathBuf,
+}
+
+#[derive(Args, Debug)]
+pub struct KbenchOpt {
+    /// Draws per method and scene; the median is reported.
+    #[arg(
+        long,
+        default_value_t = BENCH_DEFAULT_REPEATS,
+        value_parser = clap::value_parser!(u8).range(1..=i64::from(BENCH_MAX_REPEATS)),
+    )]
+    pub repeats: u8,
+    /// Where kernel_bench.md and kernel_bench.json go.
     #[arg(long, default_value = "target/lab")]
     pub out: PathBuf,
 }
