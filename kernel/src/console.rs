@@ -17,7 +17,7 @@ use raster::{methods, scene_file, scenes, sink, Method, Op, Scene};
 
 use crate::exit::exit_qemu;
 use crate::video::Screen;
-use crate::{fault, serial, vga};
+use crate::{bench, fault, serial, vga};
 
 /// Tells the host the kernel is up: a `LOG` frame per VGA register or DAC
 /// entry that did not read back as written, then `READY` with the
@@ -108,6 +108,10 @@ impl Console<'_> {
                 ok(self.screen.draw(&scene, method))
             }
             Command::Dump => Ok((FrameKind::Dump, self.screen.dump())),
+            Command::Bench { scene, repeats } => {
+                let scene = scenes::by_name(scene).ok_or_else(|| format!("unknown scene `{scene}`"))?;
+                Ok((FrameKind::Bench, bench::run(self.screen, &scene, repeats).into_bytes()))
+            }
             Command::VgaCheck => {
                 let mismatches = vga::verify();
                 let summary = vga::summary(&mismatches);

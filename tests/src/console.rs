@@ -4,7 +4,7 @@ use std::io::Write;
 use std::time::Duration;
 
 use anyhow::{bail, ensure, Context, Result};
-use protocol::{Command, FrameKind, DUMP_LEN, FRAMEBUFFER_LEN};
+use protocol::{Command, FrameKind, BENCH_UNIT_LINE, DUMP_LEN, FRAMEBUFFER_LEN};
 use raster::palette::ENTRIES;
 use raster::SCREEN;
 
@@ -26,6 +26,8 @@ pub enum Reply {
     Err(String),
     List(Listing),
     Dump(Box<Dump>),
+    /// The answer to `BENCH`: `(method, cycles)` per method, in order.
+    Bench(Vec<(String, u64)>),
     Fatal(String),
 }
 
@@ -37,6 +39,7 @@ impl Reply {
             FrameKind::Err => Reply::Err(frame.text()),
             FrameKind::List => Reply::List(Listing::parse(&frame.text())?),
             FrameKind::Dump => Reply::Dump(Box::new(Dump::parse(&frame.payload)?)),
+            FrameKind::Bench => Reply::Bench(parse_bench(&frame.text())?),
             FrameKind::Fatal => Reply::Fatal(frame.text()),
             FrameKind::Log => bail!("a LOG frame is not a reply"),
         })
@@ -52,6 +55,7 @@ impl Reply {
                 format!("LIST of {} scenes and {} methods", listing.scenes.len(), listing.methods.len())
             }
             Reply::Dump(_) => "a DUMP".to_string(),
+            Reply::Bench(rows) => format!("BENCH of {} methods", rows.len()),
             Reply::Fatal(text) => format!("FATAL \"{text}\""),
         }
     }
@@ -76,6 +80,23 @@ impl Listing {
         }
         Ok(listing)
     }
+}
+
+/// A `BENCH` payload: its first line must be [`BENCH_UNIT_LINE`] (the
+/// numbers are meaningless without their unit), then `METHOD CYCLES` lines.
+fn parse_bench(text: &str) -> Result<Vec<(String, u64)>> {
+    let mut lines = text.lines();
+    let unit = lines.next().unwrap_or_default();
+    ensure!(unit == BENCH_UNIT_LINE, "BENCH starts with `{unit}`, not its unit line `{BENCH_UNIT_LINE}`");
+    lines
+        .filter(|line| !line.is_empty())
+        .map(|line| {
+            let (method, cycles) =
+                line.split_once(' ').with_context(|| format!("BENCH line `{line}` is not `METHOD CYCLES`"))?;
+            let cycles = cycles.parse().with_context(|| format!("BENCH line `{line}`: bad cycle count"))?;
+            Ok((method.to_string(), cycles))
+        })
+        .collect()
 }
 
 /// The answer to `DUMP`: the framebuffer and the DAC, both read back.
@@ -198,6 +219,17 @@ impl Console {
         }
     }
 
+    /// Times every method drawing built-in `scene` `repeats` times: per
+    /// method in `raster::methods::ALL` order, its name and the median
+    /// rdtsc cycles of one draw (emulated cycles under QEMU TCG).
+    pub fn bench(&mut self, scene: &str, repeats: u8) -> Result<Vec<(String, u64)>> {
+        let command = Command::Bench { scene, repeats };
+        match self.request(&command)? {
+            Reply::Bench(rows) => Ok(rows),
+            other => bail!("`{command}` answered {}", other.describe()),
+        }
+    }
+
     pub fn list(&mut self) -> Result<Listing> {
         match self.request(&Command::List)? {
             Reply::List(listing) => Ok(listing),
@@ -272,6 +304,17 @@ mod tests {
         assert_eq!(dump.palette[1], [3, 4, 5]);
         // Every pixel is index 7, whose DAC entry (21, 22, 23) widens to 8 bits.
         assert_eq!(dump.image().color(0), [87, 88, 95]);
+    }
+
+    #[test]
+    fn a_bench_reply_is_method_and_cycles_after_its_unit_line() {
+        let payload = format!("{BENCH_UNIT_LINE}\nabrash_float 1200\nexact 900\n");
+        let (mut console, sent, _keep) = console(&[(FrameKind::Bench, payload.as_bytes())]);
+        let rows = console.bench("abrash38-1", 3).unwrap();
+        assert_eq!(rows, [("abrash_float".to_string(), 1200), ("exact".to_string(), 900)]);
+        assert_eq!(sent.0.lock().unwrap().as_slice(), b"BENCH abrash38-1 3\n");
+        assert!(parse_bench("abrash_float 1200\n").is_err(), "a BENCH without its unit line");
+        assert!(parse_bench(&format!("{BENCH_UNIT_LINE}\nexact many\n")).is_err());
     }
 
     #[test]

@@ -21,6 +21,15 @@ pub const DUMP_LEN: usize = FRAMEBUFFER_LEN + 768;
 /// The byte that starts every frame header.
 pub const FRAME_MARK: u8 = b'@';
 
+/// Draws per method a `BENCH` without REPEATS times.
+pub const BENCH_DEFAULT_REPEATS: u8 = 3;
+/// Most draws per method a `BENCH` may ask for: keeps one `BENCH` within a
+/// few seconds of emulated time.
+pub const BENCH_MAX_REPEATS: u8 = 31;
+/// The first line of a `BENCH` payload: the unit of the numbers after it.
+pub const BENCH_UNIT_LINE: &str =
+    "# rdtsc cycles per scene draw, median of the repeats; under QEMU TCG these are emulated cycles";
+
 /// The exit code a host sends with `EXIT` to end a run cleanly.
 pub const EXIT_SUCCESS: u8 = 0x10;
 /// The exit code the kernel uses after a panic or CPU exception.
@@ -73,6 +82,10 @@ pub enum Command<'a> {
     /// `VGACHECK`: reads every mode-13h register and the DAC back; answers
     /// `OK` or an `ERR` listing the mismatches.
     VgaCheck,
+    /// `BENCH SCENE [REPEATS]`: draws a built-in scene REPEATS times
+    /// ([`BENCH_DEFAULT_REPEATS`] if absent, 1 to [`BENCH_MAX_REPEATS`])
+    /// with every method; answers a `BENCH` frame.
+    Bench { scene: &'a str, repeats: u8 },
     /// `EXIT CODE`: leaves QEMU through isa-debug-exit with CODE (0-255).
     Exit(u8),
     /// `FAULT KIND`: test only; provokes a fault, which must be reported.
@@ -134,6 +147,17 @@ impl<'a> Command<'a> {
                 return Ok(Command::Poly { method, spec });
             }
             "DUMP" => Command::Dump,
+            "BENCH" => {
+                let scene = words.next().ok_or(CommandError::MissingArgument("scene"))?;
+                let repeats = match words.next() {
+                    None => BENCH_DEFAULT_REPEATS,
+                    Some(word) => match parse_u8(word)? {
+                        n @ 1..=BENCH_MAX_REPEATS => n,
+                        _ => return Err(CommandError::BadArgument(word)),
+                    },
+                };
+                Command::Bench { scene, repeats }
+            }
             "VGACHECK" => Command::VgaCheck,
             "EXIT" => Command::Exit(parse_u8(words.next().ok_or(CommandError::MissingArgument("code"))?)?),
             "FAULT" => {
@@ -165,6 +189,7 @@ impl fmt::Display for Command<'_> {
             Command::Clear(color) => write!(f, "CLEAR {color}"),
             Command::Poly { method, spec } => write!(f, "POLY {method} {spec}"),
             Command::Dump => write!(f, "DUMP"),
+            Command::Bench { scene, repeats } => write!(f, "BENCH {scene} {repeats}"),
             Command::VgaCheck => write!(f, "VGACHECK"),
             Command::Exit(code) => write!(f, "EXIT {code}"),
             Command::Fault(kind) => write!(f, "FAULT {}", kind.name()),
@@ -186,6 +211,9 @@ pub enum FrameKind {
     List,
     /// Answer to `DUMP`: [`DUMP_LEN`] bytes.
     Dump,
+    /// Answer to `BENCH`: [`BENCH_UNIT_LINE`], then a `METHOD CYCLES` line
+    /// per method, in `raster::methods::ALL` order, each ending in `\n`.
+    Bench,
     /// Unrequested information, e.g. a VGA register mismatch at boot.
     Log,
     /// A panic or CPU exception; the kernel exits QEMU with a failure code.
@@ -193,8 +221,16 @@ pub enum FrameKind {
 }
 
 impl FrameKind {
-    pub const ALL: [FrameKind; 7] =
-        [FrameKind::Ready, FrameKind::Ok, FrameKind::Err, FrameKind::List, FrameKind::Dump, FrameKind::Log, FrameKind::Fatal];
+    pub const ALL: [FrameKind; 8] = [
+        FrameKind::Ready,
+        FrameKind::Ok,
+        FrameKind::Err,
+        FrameKind::List,
+        FrameKind::Dump,
+        FrameKind::Bench,
+        FrameKind::Log,
+        FrameKind::Fatal,
+    ];
 
     pub const fn name(self) -> &'static str {
         match self {
@@ -203,6 +239,7 @@ impl FrameKind {
             FrameKind::Err => "ERR",
             FrameKind::List => "LIST",
             FrameKind::Dump => "DUMP",
+            FrameKind::Bench => "BENCH",
             FrameKind::Log => "LOG",
             FrameKind::Fatal => "FATAL",
         }
@@ -267,6 +304,8 @@ mod tests {
             Command::Clear(7),
             Command::Poly { method: "exact", spec: "color=4 0,0 9.5,0 0,9" },
             Command::Dump,
+            Command::Bench { scene: "abrash38-3", repeats: 1 },
+            Command::Bench { scene: "abrash38-1", repeats: BENCH_MAX_REPEATS },
             Command::VgaCheck,
             Command::Exit(16),
             Command::Fault(FaultKind::PageFault),
@@ -287,8 +326,31 @@ mod tests {
         assert_eq!(Command::parse(b"DUMP now"), Err(CommandError::ExtraArgument("now")));
         assert_eq!(Command::parse(b"POLY exact"), Err(CommandError::MissingArgument("polygon")));
         assert_eq!(Command::parse(b"FAULT nap"), Err(CommandError::BadArgument("nap")));
+        assert_eq!(Command::parse(b"BENCH"), Err(CommandError::MissingArgument("scene")));
+        assert_eq!(Command::parse(b"BENCH abrash38-1 0"), Err(CommandError::BadArgument("0")));
+        let too_many = std::format!("{}", u16::from(BENCH_MAX_REPEATS) + 1);
+        let line = std::format!("BENCH abrash38-1 {too_many}");
+        assert_eq!(Command::parse(line.as_bytes()), Err(CommandError::BadArgument(&too_many)));
+        assert_eq!(Command::parse(b"BENCH abrash38-1 -1"), Err(CommandError::BadArgument("-1")));
+        assert_eq!(Command::parse(b"BENCH abrash38-1 3 4"), Err(CommandError::ExtraArgument("4")));
         assert_eq!(Command::parse(b"PI\xffNG"), Err(CommandError::NotAscii));
         assert_eq!(Command::parse(&[b'A'; MAX_LINE + 1]), Err(CommandError::TooLong));
+    }
+
+    #[test]
+    fn bench_repeats_default_when_absent() {
+        assert_eq!(
+            Command::parse(b"BENCH abrash38-2"),
+            Ok(Command::Bench { scene: "abrash38-2", repeats: BENCH_DEFAULT_REPEATS })
+        );
+        assert!((1..=BENCH_MAX_REPEATS).contains(&BENCH_DEFAULT_REPEATS));
+    }
+
+    #[test]
+    fn every_frame_kind_round_trips_through_its_name() {
+        for kind in FrameKind::ALL {
+            assert_eq!(FrameKind::from_name(kind.name()), Some(kind));
+        }
     }
 
     #[test]

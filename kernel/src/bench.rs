@@ -1,0 +1,50 @@
+//! `BENCH`: times every method drawing a built-in scene onto the real
+//! screen with the time-stamp counter.
+//!
+//! Under QEMU TCG the counter is emulated, so these cycles describe the
+//! emulator as much as the method: they are reported on their own, never
+//! next to the host lab's nanoseconds.
+
+use alloc::string::String;
+use alloc::vec::Vec;
+use core::fmt::Write;
+use core::sync::atomic::{compiler_fence, Ordering};
+
+use protocol::BENCH_UNIT_LINE;
+use raster::{methods, Scene};
+
+use crate::video::Screen;
+
+/// The `BENCH` payload for `scene`: [`BENCH_UNIT_LINE`], then per method
+/// in `methods::ALL` order `NAME CYCLES`, the median of `repeats` whole-scene
+/// draws. Bounded: `methods::ALL.len() * repeats` draws, `repeats` being at
+/// most `protocol::BENCH_MAX_REPEATS`. The screen keeps the last draw.
+pub fn run(screen: &mut Screen, scene: &Scene, repeats: u8) -> String {
+    let mut text = String::new();
+    // Writing to a `String` cannot fail.
+    let _ = writeln!(text, "{BENCH_UNIT_LINE}");
+    let mut samples = Vec::with_capacity(usize::from(repeats.max(1)));
+    for method in methods::ALL {
+        samples.clear();
+        for _ in 0..repeats.max(1) {
+            let start = rdtsc();
+            compiler_fence(Ordering::SeqCst);
+            screen.draw(scene, *method);
+            compiler_fence(Ordering::SeqCst);
+            samples.push(rdtsc().wrapping_sub(start));
+        }
+        samples.sort_unstable();
+        let _ = writeln!(text, "{} {}", method.info().name, samples[samples.len() / 2]);
+    }
+    text
+}
+
+/// The time-stamp counter. Not serializing: the fences above only keep
+/// the compiler from moving the draw across it, which is enough for whole
+/// scene draws of thousands of cycles.
+fn rdtsc() -> u64 {
+    // SAFETY: RDTSC only reads the counter into registers; it touches no
+    // memory. Every x86_64 CPU has it, and the kernel runs in ring 0, where
+    // CR4.TSD cannot make it fault.
+    unsafe { core::arch::x86_64::_rdtsc() }
+}
