@@ -91,8 +91,11 @@ impl Console<'_> {
             Command::Ping => ok("pong"),
             Command::List => Ok((FrameKind::List, listing().into_bytes())),
             Command::Draw { scene, method } => {
-                let method = method_named(method)?;
                 let scene = scenes::by_name(scene).ok_or_else(|| format!("unknown scene `{scene}`"))?;
+                let method = match method {
+                    Some(name) => method_named(name)?,
+                    None => scene.method(),
+                };
                 ok(self.screen.draw(&scene, method))
             }
             Command::Clear(color) => {
@@ -100,11 +103,11 @@ impl Console<'_> {
                 ok(format_args!("clear {color}"))
             }
             Command::Poly { method, spec } => {
-                let method = method_named(Some(method))?;
+                let method = method_named(method)?;
                 // The spec is a scene-file `poly` line without its keyword.
                 let op = scene_file::parse_line(&format!("poly {spec}")).map_err(|error| error.to_string())?;
                 let Some(fill @ Op::Fill(_)) = op else { return Err(String::from("POLY takes one polygon")) };
-                let scene = Scene { name: String::from("POLY"), ops: vec![fill] };
+                let scene = Scene { name: String::from("POLY"), ops: vec![fill], method: None };
                 ok(self.screen.draw(&scene, method))
             }
             Command::Dump => Ok((FrameKind::Dump, self.screen.dump())),
@@ -127,12 +130,9 @@ fn ok(text: impl core::fmt::Display) -> Reply {
     Ok((FrameKind::Ok, text.to_string().into_bytes()))
 }
 
-/// The method called `name`, or the default one when none is named.
-fn method_named(name: Option<&str>) -> Result<&'static dyn Method, String> {
-    match name {
-        None => Ok(methods::default_method()),
-        Some(name) => methods::by_name(name).ok_or_else(|| format!("unknown method `{name}`")),
-    }
+/// The method called `name`.
+fn method_named(name: &str) -> Result<&'static dyn Method, String> {
+    methods::by_name(name).ok_or_else(|| format!("unknown method `{name}`"))
 }
 
 /// The `LIST` payload: a `scene NAME` line per built-in scene, then a

@@ -1,6 +1,6 @@
-//! The demo that runs when no host talks: the pages of Listing 38.3
-//! (`raster::scenes::NAMES`, ABRASH_FACTS.md §1) in turn with the default
-//! method, each for about 3 seconds or until a key is pressed (the book's
+//! The demo that runs when no host talks: the built-in scenes
+//! (`raster::scenes::NAMES`: Listings 38.3 and 40.4, the WGT triangle) in
+//! turn, each with the method of its source, each for about 3 seconds or until a key is pressed (the book's
 //! `getch`), round and round. It works with no keyboard and no serial
 //! line: the timer alone turns the pages.
 //!
@@ -9,7 +9,7 @@
 
 use core::hint::spin_loop;
 
-use raster::{methods, scenes};
+use raster::scenes;
 
 use crate::pit::{Stopwatch, TICKS_PER_SECOND};
 use crate::video::Screen;
@@ -24,7 +24,7 @@ pub fn run(screen: &mut Screen) -> u8 {
     let mut pages = scenes::NAMES.iter().cycle();
     loop {
         if let Some(scene) = pages.next().and_then(|name| scenes::by_name(name)) {
-            screen.draw(&scene, methods::default_method());
+            screen.draw(&scene, scene.method());
         }
         stopwatch.restart();
         while stopwatch.elapsed_ticks() < PAGE_TICKS && !keyboard::key_pressed() {

@@ -8,7 +8,8 @@
 //! let mut qemu = Qemu::boot(QemuOptions::default())?;
 //! qemu.console.draw("abrash38-1", None)?;
 //! let dump = qemu.console.dump()?;
-//! let expected = render::render(&render::builtin_scene("abrash38-1")?, render::method_named(None)?);
+//! let scene = render::builtin_scene("abrash38-1")?;
+//! let expected = render::render(&scene, scene.method());
 //! compare_images("abrash38-1", &expected, &dump.image())?;
 //! # Ok(())
 //! # }

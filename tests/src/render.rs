@@ -5,15 +5,16 @@
 use std::path::Path;
 
 use anyhow::{anyhow, bail, Context, Result};
-use raster::methods::{self, default_method};
+use raster::methods;
 use raster::palette::VGA_DEFAULT;
 use raster::{scene_file, scenes, Framebuffer, Method, Scene, SCREEN};
 
 use crate::picture::Image;
 
-/// The method called `name`, or the default one for `None`.
-pub fn method_named(name: Option<&str>) -> Result<&'static dyn Method> {
-    let Some(name) = name else { return Ok(default_method()) };
+/// The method called `name`, or for `None` the scene's own (the method its
+/// source uses; `exact` for scene files).
+pub fn method_for(scene: &Scene, name: Option<&str>) -> Result<&'static dyn Method> {
+    let Some(name) = name else { return Ok(scene.method()) };
     methods::by_name(name).with_context(|| {
         let valid: Vec<&str> = methods::ALL.iter().map(|m| m.info().name).collect();
         format!("unknown method `{name}`; valid methods: {}", valid.join(", "))
@@ -58,11 +59,11 @@ mod tests {
 
     #[test]
     fn unknown_names_list_the_valid_ones() {
-        let Err(error) = method_named(Some("nope")) else { panic!("`nope` is a method") };
+        let Err(error) = method_for(&Scene::default(), Some("nope")) else { panic!("`nope` is a method") };
         let error = format!("{error:#}");
         assert!(error.starts_with("unknown method `nope`; valid methods: abrash_float"), "{error}");
         let error = format!("{:#}", builtin_scene("nope").unwrap_err());
-        assert_eq!(error, "unknown scene `nope`; valid scenes: abrash38-1, abrash38-2, abrash38-3");
+        assert_eq!(error, format!("unknown scene `nope`; valid scenes: {}", scenes::NAMES.join(", ")));
         let error = format!("{:#}", scene_named_or_file("nope").unwrap_err());
         assert!(
             error.starts_with("`nope` is neither a built-in scene nor a scene file; valid scenes: abrash38-1,"),
@@ -85,7 +86,7 @@ mod tests {
         std::fs::write(&path, "clear 4\n").unwrap();
         let scene = scene_named_or_file(path.to_str().unwrap()).unwrap();
         std::fs::remove_file(&path).unwrap();
-        let image = render(&scene, default_method());
+        let image = render(&scene, scene.method());
         assert_eq!(image.color(0), [168, 0, 0]);
         assert_eq!(image.pixel_count(), 64_000);
     }

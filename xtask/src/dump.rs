@@ -2,15 +2,15 @@
 
 use anyhow::Result;
 use harness::checks::screen_matches_dump;
-use harness::render::{builtin_scene, method_named};
+use harness::render::{builtin_scene, method_for};
 use harness::{Qemu, QemuOptions};
 
 use crate::opt::DumpOpt;
 
 pub fn dump(opt: &DumpOpt) -> Result<()> {
     // Check the names before spending a boot on them.
-    builtin_scene(&opt.scene)?;
-    let method = method_named(opt.method.as_deref())?.info().name;
+    let scene = builtin_scene(&opt.scene)?;
+    let method = method_for(&scene, opt.method.as_deref())?.info().name;
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     qemu.console.draw(&opt.scene, Some(method))?;
     let dump = qemu.console.dump()?;

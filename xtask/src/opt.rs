@@ -48,7 +48,8 @@ pub struct DumpOpt {
     /// A built-in scene.
     #[arg(long)]
     pub scene: String,
-    /// Fill method (default: the demo's).
+    /// Fill method (default: the scene's own, the method its source uses;
+    /// exact for scene files).
     #[arg(long)]
     pub method: Option<String>,
     /// Directory for the two PNGs.
@@ -61,7 +62,8 @@ pub struct RenderOpt {
     /// A built-in scene, or the path of a scene file.
     #[arg(long, value_name = "NAME|FILE")]
     pub scene: String,
-    /// Fill method (default: the demo's).
+    /// Fill method (default: the scene's own, the method its source uses;
+    /// exact for scene files).
     #[arg(long)]
     pub method: Option<String>,
     /// The PNG to write.

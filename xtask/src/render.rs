@@ -1,13 +1,13 @@
 //! `cargo xtask render`: a scene drawn on the host.
 
 use anyhow::Result;
-use harness::render::{method_named, render as render_scene, scene_named_or_file};
+use harness::render::{method_for, render as render_scene, scene_named_or_file};
 
 use crate::opt::RenderOpt;
 
 pub fn render(opt: &RenderOpt) -> Result<()> {
     let scene = scene_named_or_file(&opt.scene)?;
-    let method = method_named(opt.method.as_deref())?;
+    let method = method_for(&scene, opt.method.as_deref())?;
     render_scene(&scene, method).write_png(&opt.out)?;
     println!("{}", opt.out.display());
     Ok(())

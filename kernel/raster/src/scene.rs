@@ -5,6 +5,7 @@ use alloc::vec::Vec;
 
 use crate::geometry::Polygon;
 use crate::method::{Method, Refusal};
+use crate::methods;
 use crate::sink::{self, SpanSink};
 
 /// One drawing step.
@@ -22,6 +23,10 @@ pub enum Op {
 pub struct Scene {
     pub name: String,
     pub ops: Vec<Op>,
+    /// The method the scene's source draws it with (Listing 38.3 uses
+    /// Listing 38.1, Listing 40.4 the edge-table filler); `None` for scene
+    /// files, which [`Scene::method`] draws with `exact`.
+    pub method: Option<&'static str>,
 }
 
 /// What drawing a scene did.
@@ -34,6 +39,11 @@ pub struct DrawReport {
 }
 
 impl Scene {
+    /// The method to draw this scene with when none is named.
+    pub fn method(&self) -> &'static dyn Method {
+        self.method.and_then(methods::by_name).unwrap_or(&methods::exact::Exact)
+    }
+
     /// Draws every operation with `method`. A refused polygon is counted and
     /// skipped; the rest of the scene is still drawn.
     pub fn draw(&self, method: &dyn Method, sink: &mut dyn SpanSink) -> DrawReport {

@@ -72,7 +72,7 @@ pub fn parse(name: &str, text: &str) -> Result<Scene, SceneFileError> {
             ops.push(op);
         }
     }
-    Ok(Scene { name: String::from(name), ops })
+    Ok(Scene { name: String::from(name), ops, method: None })
 }
 
 /// Parses one line: `Ok(None)` for blank lines and comments.

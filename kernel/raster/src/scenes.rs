@@ -7,17 +7,60 @@ use crate::geometry::Polygon;
 use crate::scene::{Op, Scene};
 
 /// Names of the built-in scenes, in demo order.
-pub const NAMES: &[&str] = &["abrash38-1", "abrash38-2", "abrash38-3"];
+pub const NAMES: &[&str] =
+    &["abrash38-1", "abrash38-2", "abrash38-3", "abrash40-1", "abrash40-2", "abrash40-3", "abrash40-4", "wgt-triangle"];
 
 /// The built-in scene called `name`.
 pub fn by_name(name: &str) -> Option<Scene> {
-    let ops = match name {
-        "abrash38-1" => listing_38_3(1),
-        "abrash38-2" => listing_38_3(2),
-        "abrash38-3" => listing_38_3(3),
+    let (ops, method) = match name {
+        "abrash38-1" => (listing_38_3(1), "abrash_float"),
+        "abrash38-2" => (listing_38_3(2), "abrash_float"),
+        "abrash38-3" => (listing_38_3(3), "abrash_float"),
+        "abrash40-1" => (listing_40_4(1), "abrash_aet"),
+        "abrash40-2" => (listing_40_4(2), "abrash_aet"),
+        "abrash40-3" => (listing_40_4(3), "abrash_aet"),
+        "abrash40-4" => (listing_40_4(4), "abrash_aet"),
+        "wgt-triangle" => (wgt_triangle(), "wgt"),
         _ => return None,
     };
-    Some(Scene { name: name.to_string(), ops })
+    Some(Scene { name: name.to_string(), ops, method: Some(method) })
+}
+
+/// Listing 40.4 up to its `page`-th keypress (ABRASH_FACTS.md §4): the
+/// odd/even examples, the rectangle whose hole is cut by a bridge edge
+/// traversed in and back out, and the V shapes that tile without overlap.
+/// The screen starts black after the mode set and is never cleared.
+fn listing_40_4(page: u32) -> Vec<Op> {
+    const POLYGON_1: &[(i32, i32)] = &[(0, 0), (100, 150), (320, 0), (0, 200), (220, 50), (320, 200)];
+    const POLYGON_2: &[(i32, i32)] =
+        &[(0, 0), (320, 0), (320, 200), (0, 200), (0, 0), (50, 50), (270, 50), (270, 150), (50, 150), (50, 50)];
+    const POLYGON_3: &[(i32, i32)] = &[
+        (0, 0), (10, 0), (105, 185), (260, 30), (15, 150), (5, 150), (5, 140), (260, 5), (300, 5), (300, 15),
+        (110, 200), (100, 200), (0, 10),
+    ];
+    const POLYGON_4: &[(i32, i32)] = &[(0, 0), (30, -20), (30, 0), (0, 20), (-30, 0), (-30, -20)];
+
+    let fill = |points: &[(i32, i32)], offset: (i32, i32), color: u8| Op::Fill(Polygon::from_pixels(points, offset, color));
+    let mut ops = Vec::from([Op::Clear(0)]);
+    for (shape, color) in [(POLYGON_1, 15), (POLYGON_2, 5), (POLYGON_3, 3)].into_iter().take(page as usize) {
+        ops.push(fill(shape, (0, 0), color));
+    }
+    if page >= 4 {
+        for i in 0..5u8 {
+            for j in 0..8u8 {
+                let offset = (40 + 60 * i32::from(i), 30 + 20 * i32::from(j));
+                ops.push(fill(POLYGON_4, offset, 16 + 8 * i + j));
+            }
+        }
+    }
+    ops
+}
+
+/// The WGT tutorial's test triangle, (160,30), (50,150), (270,180)
+/// (seed 003_2ba7acb817ee5f46.txt). The tutorial leaves the colour to its
+/// `line` routine; white (15) on black is our choice.
+fn wgt_triangle() -> Vec<Op> {
+    Vec::from([Op::Clear(0), Op::Fill(Polygon::from_pixels(&[(160, 30), (50, 150), (270, 180)], (0, 0), 15))])
 }
 
 /// Listing 38.3 up to its `page`-th keypress (ABRASH_FACTS.md §1). The book
@@ -91,9 +134,27 @@ mod tests {
 
     #[test]
     fn pages_are_cumulative() {
-        let counts: Vec<usize> = NAMES.iter().map(|n| by_name(n).unwrap().ops.len()).collect();
+        let counts: Vec<usize> = NAMES[..3].iter().map(|n| by_name(n).unwrap().ops.len()).collect();
         // 2 shapes; 5x10 pairs of triangles and 4x(15+15) more; 16 hexagons.
         assert_eq!(counts, [2, 2 + 100 + 120, 2 + 100 + 120 + 16]);
+    }
+
+    #[test]
+    fn listing_40_4_pages_add_their_polygons_to_a_black_screen() {
+        let counts: Vec<usize> = NAMES[3..7].iter().map(|n| by_name(n).unwrap().ops.len()).collect();
+        // A clear, then polygons 1-3 one page at a time, then 5x8 V shapes.
+        assert_eq!(counts, [2, 3, 4, 4 + 40]);
+        let Some(Op::Fill(last)) = by_name("abrash40-4").unwrap().ops.last().cloned() else { panic!("no V") };
+        assert_eq!(last.color, 16 + 8 * 4 + 7);
+        assert_eq!(last.contours[0][0], Point::from_pixels(40 + 240, 30 + 140));
+    }
+
+    #[test]
+    fn scenes_name_the_method_of_their_source() {
+        let methods: Vec<&str> = NAMES.iter().map(|n| by_name(n).unwrap().method().info().name).collect();
+        assert_eq!(methods[..3], ["abrash_float"; 3]);
+        assert_eq!(methods[3..7], ["abrash_aet"; 4]);
+        assert_eq!(methods[7], "wgt");
     }
 
     #[test]

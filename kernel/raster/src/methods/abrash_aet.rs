@@ -185,8 +185,8 @@ fn move_x_sorted_to_aet(
 /// pairs; an odd edge out would be the book's null dereference, and is left
 /// alone here.
 fn scan_out_aet(aet: &[EdgeState], y: i32, color: u8, width: i32, sink: &mut dyn SpanSink) {
-    for pair in aet.chunks_exact(2) {
-        let (x_start, x_end) = (pair[0].step.x.max(0), pair[1].step.x.min(width));
+    for [left, right] in aet.as_chunks::<2>().0 {
+        let (x_start, x_end) = (left.step.x.max(0), right.step.x.min(width));
         if x_start < x_end {
             sink.span(y, x_start, x_end, color);
         }

@@ -20,7 +20,3 @@ pub fn by_name(name: &str) -> Option<&'static dyn Method> {
     ALL.iter().copied().find(|m| m.info().name == name)
 }
 
-/// The method the demo uses when none is named.
-pub fn default_method() -> &'static dyn Method {
-    ALL[0]
-}
