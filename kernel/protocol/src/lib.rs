@@ -68,10 +68,15 @@ impl FaultKind {
 pub enum Command<'a> {
     /// `PING`: answers `OK pong`.
     Ping,
-    /// `LIST`: answers a `LIST` frame, lines `scene NAME` and `method NAME`.
+    /// `LIST`: answers a `LIST` frame, lines `scene NAME`, `show NAME FRAMES`
+    /// and `method NAME`.
     List,
     /// `DRAW SCENE [METHOD]`: draws a built-in scene; answers `OK`.
     Draw { scene: &'a str, method: Option<&'a str> },
+    /// `SHOW ENTRY FRAME [METHOD]`: draws frame FRAME of a show entry
+    /// (`raster::show`) exactly as the demo shows it, labels included, in
+    /// the show's palette; answers `OK` with [`ShowReply`]'s fields.
+    Show { entry: &'a str, frame: u32, method: Option<&'a str> },
     /// `CLEAR C`: fills the screen with colour C.
     Clear(u8),
     /// `POLY METHOD <poly line>`: fills one polygon written as a scene-file
@@ -90,6 +95,58 @@ pub enum Command<'a> {
     Exit(u8),
     /// `FAULT KIND`: test only; provokes a fault, which must be reported.
     Fault(FaultKind),
+}
+
+/// The `OK` text of `SHOW`: what was drawn and what it cost, as
+/// `entry=E frame=F method=M cycles=C allocs=A polygons=P refused=R strays=S`.
+/// The host renders the same frame with `method` and `cycles` to compare.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub struct ShowReply<'a> {
+    pub entry: &'a str,
+    /// The frame number drawn, already reduced modulo the entry's frames.
+    pub frame: u32,
+    pub method: &'a str,
+    /// rdtsc cycles of the polygon drawing (labels excluded).
+    pub cycles: u64,
+    /// Heap allocations made while drawing and labelling the frame.
+    pub allocs: u64,
+    pub polygons: usize,
+    pub refused: usize,
+    /// Spans the method emitted outside the screen (a method bug).
+    pub strays: usize,
+}
+
+impl fmt::Display for ShowReply<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let Self { entry, frame, method, cycles, allocs, polygons, refused, strays } = self;
+        write!(
+            f,
+            "entry={entry} frame={frame} method={method} cycles={cycles} allocs={allocs} polygons={polygons} refused={refused} strays={strays}"
+        )
+    }
+}
+
+impl<'a> ShowReply<'a> {
+    /// Parses the text written by `Display`; `None` if a field is missing,
+    /// repeated in the wrong order or malformed.
+    pub fn parse(text: &'a str) -> Option<Self> {
+        let mut fields = text.split(' ').map(|field| field.split_once('='));
+        let mut next = |key: &str| match fields.next() {
+            Some(Some((k, value))) if k == key => Some(value),
+            _ => None,
+        };
+        let reply = Self {
+            entry: next("entry")?,
+            frame: next("frame")?.parse().ok()?,
+            method: next("method")?,
+            cycles: next("cycles")?.parse().ok()?,
+            allocs: next("allocs")?.parse().ok()?,
+            polygons: next("polygons")?.parse().ok()?,
+            refused: next("refused")?.parse().ok()?,
+            strays: next("strays")?.parse().ok()?,
+        };
+        fields.next().is_none().then_some(reply)
+    }
 }
 
 /// Why a command line was rejected.
@@ -135,6 +192,12 @@ impl<'a> Command<'a> {
             "PING" => Command::Ping,
             "LIST" => Command::List,
             "DRAW" => Command::Draw { scene: words.next().ok_or(CommandError::MissingArgument("scene"))?, method: words.next() },
+            "SHOW" => {
+                let entry = words.next().ok_or(CommandError::MissingArgument("entry"))?;
+                let frame = words.next().ok_or(CommandError::MissingArgument("frame"))?;
+                let frame = frame.parse().map_err(|_| CommandError::BadArgument(frame))?;
+                Command::Show { entry, frame, method: words.next() }
+            }
             "CLEAR" => Command::Clear(parse_u8(words.next().ok_or(CommandError::MissingArgument("colour"))?)?),
             "POLY" => {
                 let method = words.next().ok_or(CommandError::MissingArgument("method"))?;
@@ -186,6 +249,8 @@ impl fmt::Display for Command<'_> {
             Command::List => write!(f, "LIST"),
             Command::Draw { scene, method: Some(method) } => write!(f, "DRAW {scene} {method}"),
             Command::Draw { scene, method: None } => write!(f, "DRAW {scene}"),
+            Command::Show { entry, frame, method: Some(method) } => write!(f, "SHOW {entry} {frame} {method}"),
+            Command::Show { entry, frame, method: None } => write!(f, "SHOW {entry} {frame}"),
             Command::Clear(color) => write!(f, "CLEAR {color}"),
             Command::Poly { method, spec } => write!(f, "POLY {method} {spec}"),
             Command::Dump => write!(f, "DUMP"),
@@ -302,6 +367,8 @@ mod tests {
             Command::Draw { scene: "abrash38-1", method: Some("abrash_float") },
             Command::Draw { scene: "abrash38-2", method: None },
             Command::Clear(7),
+            Command::Show { entry: "race", frame: 31, method: None },
+            Command::Show { entry: "lamothe-rotate", frame: 0, method: Some("exact") },
             Command::Poly { method: "exact", spec: "color=4 0,0 9.5,0 0,9" },
             Command::Dump,
             Command::Bench { scene: "abrash38-3", repeats: 1 },
@@ -333,8 +400,21 @@ mod tests {
         assert_eq!(Command::parse(line.as_bytes()), Err(CommandError::BadArgument(&too_many)));
         assert_eq!(Command::parse(b"BENCH abrash38-1 -1"), Err(CommandError::BadArgument("-1")));
         assert_eq!(Command::parse(b"BENCH abrash38-1 3 4"), Err(CommandError::ExtraArgument("4")));
+        assert_eq!(Command::parse(b"SHOW race"), Err(CommandError::MissingArgument("frame")));
+        assert_eq!(Command::parse(b"SHOW race -1"), Err(CommandError::BadArgument("-1")));
+        assert_eq!(Command::parse(b"SHOW race 1 exact 2"), Err(CommandError::ExtraArgument("2")));
         assert_eq!(Command::parse(b"PI\xffNG"), Err(CommandError::NotAscii));
         assert_eq!(Command::parse(&[b'A'; MAX_LINE + 1]), Err(CommandError::TooLong));
+    }
+
+    #[test]
+    fn show_replies_round_trip_and_reject_garbage() {
+        let reply = ShowReply { entry: "race", frame: 3, method: "wgt", cycles: 12345, allocs: 0, polygons: 9, refused: 1, strays: 0 };
+        let text = reply.to_string();
+        assert_eq!(ShowReply::parse(&text), Some(reply));
+        assert_eq!(ShowReply::parse("entry=race frame=3"), None);
+        assert_eq!(ShowReply::parse(&text.replace("cycles=12345", "cycles=x")), None);
+        assert_eq!(ShowReply::parse(&std::format!("{text} extra=1")), None);
     }
 
     #[test]

@@ -25,6 +25,7 @@ pub mod reference;
 pub mod scene;
 pub mod scene_file;
 pub mod scenes;
+pub mod show;
 pub mod sink;
 
 pub use classify::{classify, fill_auto};

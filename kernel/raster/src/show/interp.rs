@@ -1,0 +1,1 @@
+//! PLACEHOLDER (helper 1 writes the generic attribute interpolation here).

@@ -1,0 +1,252 @@
+//! The show: what the kernel's demo puts on the screen, frame by frame,
+//! and what the host renders to check it byte for byte.
+//!
+//! An [`Entry`] is one scene of the show: a still page of a seed (the
+//! `scenes` module's data) or an animation. Frame `f` of an entry is a pure
+//! function of `(entry, f, method)`, drawn into a [`Stage`] whose memory is
+//! allocated once, so the kernel draws frame after frame without touching
+//! the heap. Labels (scene, method, measured cycles) are drawn afterwards
+//! by [`Stage::label`], with the cycles the kernel measured: the host gets
+//! them from the kernel's reply and renders the same pixels.
+
+mod interp;
+mod label;
+mod lamothe;
+mod race;
+mod shaded;
+mod trig;
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use crate::geometry::{Point, Polygon};
+use crate::method::Method;
+use crate::methods;
+use crate::palette::{ENTRIES, VGA_DEFAULT};
+use crate::scene::{DrawReport, Scene};
+use crate::scenes;
+use crate::sink::{self, Framebuffer, SCREEN};
+
+/// Frames per second the show is paced at: every second retrace of mode
+/// 13h's 70 Hz refresh.
+pub const FRAMES_PER_SECOND: u32 = 35;
+/// How long a still page stays up in the demo, in frames (3 seconds).
+pub const STILL_FRAMES: u32 = 3 * FRAMES_PER_SECOND;
+
+/// What an entry draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    /// A built-in scene of `scenes`, the same on every frame.
+    Still,
+    /// LaMothe's rotation test: a convex n-gon and quads turning 360 degrees.
+    LamotheRotate,
+    /// The WGT triangle, Gouraud shaded through a palette ramp.
+    WgtGouraud,
+    /// A texture-mapped quad, texels from palette ramps.
+    WgtTexture,
+    /// Pendleton's Z-buffered 3D polygons that intersect.
+    PendletonDepth,
+    /// One scene drawn by every method in turn.
+    Race,
+}
+
+/// One scene of the show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Entry {
+    pub name: &'static str,
+    /// Distinct frames; frame numbers wrap around modulo this. 1 for stills.
+    pub frames: u32,
+    /// The method of the scene's source.
+    pub method: &'static str,
+    kind: Kind,
+}
+
+impl Entry {
+    const fn still(name: &'static str, method: &'static str) -> Self {
+        Self { name, frames: 1, method, kind: Kind::Still }
+    }
+
+    /// Whether frames differ from each other.
+    pub fn is_animated(&self) -> bool {
+        self.frames > 1
+    }
+
+    /// How many frames the demo shows this entry for before moving on.
+    pub fn demo_frames(&self) -> u32 {
+        if self.is_animated() { self.frames } else { STILL_FRAMES }
+    }
+
+    /// The method that draws frame `frame` when the viewer picked none: the
+    /// source's method, or for the race the method whose turn it is.
+    pub fn method_at(&self, frame: u32) -> &'static dyn Method {
+        match self.kind {
+            Kind::Race => race::method_at(frame % self.frames),
+            _ => methods::by_name(self.method).unwrap_or(&methods::exact::Exact),
+        }
+    }
+}
+
+/// The show in demo order.
+pub const ENTRIES_IN_ORDER: &[Entry] = &[
+    Entry::still("abrash38-1", "abrash_float"),
+    Entry::still("abrash38-2", "abrash_float"),
+    Entry::still("abrash38-3", "abrash_float"),
+    Entry::still("abrash40-1", "abrash_aet"),
+    Entry::still("abrash40-2", "abrash_aet"),
+    Entry::still("abrash40-3", "abrash_aet"),
+    Entry::still("abrash40-4", "abrash_aet"),
+    Entry::still("lamothe-triangle", "lamothe"),
+    Entry { name: "lamothe-rotate", frames: lamothe::FRAMES, method: "lamothe", kind: Kind::LamotheRotate },
+    Entry::still("wgt-triangle", "wgt"),
+    Entry { name: "wgt-gouraud", frames: shaded::GOURAUD_FRAMES, method: "wgt", kind: Kind::WgtGouraud },
+    Entry { name: "wgt-texture", frames: shaded::TEXTURE_FRAMES, method: "wgt", kind: Kind::WgtTexture },
+    Entry { name: "pendleton-zbuffer", frames: shaded::DEPTH_FRAMES, method: "pendleton", kind: Kind::PendletonDepth },
+    Entry { name: "race", frames: race::FRAMES, method: "exact", kind: Kind::Race },
+];
+
+/// The entry called `name`.
+pub fn entry(name: &str) -> Option<&'static Entry> {
+    ENTRIES_IN_ORDER.iter().find(|e| e.name == name)
+}
+
+/// First palette index of the show's colour ramps.
+pub const RAMP_BASE: u8 = 128;
+/// Levels per ramp, darkest first.
+pub const RAMP_LEVELS: u8 = 32;
+
+/// The show's four colour ramps, at `RAMP_BASE + ramp * RAMP_LEVELS`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ramp {
+    Red = 0,
+    Green = 1,
+    Blue = 2,
+    Gold = 3,
+}
+
+impl Ramp {
+    /// The palette index of `level` (clamped to `0..RAMP_LEVELS`).
+    pub const fn color(self, level: i32) -> u8 {
+        let level = if level < 0 { 0 } else if level >= RAMP_LEVELS as i32 { RAMP_LEVELS as i32 - 1 } else { level };
+        RAMP_BASE + self as u8 * RAMP_LEVELS + level as u8
+    }
+
+    /// Full-brightness colour, 6-bit red, green, blue.
+    const fn top(self) -> [u8; 3] {
+        match self {
+            Ramp::Red => [63, 12, 8],
+            Ramp::Green => [10, 63, 16],
+            Ramp::Blue => [12, 28, 63],
+            Ramp::Gold => [63, 52, 12],
+        }
+    }
+}
+
+/// The show's palette: the VGA default for entries 0-127 (every still page
+/// uses only those) and four ramps of [`RAMP_LEVELS`] from black to full
+/// colour in 128-255, for shading and textures.
+pub const PALETTE: [[u8; 3]; ENTRIES] = {
+    let mut palette = VGA_DEFAULT;
+    let ramps = [Ramp::Red, Ramp::Green, Ramp::Blue, Ramp::Gold];
+    let mut r = 0;
+    while r < ramps.len() {
+        let top = ramps[r].top();
+        let mut level = 0;
+        while level < RAMP_LEVELS as usize {
+            let mut c = 0;
+            while c < 3 {
+                // Linear from black (level 0) to `top` (the last level).
+                let value = top[c] as usize * level / (RAMP_LEVELS as usize - 1);
+                palette[ramps[r].color(level as i32) as usize][c] = value as u8;
+                c += 1;
+            }
+            level += 1;
+        }
+        r += 1;
+    }
+    palette
+};
+
+/// Reusable polygon storage: filled in place each frame, so that after the
+/// first frame no vertex list is allocated again.
+pub(crate) struct Scratch {
+    polygon: Polygon,
+}
+
+/// Vertices a scratch polygon holds without growing.
+const SCRATCH_VERTICES: usize = 64;
+
+impl Scratch {
+    fn new() -> Self {
+        Self { polygon: Polygon { contours: vec![Vec::with_capacity(SCRATCH_VERTICES)], ..Polygon::default() } }
+    }
+
+    /// The scratch polygon set to one contour of `points` in `color`
+    /// (even-odd rule).
+    pub(crate) fn polygon(&mut self, points: impl IntoIterator<Item = Point>, color: u8) -> &Polygon {
+        self.polygon.contours.truncate(1);
+        let contour = &mut self.polygon.contours[0];
+        contour.clear();
+        contour.extend(points);
+        self.polygon.color = color;
+        self.polygon.rule = crate::geometry::FillRule::EvenOdd;
+        &self.polygon
+    }
+}
+
+/// All the memory a frame needs, allocated once.
+pub struct Stage {
+    target: Framebuffer,
+    /// One depth value per pixel, for the Z-buffered entry.
+    depth: Vec<i32>,
+    scratch: Scratch,
+    /// The still scene built last, kept so a still page is built once.
+    still: Option<Scene>,
+}
+
+impl Default for Stage {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Stage {
+    pub fn new() -> Self {
+        let pixels = (SCREEN.width * SCREEN.height) as usize;
+        Self { target: Framebuffer::new(SCREEN), depth: vec![0; pixels], scratch: Scratch::new(), still: None }
+    }
+
+    /// Draws frame `frame` (modulo `entry.frames`) of `entry` with `method`
+    /// onto a black screen. Allocates only when a still page other than the
+    /// last one is built.
+    pub fn draw(&mut self, entry: &Entry, frame: u32, method: &dyn Method) -> DrawReport {
+        let frame = frame % entry.frames.max(1);
+        sink::clear(&mut self.target, 0);
+        match entry.kind {
+            Kind::Still => {
+                if self.still.as_ref().is_none_or(|scene| scene.name != entry.name) {
+                    self.still = scenes::by_name(entry.name);
+                }
+                match &self.still {
+                    Some(scene) => scene.draw(method, &mut self.target),
+                    None => DrawReport::default(),
+                }
+            }
+            Kind::LamotheRotate => lamothe::draw(frame, method, &mut self.scratch, &mut self.target),
+            Kind::WgtGouraud => shaded::gouraud(frame, method, &mut self.scratch, &mut self.target),
+            Kind::WgtTexture => shaded::texture(frame, method, &mut self.scratch, &mut self.target),
+            Kind::PendletonDepth => shaded::depth(frame, method, &mut self.scratch, &mut self.depth, &mut self.target),
+            Kind::Race => race::draw(frame, method, &mut self.scratch, &mut self.target),
+        }
+    }
+
+    /// Draws the labels over the frame: the entry and frame number at the
+    /// top, the method and the cycles its draw took at the bottom.
+    pub fn label(&mut self, entry: &Entry, frame: u32, method: &dyn Method, cycles: u64) {
+        label::draw_labels(&mut self.target, entry, frame % entry.frames.max(1), method.info().name, cycles);
+    }
+
+    /// The frame: 320x200 bytes, row after row.
+    pub fn pixels(&self) -> &[u8] {
+        self.target.pixels()
+    }
+}

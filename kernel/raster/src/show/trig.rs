@@ -1,0 +1,1 @@
+//! PLACEHOLDER (helper 2 writes integer sine/cosine here).
