@@ -27,11 +27,8 @@ pub fn run(screen: &mut Screen, scene: &Scene, repeats: u8) -> String {
     for method in methods::ALL {
         samples.clear();
         for _ in 0..repeats.max(1) {
-            let start = rdtsc();
-            compiler_fence(Ordering::SeqCst);
-            screen.draw(scene, *method);
-            compiler_fence(Ordering::SeqCst);
-            samples.push(rdtsc().wrapping_sub(start));
+            let (_, cycles) = timed(|| screen.draw(scene, *method));
+            samples.push(cycles);
         }
         samples.sort_unstable();
         let _ = writeln!(text, "{} {}", method.info().name, samples[samples.len() / 2]);
@@ -39,9 +36,20 @@ pub fn run(screen: &mut Screen, scene: &Scene, repeats: u8) -> String {
     text
 }
 
-/// The time-stamp counter. Not serializing: the fences above only keep
-/// the compiler from moving the draw across it, which is enough for whole
-/// scene draws of thousands of cycles.
+/// Runs `work` and returns its result with the time-stamp counter cycles it
+/// took (`BENCH` and `SHOW` both time their draws with it). RDTSC is not
+/// serializing: the fences only keep the compiler from moving `work`
+/// across the reads, which is enough for whole draws of thousands of
+/// cycles.
+pub fn timed<R>(work: impl FnOnce() -> R) -> (R, u64) {
+    let start = rdtsc();
+    compiler_fence(Ordering::SeqCst);
+    let result = work();
+    compiler_fence(Ordering::SeqCst);
+    (result, rdtsc().wrapping_sub(start))
+}
+
+/// The time-stamp counter.
 fn rdtsc() -> u64 {
     // SAFETY: RDTSC only reads the counter into registers; it touches no
     // memory. Every x86_64 CPU has it, and the kernel runs in ring 0, where

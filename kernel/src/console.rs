@@ -13,17 +13,18 @@ use core::fmt::Write;
 use core::hint::spin_loop;
 
 use protocol::{Command, CommandError, FrameKind, MAX_LINE};
-use raster::{methods, scene_file, scenes, sink, Method, Op, Scene};
+use raster::show::{Stage, ENTRIES_IN_ORDER};
+use raster::{methods, scene_file, scenes, Method, Op, Scene};
 
 use crate::exit::exit_qemu;
 use crate::video::Screen;
-use crate::{bench, fault, serial, vga};
+use crate::{bench, fault, serial, show, vga};
 
 /// Tells the host the kernel is up: a `LOG` frame per VGA register or DAC
 /// entry that did not read back as written, then `READY` with the
 /// summary.
-pub fn announce() {
-    let mismatches = vga::verify();
+pub fn announce(screen: &Screen) {
+    let mismatches = vga::verify(screen.palette());
     for mismatch in &mismatches {
         serial::send_frame(FrameKind::Log, mismatch.to_string().as_bytes());
     }
@@ -31,9 +32,9 @@ pub fn announce() {
 }
 
 /// Serves the host forever, starting with `first_byte` (the byte that
-/// stopped the demo).
-pub fn serve(screen: &mut Screen, first_byte: u8) -> ! {
-    let mut console = Console { screen, line: Vec::with_capacity(MAX_LINE), overlong: false };
+/// stopped the demo). `SHOW` draws on `stage`.
+pub fn serve(screen: &mut Screen, stage: &mut Stage, first_byte: u8) -> ! {
+    let mut console = Console { screen, stage, line: Vec::with_capacity(MAX_LINE), overlong: false };
     console.accept(first_byte);
     loop {
         match serial::try_read_byte() {
@@ -49,6 +50,8 @@ type Reply = Result<(FrameKind, Vec<u8>), String>;
 
 struct Console<'a> {
     screen: &'a mut Screen,
+    /// Where `SHOW` draws its frames, allocated once.
+    stage: &'a mut Stage,
     /// The line so far, without its `\n`; never longer than `MAX_LINE`.
     line: Vec<u8>,
     /// The current line outgrew `MAX_LINE`: drop bytes up to its `\n`.
@@ -98,8 +101,16 @@ impl Console<'_> {
                 };
                 ok(self.screen.draw(&scene, method))
             }
+            Command::Show { entry, frame, method } => {
+                let entry = raster::show::entry(entry).ok_or_else(|| format!("unknown show entry `{entry}`"))?;
+                let method = match method {
+                    Some(name) => method_named(name)?,
+                    None => entry.method_at(frame),
+                };
+                ok(show::play(self.screen, self.stage, entry, frame, method, None))
+            }
             Command::Clear(color) => {
-                sink::clear(self.screen, color);
+                self.screen.clear(color);
                 ok(format_args!("clear {color}"))
             }
             Command::Poly { method, spec } => {
@@ -116,7 +127,7 @@ impl Console<'_> {
                 Ok((FrameKind::Bench, bench::run(self.screen, &scene, repeats).into_bytes()))
             }
             Command::VgaCheck => {
-                let mismatches = vga::verify();
+                let mismatches = vga::verify(self.screen.palette());
                 let summary = vga::summary(&mismatches);
                 if mismatches.is_empty() { ok(summary) } else { Err(summary) }
             }
@@ -135,13 +146,17 @@ fn method_named(name: &str) -> Result<&'static dyn Method, String> {
     methods::by_name(name).ok_or_else(|| format!("unknown method `{name}`"))
 }
 
-/// The `LIST` payload: a `scene NAME` line per built-in scene, then a
+/// The `LIST` payload: a `scene NAME` line per built-in scene, a
+/// `show NAME FRAMES` line per show entry in demo order, then a
 /// `method NAME` line per method, each ending in `\n`.
 fn listing() -> String {
     let mut text = String::new();
     // Writing to a `String` cannot fail.
     for name in scenes::NAMES {
         let _ = writeln!(text, "scene {name}");
+    }
+    for entry in ENTRIES_IN_ORDER {
+        let _ = writeln!(text, "show {} {}", entry.name, entry.frames);
     }
     for method in methods::ALL {
         let _ = writeln!(text, "method {}", method.info().name);

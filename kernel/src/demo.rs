@@ -1,37 +1,56 @@
-//! The demo that runs when no host talks: the built-in scenes
-//! (`raster::scenes::NAMES`: Listings 38.3 and 40.4, the WGT triangle) in
-//! turn, each with the method of its source, each for about 3 seconds or until a key is pressed (the book's
-//! `getch`), round and round. It works with no keyboard and no serial
-//! line: the timer alone turns the pages.
+//! The demo that runs when no host talks: the show
+//! (`raster::show::ENTRIES_IN_ORDER`: the pages of Listings 38.3 and 40.4,
+//! the LaMothe, WGT and Pendleton pieces, the race of every method) in
+//! turn, round and round, at `FRAMES_PER_SECOND`, each entry for its
+//! `demo_frames()` with the method of its source. Every frame goes through
+//! `show::play`, as a `SHOW` would. It works with no keyboard and no serial
+//! line: the timer alone moves it on. Keys (PS/2, `keyboard`): space or
+//! Enter, the next entry; 1 to 8, every entry with that method of
+//! `methods::ALL` until 0 gives each its own again; Escape, from the
+//! start.
 //!
-//! The first byte from the host stops it for good, so that what the host
-//! draws is all that is on the screen when it asks for a dump.
+//! The first byte from the host stops it for good and leaves the screen
+//! as boot left it, black in the VGA default palette, so that what the
+//! host draws is all that is on the screen when it asks for a dump, and
+//! the palette is the one `DRAW` uses whichever frame the demo was at.
 
-use core::hint::spin_loop;
+use raster::show::{Stage, ENTRIES_IN_ORDER};
+use raster::Method;
 
-use raster::scenes;
-
-use crate::pit::{Stopwatch, TICKS_PER_SECOND};
+use crate::keyboard::{self, Key};
+use crate::serial;
+use crate::show::{self, Pacer};
 use crate::video::Screen;
-use crate::{keyboard, serial};
 
-/// How long a page stays up without a key press.
-const PAGE_TICKS: u64 = 3 * TICKS_PER_SECOND;
-
-/// Runs the demo until the host sends a byte, and returns that byte.
-pub fn run(screen: &mut Screen) -> u8 {
-    let mut stopwatch = Stopwatch::start();
-    let mut pages = scenes::NAMES.iter().cycle();
+/// Runs the demo on `stage` until the host sends a byte, clears the
+/// screen, and returns that byte. Allocates nothing per frame beyond what
+/// the entries and their methods do.
+pub fn run(screen: &mut Screen, stage: &mut Stage) -> u8 {
+    let mut pacer = Pacer::start();
+    let mut index = 0;
+    let mut frame = 0;
+    // The method the viewer picked for every entry, if any.
+    let mut picked: Option<&'static dyn Method> = None;
     loop {
-        if let Some(scene) = pages.next().and_then(|name| scenes::by_name(name)) {
-            screen.draw(&scene, scene.method());
+        let entry = &ENTRIES_IN_ORDER[index];
+        let method = picked.unwrap_or_else(|| entry.method_at(frame));
+        show::play(screen, stage, entry, frame, method, Some(&mut pacer));
+        frame += 1;
+        let mut next = frame >= entry.demo_frames();
+        match keyboard::poll() {
+            Some(Key::Next) => next = true,
+            Some(Key::Method(method)) => picked = Some(method),
+            Some(Key::OwnMethods) => picked = None,
+            Some(Key::Restart) => (index, frame, picked, next) = (0, 0, None, false),
+            None => {}
         }
-        stopwatch.restart();
-        while stopwatch.elapsed_ticks() < PAGE_TICKS && !keyboard::key_pressed() {
-            if let Some(byte) = serial::try_read_byte() {
-                return byte;
-            }
-            spin_loop();
+        if next {
+            index = (index + 1) % ENTRIES_IN_ORDER.len();
+            frame = 0;
+        }
+        if let Some(byte) = serial::try_read_byte() {
+            screen.clear(0);
+            return byte;
         }
     }
 }

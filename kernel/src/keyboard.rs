@@ -1,7 +1,9 @@
-//! Key presses from the PS/2 controller, by polling. Only "a key went
-//! down" matters (the demo's `getch`, ABRASH_FACTS.md §1), so any make
-//! code counts and nothing is decoded. With no keyboard, or no controller
-//! (status reads 0xFF, which looks like mouse data), nothing is pressed.
+//! The demo's keys, from the PS/2 controller by polling: set-1 make codes
+//! (the controller translates), decoded into what the viewer asks for.
+//! With no keyboard, or no controller (status reads 0xFF, which looks like
+//! mouse data), no key is ever pressed.
+
+use raster::{methods, Method};
 
 use crate::port::ps2;
 
@@ -9,13 +11,34 @@ use crate::port::ps2;
 const OUTPUT_FULL: u8 = 0x01;
 /// Status bit 5: that byte is from the auxiliary (mouse) port.
 const FROM_AUX: u8 = 0x20;
-/// Scan code bit 7: a release (break code), or a prefix or reply byte.
-const BREAK: u8 = 0x80;
 
-/// Whether a key was pressed since the last call. Reads (and so drops)
-/// every waiting byte.
-pub fn key_pressed() -> bool {
-    let mut pressed = false;
+/// Set-1 make codes of the keys the demo knows.
+const ESCAPE: u8 = 0x01;
+/// Keys 1 to 9 are 0x02 to 0x0A, in order.
+const DIGIT_1: u8 = 0x02;
+const DIGIT_9: u8 = 0x0A;
+const DIGIT_0: u8 = 0x0B;
+const ENTER: u8 = 0x1C;
+const SPACE: u8 = 0x39;
+
+/// What a key asks the demo for.
+#[derive(Clone, Copy)]
+pub enum Key {
+    /// Space or Enter: the next entry.
+    Next,
+    /// A digit d from 1: every entry drawn with `methods::ALL[d - 1]`.
+    Method(&'static dyn Method),
+    /// 0: every entry with its own method again.
+    OwnMethods,
+    /// Escape: the first entry from frame 0, with its own method.
+    Restart,
+}
+
+/// The last key pressed since the last call that means something to the
+/// demo. Reads (and so drops) every waiting byte: releases, prefixes and
+/// other keys are ignored.
+pub fn poll() -> Option<Key> {
+    let mut key = None;
     // The controller holds one byte at a time; a bounded loop still ends
     // if a broken one reports "full" forever.
     for _ in 0..16 {
@@ -23,9 +46,22 @@ pub fn key_pressed() -> bool {
         if status & OUTPUT_FULL == 0 {
             break;
         }
-        let byte = ps2::DATA.read();
-        // Set-1 make codes (the controller translates); 0x00 is an error.
-        pressed |= status & FROM_AUX == 0 && byte & BREAK == 0 && byte != 0;
+        let code = ps2::DATA.read();
+        if status & FROM_AUX == 0 {
+            key = decode(code).or(key);
+        }
     }
-    pressed
+    key
+}
+
+/// The key a set-1 make code stands for. Break codes (bit 7 set), 0x00
+/// (an error) and digits past the last method mean nothing.
+fn decode(code: u8) -> Option<Key> {
+    match code {
+        SPACE | ENTER => Some(Key::Next),
+        DIGIT_1..=DIGIT_9 => methods::ALL.get(usize::from(code - DIGIT_1)).map(|&method| Key::Method(method)),
+        DIGIT_0 => Some(Key::OwnMethods),
+        ESCAPE => Some(Key::Restart),
+        _ => None,
+    }
 }

@@ -1,6 +1,6 @@
 //! The bare-metal side of the polygon lab (DESIGN.md): boots from the
 //! `bootloader` crate's BIOS stages, puts the VGA in mode 13h with its own
-//! register writes, runs the Listing 38.3 demo, and serves the host's
+//! register writes, runs the demo (the show), and serves the host's
 //! commands over COM1 as soon as one arrives.
 //!
 //! Hardware access lives in small modules with `// SAFETY:` notes
@@ -26,6 +26,7 @@ mod keyboard;
 mod pit;
 mod port;
 mod serial;
+mod show;
 mod vga;
 mod video;
 
@@ -52,8 +53,10 @@ fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
         panic!("the bootloader did not map physical memory, so 0xA0000 is out of reach");
     };
     // A mode set leaves a black screen; the VESA mode left other bytes.
-    raster::sink::clear(&mut screen, 0);
-    console::announce();
-    let first_byte = demo::run(&mut screen);
-    console::serve(&mut screen, first_byte)
+    screen.clear(0);
+    console::announce(&screen);
+    // The show's memory, allocated once for the demo and `SHOW`.
+    let mut stage = raster::show::Stage::new();
+    let first_byte = demo::run(&mut screen, &mut stage);
+    console::serve(&mut screen, &mut stage, first_byte)
 }

@@ -34,7 +34,7 @@ impl Stopwatch {
         Self { last_count: read_count(), elapsed: 0 }
     }
 
-    /// Ticks since `start` or the last `restart`.
+    /// Ticks since `start`.
     pub fn elapsed_ticks(&mut self) -> u64 {
         let count = read_count();
         // The counter runs down and wraps at 65,536, which u16 arithmetic
@@ -42,12 +42,6 @@ impl Stopwatch {
         self.elapsed += u64::from(self.last_count.wrapping_sub(count));
         self.last_count = count;
         self.elapsed
-    }
-
-    /// Counts from zero again.
-    pub fn restart(&mut self) {
-        self.last_count = read_count();
-        self.elapsed = 0;
     }
 }
 

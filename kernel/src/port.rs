@@ -71,7 +71,8 @@ pub mod vga {
     pub const GRAPHICS_DATA: IoPort<u8> = IoPort::new(0x3CF);
     pub const CRTC_INDEX: IoPort<u8> = IoPort::new(0x3D4);
     pub const CRTC_DATA: IoPort<u8> = IoPort::new(0x3D5);
-    /// Reading it resets the attribute controller's flip-flop.
+    /// Reading it resets the attribute controller's flip-flop; bit 3 says
+    /// the CRT is in vertical retrace.
     pub const INPUT_STATUS_1: IoPort<u8> = IoPort::new(0x3DA);
 }
 

@@ -2,21 +2,26 @@
 //!
 //! The mode is data ([`MODE_13H`]); [`set_mode`] is the one function that
 //! knows the order the registers must be written in, and [`verify`] reads
-//! every one of them back. Values and order are DESIGN.md's "Hardware
-//! facts" (Chris Giese's modes.c, SeaBIOS vgasrc/stdvgamodes.c and
-//! rust-osdev/vga agree on them).
+//! every one of them back, with the DAC against the palette the screen
+//! loaded last. [`wait_for_retrace`] is the one timing signal the card
+//! gives. Values and order are DESIGN.md's "Hardware facts" (Chris
+//! Giese's modes.c, SeaBIOS vgasrc/stdvgamodes.c and rust-osdev/vga agree
+//! on them).
 
 use alloc::format;
 use alloc::string::String;
 use alloc::vec::Vec;
 use core::fmt::{self, Write};
 
-use raster::palette::{ENTRIES, VGA_DEFAULT};
+use raster::palette::ENTRIES;
 
 use crate::port::{bochs, vga, IoPort};
 
 /// Bytes in the DAC: 256 entries of red, green, blue.
 pub const DAC_LEN: usize = ENTRIES * 3;
+
+/// A whole DAC load: 6-bit red, green, blue per entry, entry 0 first.
+pub type Palette = [[u8; 3]; ENTRIES];
 
 /// A display mode as register values, each group indexed from 0.
 struct Mode {
@@ -56,6 +61,14 @@ const ATTRIBUTE_VIDEO_ON: u8 = 0x20;
 const BOCHS_ID_INDEX: u16 = 0;
 const BOCHS_ENABLE_INDEX: u16 = 4;
 const BOCHS_IDS: core::ops::RangeInclusive<u16> = 0xB0C0..=0xB0CF;
+/// Input status 1 bit 3: the CRT is in vertical retrace.
+const VERTICAL_RETRACE: u8 = 0x08;
+/// Most reads of input status 1 [`wait_for_retrace`] spends on each of its
+/// two waits. A mode-13h frame lasts 14.3 ms (70 Hz) and an ISA or PCI port
+/// read at least about 0.3 us, so a real card gets past either wait well
+/// within this many reads; under QEMU the bit flips on every read; with no
+/// VGA the port may read 0xFF forever, and then the wait ends here.
+const RETRACE_MAX_READS: u32 = 1 << 16;
 
 /// An index/data port pair: one register group.
 #[derive(Clone, Copy)]
@@ -113,11 +126,11 @@ fn disable_bochs_vbe() {
     }
 }
 
-/// Puts the card in mode 13h with the VGA default palette: what [`verify`]
-/// checks.
+/// Puts the card in mode 13h. The DAC is the screen's to load
+/// (`video::Screen`): after the bootloader's VESA mode it does not hold the
+/// VGA default palette.
 pub fn init() {
     set_mode(&MODE_13H);
-    load_dac(&VGA_DEFAULT);
 }
 
 /// Programs `mode` in the order DESIGN.md gives: Misc first (colour ports
@@ -152,7 +165,7 @@ fn set_mode(mode: &Mode) {
 /// Loads the DAC: 6-bit red, green, blue per entry from entry 0 on.
 /// After the bootloader's VESA mode it does not hold the VGA default
 /// palette, so mode 13h needs it loaded by hand (DESIGN.md).
-fn load_dac(palette: &[[u8; 3]; ENTRIES]) {
+pub fn load_dac(palette: &Palette) {
     vga::DAC_WRITE_INDEX.write(0);
     for &level in palette.as_flattened() {
         vga::DAC_DATA.write(level);
@@ -203,10 +216,29 @@ impl fmt::Display for Mismatch {
     }
 }
 
+/// Waits for the start of a vertical retrace, the moment to change the
+/// picture without tearing: while the retrace bit is set (one already
+/// under way), then until it is set. Gives up after [`RETRACE_MAX_READS`]
+/// reads per wait, so it ends on any machine, VGA or not.
+pub fn wait_for_retrace() {
+    let in_retrace = || vga::INPUT_STATUS_1.read() & VERTICAL_RETRACE != 0;
+    for _ in 0..RETRACE_MAX_READS {
+        if !in_retrace() {
+            break;
+        }
+    }
+    for _ in 0..RETRACE_MAX_READS {
+        if in_retrace() {
+            break;
+        }
+    }
+}
+
 /// Reads back every register of [`MODE_13H`] and the whole DAC and returns
-/// whatever differs from what [`set_mode`] and [`load_dac`] wrote with the
-/// default palette. Empty means the card is in mode 13h as we set it.
-pub fn verify() -> Vec<Mismatch> {
+/// whatever differs from what [`set_mode`] wrote and from `palette`, the
+/// palette [`load_dac`] loaded last. Empty means the card is in mode 13h
+/// as we set it.
+pub fn verify(palette: &Palette) -> Vec<Mismatch> {
     let mode = &MODE_13H;
     let mut mismatches = Vec::new();
     let mut check = |group, index, expected, actual| {
@@ -224,7 +256,7 @@ pub fn verify() -> Vec<Mismatch> {
     for (index, &value) in (0..).zip(mode.attribute) {
         check(Group::Attribute, usize::from(index), value, read_attribute(index));
     }
-    for (index, (&expected, actual)) in VGA_DEFAULT.as_flattened().iter().zip(read_dac()).enumerate() {
+    for (index, (&expected, actual)) in palette.as_flattened().iter().zip(read_dac()).enumerate() {
         check(Group::Dac, index, expected, actual);
     }
     mismatches

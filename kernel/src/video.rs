@@ -1,5 +1,6 @@
 //! The mode-13h framebuffer: 64,000 bytes at physical 0xA0000, one byte a
-//! pixel, row after row (DESIGN.md "Hardware facts").
+//! pixel, row after row (DESIGN.md "Hardware facts"), and the palette its
+//! bytes are shown in.
 //!
 //! Every access is volatile: the compiler sees stores that nobody reads and
 //! would be free to drop or merge them if they were plain writes.
@@ -10,11 +11,12 @@ use core::ptr::NonNull;
 
 use bootloader_api::BootInfo;
 use protocol::{DUMP_LEN, FRAMEBUFFER_LEN};
+use raster::palette::VGA_DEFAULT;
 use raster::scene::DrawReport;
-use raster::{Method, Scene, Size, SpanSink, SCREEN};
+use raster::{sink, Method, Scene, Size, SpanSink, SCREEN};
 use volatile::VolatilePtr;
 
-use crate::vga;
+use crate::vga::{self, Palette};
 
 /// Physical address of the mode-13h window.
 const FRAMEBUFFER_PHYSICAL: u64 = 0xA0000;
@@ -29,6 +31,8 @@ const _: () = assert!((SCREEN.width * SCREEN.height) as usize == FRAMEBUFFER_LEN
 pub struct Screen {
     pixels: VolatilePtr<'static, [u8]>,
     stray_spans: usize,
+    /// The palette in the DAC, loaded by [`Screen::use_palette`].
+    palette: &'static Palette,
 }
 
 impl Screen {
@@ -36,6 +40,7 @@ impl Screen {
     /// (`mappings.physical_memory` in main.rs's config): 0xA0000 is not
     /// mapped otherwise, and the boot-info framebuffer is the VESA one,
     /// stale after the mode switch. `None` if the map is missing.
+    /// Loads the VGA default palette.
     pub fn new(boot_info: &BootInfo) -> Option<Self> {
         let offset = boot_info.physical_memory_offset.into_option()?;
         let start = offset.checked_add(FRAMEBUFFER_PHYSICAL)?;
@@ -46,14 +51,45 @@ impl Screen {
         // memory, valid for volatile reads and writes for the whole run and
         // never a Rust object, so nothing else holds a reference into it.
         let pixels = unsafe { VolatilePtr::new(pixels) };
-        Some(Self { pixels, stray_spans: 0 })
+        vga::load_dac(&VGA_DEFAULT);
+        Some(Self { pixels, stray_spans: 0, palette: &VGA_DEFAULT })
     }
 
-    /// Draws `scene` with `method` and says how it went.
+    /// Loads `palette` into the DAC, unless it is already there.
+    pub fn use_palette(&mut self, palette: &'static Palette) {
+        if self.palette != palette {
+            vga::load_dac(palette);
+            self.palette = palette;
+        }
+    }
+
+    /// The palette in the DAC: what `vga::verify` must read back.
+    pub fn palette(&self) -> &'static Palette {
+        self.palette
+    }
+
+    /// Fills the screen with `color` of the VGA default palette.
+    pub fn clear(&mut self, color: u8) {
+        self.use_palette(&VGA_DEFAULT);
+        sink::clear(self, color);
+    }
+
+    /// Draws `scene` with `method` in the VGA default palette and says how
+    /// it went.
     pub fn draw(&mut self, scene: &Scene, method: &dyn Method) -> Drawn {
+        self.use_palette(&VGA_DEFAULT);
         self.stray_spans = 0;
         let report = scene.draw(method, self);
         Drawn { report, stray_spans: self.stray_spans }
+    }
+
+    /// Puts a whole frame on the screen with one volatile copy (a `memcpy`
+    /// that may move many bytes per instruction): `frame` is 320x200 bytes,
+    /// row after row; bytes past 64,000 are ignored, a shorter frame
+    /// replaces only the top of the screen.
+    pub fn blit(&mut self, frame: &[u8]) {
+        let len = frame.len().min(FRAMEBUFFER_LEN);
+        self.pixels.index(..len).copy_from_slice(&frame[..len]);
     }
 
     /// A `DUMP` payload: the 64,000 bytes read back from video memory, then

@@ -1,12 +1,12 @@
 //! The end-to-end checks that the integration tests and the xtask share.
 
-use anyhow::{Context, Result};
-use raster::Method;
+use anyhow::{ensure, Context, Result};
+use raster::{show, Method};
 
-use crate::compare::compare_images;
-use crate::console::{Console, Dump};
+use crate::compare::{compare_images, compare_palettes};
+use crate::console::{Console, Dump, Shown};
 use crate::picture::Image;
-use crate::render::{builtin_scene, render};
+use crate::render::{builtin_scene, render, render_show, show_entry, show_method};
 
 /// QEMU shows each mode-13h pixel as a 2x2 block of its 640x400 screen.
 pub const SCREEN_SCALE: u32 = 2;
@@ -23,6 +23,33 @@ pub fn dump_matches_host_render(console: &mut Console, scene: &str, method: &dyn
     let dump = console.dump()?;
     compare_images(&format!("{scene}.{method_name}.dump"), &expected, &dump.image())?;
     Ok(dump)
+}
+
+/// Has the kernel show frame `frame` of show entry `entry` with `method`
+/// (for `None`, the entry's own method for that frame), and checks that it
+/// says it drew what was asked (entry, frame modulo the entry's frames,
+/// method), that its dump's framebuffer is the host render (labelled with
+/// the kernel's cycles) byte for byte, and that its DAC is the show's
+/// palette. Returns the reply and the dump for further checks.
+pub fn show_matches_host_render(
+    console: &mut Console,
+    entry: &str,
+    frame: u32,
+    method: Option<&str>,
+) -> Result<(Shown, Dump)> {
+    let entry = show_entry(entry)?;
+    let drawn_with = show_method(entry, frame, method)?;
+    let method_name = drawn_with.info().name;
+    let name = format!("{}.{frame}.{method_name}.show", entry.name);
+    let reply = console.show(entry.name, frame, method).with_context(|| format!("kernel failed to show {name}"))?;
+    let asked = (entry.name, frame % entry.frames, method_name);
+    let said = (reply.entry.as_str(), reply.frame, reply.method.as_str());
+    ensure!(said == asked, "{name}: the kernel says it showed {said:?}, not {asked:?}");
+    let dump = console.dump()?;
+    let expected = render_show(entry, frame, drawn_with, reply.cycles);
+    compare_images(&name, &expected, &dump.image())?;
+    compare_palettes(&name, &show::PALETTE, &dump.palette)?;
+    Ok((reply, dump))
 }
 
 /// Checks QEMU's screendump against the kernel's dump seen through its

@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 
 use anyhow::{bail, Result};
+use raster::palette::ENTRIES;
 
 use crate::picture::{Image, Pixels, Rgb};
 use crate::workspace;
@@ -64,6 +65,22 @@ pub fn compare_images(name: &str, expected: &Image, actual: &Image) -> Result<()
     )
 }
 
+/// Succeeds when two DAC palettes (6-bit levels) are equal entry for
+/// entry; otherwise fails counting the differing entries and naming the
+/// first. A palette has no picture to write: its values are the message.
+pub fn compare_palettes(name: &str, expected: &[[u8; 3]; ENTRIES], actual: &[[u8; 3]; ENTRIES]) -> Result<()> {
+    let differing: Vec<usize> = (0..ENTRIES).filter(|&i| expected[i] != actual[i]).collect();
+    if let Some(&first) = differing.first() {
+        bail!(
+            "{name}: {} of {ENTRIES} DAC entries differ; entry {first} reads {:?}, expected {:?}",
+            differing.len(),
+            actual[first],
+            expected[first]
+        );
+    }
+    Ok(())
+}
+
 fn same_pixel(expected: &Image, actual: &Image, i: usize) -> bool {
     match (expected.pixels(), actual.pixels()) {
         (Pixels::Indexed { indices: a, .. }, Pixels::Indexed { indices: b, .. }) => a[i] == b[i],
@@ -107,6 +124,17 @@ mod tests {
             assert!(error.contains(&path.display().to_string()), "{error}");
             std::fs::remove_file(path).unwrap();
         }
+    }
+
+    #[test]
+    fn palettes_compare_entry_by_entry() {
+        let expected = [[1, 2, 3]; ENTRIES];
+        compare_palettes("unit-dac", &expected, &expected).unwrap();
+        let mut actual = expected;
+        actual[7] = [0, 2, 3];
+        actual[9] = [0; 3];
+        let error = compare_palettes("unit-dac", &expected, &actual).unwrap_err().to_string();
+        assert_eq!(error, "unit-dac: 2 of 256 DAC entries differ; entry 7 reads [0, 2, 3], expected [1, 2, 3]");
     }
 
     #[test]

@@ -4,7 +4,7 @@ use std::io::Write;
 use std::time::Duration;
 
 use anyhow::{bail, ensure, Context, Result};
-use protocol::{Command, FrameKind, BENCH_UNIT_LINE, DUMP_LEN, FRAMEBUFFER_LEN};
+use protocol::{Command, FrameKind, ShowReply, BENCH_UNIT_LINE, DUMP_LEN, FRAMEBUFFER_LEN};
 use raster::palette::ENTRIES;
 use raster::SCREEN;
 
@@ -52,7 +52,8 @@ impl Reply {
             Reply::Ok(text) => format!("OK \"{text}\""),
             Reply::Err(text) => format!("ERR \"{text}\""),
             Reply::List(listing) => {
-                format!("LIST of {} scenes and {} methods", listing.scenes.len(), listing.methods.len())
+                let (scenes, shows, methods) = (listing.scenes.len(), listing.shows.len(), listing.methods.len());
+                format!("LIST of {scenes} scenes, {shows} show entries and {methods} methods")
             }
             Reply::Dump(_) => "a DUMP".to_string(),
             Reply::Bench(rows) => format!("BENCH of {} methods", rows.len()),
@@ -65,6 +66,8 @@ impl Reply {
 #[derive(Clone, Debug, PartialEq, Eq, Default)]
 pub struct Listing {
     pub scenes: Vec<String>,
+    /// The show's entries in demo order: name and number of frames.
+    pub shows: Vec<(String, u32)>,
     pub methods: Vec<String>,
 }
 
@@ -72,13 +75,44 @@ impl Listing {
     fn parse(text: &str) -> Result<Self> {
         let mut listing = Listing::default();
         for line in text.lines().filter(|line| !line.is_empty()) {
-            match line.split_once(' ') {
-                Some(("scene", name)) => listing.scenes.push(name.to_string()),
-                Some(("method", name)) => listing.methods.push(name.to_string()),
-                _ => bail!("LIST line `{line}` is neither `scene NAME` nor `method NAME`"),
+            let words: Vec<&str> = line.split(' ').collect();
+            match words[..] {
+                ["scene", name] => listing.scenes.push(name.to_string()),
+                ["method", name] => listing.methods.push(name.to_string()),
+                ["show", name, frames] => {
+                    let frames = frames.parse().with_context(|| format!("LIST line `{line}`: bad frame count"))?;
+                    listing.shows.push((name.to_string(), frames));
+                }
+                _ => bail!("LIST line `{line}` is none of `scene NAME`, `show NAME FRAMES` and `method NAME`"),
             }
         }
         Ok(listing)
+    }
+}
+
+/// The answer to `SHOW`: [`ShowReply`]'s fields, owned (the protocol's
+/// type borrows the reply's text).
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub struct Shown {
+    pub entry: String,
+    /// The frame drawn, reduced modulo the entry's frames.
+    pub frame: u32,
+    pub method: String,
+    /// rdtsc cycles of the polygon drawing (labels excluded), the number
+    /// the labels show.
+    pub cycles: u64,
+    /// Heap allocations made while drawing and labelling the frame.
+    pub allocs: u64,
+    pub polygons: usize,
+    pub refused: usize,
+    /// Spans the method emitted outside the screen (a method bug).
+    pub strays: usize,
+}
+
+impl From<ShowReply<'_>> for Shown {
+    fn from(reply: ShowReply<'_>) -> Self {
+        let ShowReply { entry, frame, method, cycles, allocs, polygons, refused, strays } = reply;
+        Self { entry: entry.to_string(), frame, method: method.to_string(), cycles, allocs, polygons, refused, strays }
     }
 }
 
@@ -212,6 +246,16 @@ impl Console {
         Ok(())
     }
 
+    /// Has the kernel show frame `frame` of show entry `entry`, with
+    /// `method` or, for `None`, the entry's own method for that frame.
+    pub fn show(&mut self, entry: &str, frame: u32, method: Option<&str>) -> Result<Shown> {
+        let command = Command::Show { entry, frame, method };
+        let text = self.ok(&command)?;
+        let reply =
+            ShowReply::parse(&text).with_context(|| format!("`{command}` answered OK \"{text}\", not a SHOW reply"))?;
+        Ok(reply.into())
+    }
+
     pub fn dump(&mut self) -> Result<Dump> {
         match self.request(&Command::Dump)? {
             Reply::Dump(dump) => Ok(*dump),
@@ -277,12 +321,17 @@ mod tests {
             (FrameKind::Log, b"vga: CRTC 0x11 reads 0x0e"),
             (FrameKind::Ready, b"vga: 1 mismatches"),
             (FrameKind::Ok, b"pong"),
-            (FrameKind::List, b"scene abrash38-1\nmethod abrash_float\n"),
+            (FrameKind::List, b"scene abrash38-1\nshow race 240\nmethod abrash_float\n"),
         ]);
         assert_eq!(console.wait_ready().unwrap(), "vga: 1 mismatches");
         assert_eq!(console.ok(&Command::Ping).unwrap(), "pong");
         let listing = console.list().unwrap();
-        assert_eq!(listing, Listing { scenes: vec!["abrash38-1".into()], methods: vec!["abrash_float".into()] });
+        let expected = Listing {
+            scenes: vec!["abrash38-1".into()],
+            shows: vec![("race".into(), 240)],
+            methods: vec!["abrash_float".into()],
+        };
+        assert_eq!(listing, expected);
         assert_eq!(console.logs(), ["vga: CRTC 0x11 reads 0x0e"]);
         assert_eq!(sent.0.lock().unwrap().as_slice(), b"PING\nLIST\n");
     }
@@ -315,6 +364,37 @@ mod tests {
         assert_eq!(sent.0.lock().unwrap().as_slice(), b"BENCH abrash38-1 3\n");
         assert!(parse_bench("abrash_float 1200\n").is_err(), "a BENCH without its unit line");
         assert!(parse_bench(&format!("{BENCH_UNIT_LINE}\nexact many\n")).is_err());
+    }
+
+    #[test]
+    fn a_list_line_of_no_known_shape_is_an_error() {
+        assert!(Listing::parse("show race many\n").is_err());
+        assert!(Listing::parse("show race\n").is_err());
+        assert!(Listing::parse("colour 4\n").is_err());
+    }
+
+    #[test]
+    fn a_show_reply_comes_back_owned_and_garbage_is_an_error() {
+        let reply = ShowReply {
+            entry: "race",
+            frame: 30,
+            method: "abrash_int",
+            cycles: 9,
+            allocs: 0,
+            polygons: 4,
+            refused: 0,
+            strays: 0,
+        };
+        let text = reply.to_string();
+        let (mut console, sent, _keep) = console(&[(FrameKind::Ok, text.as_bytes()), (FrameKind::Ok, b"drawn")]);
+        let shown = console.show("race", 30, None).unwrap();
+        assert_eq!(
+            (shown.entry.as_str(), shown.frame, shown.method.as_str(), shown.polygons),
+            ("race", 30, "abrash_int", 4)
+        );
+        let error = console.show("race", 0, Some("exact")).unwrap_err().to_string();
+        assert_eq!(error, "`SHOW race 0 exact` answered OK \"drawn\", not a SHOW reply");
+        assert_eq!(sent.0.lock().unwrap().as_slice(), b"SHOW race 30\nSHOW race 0 exact\n");
     }
 
     #[test]

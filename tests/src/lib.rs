@@ -32,7 +32,7 @@ pub mod serial;
 pub mod workspace;
 
 pub use compare::compare_images;
-pub use console::{Console, Dump, Listing, Reply};
+pub use console::{Console, Dump, Listing, Reply, Shown};
 pub use image::build_image;
 pub use picture::Image;
 pub use qemu::{Display, Medium, Qemu, QemuOptions};

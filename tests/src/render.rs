@@ -1,24 +1,42 @@
-//! The host side of every comparison: scenes and methods looked up by name
-//! (errors list the valid names), drawn with the same `raster` code the
-//! kernel runs.
+//! The host side of every comparison: scenes, show entries and methods
+//! looked up by name (errors list the valid names), drawn with the same
+//! `raster` code the kernel runs.
 
 use std::path::Path;
 
 use anyhow::{anyhow, bail, Context, Result};
-use raster::methods;
 use raster::palette::VGA_DEFAULT;
-use raster::{scene_file, scenes, Framebuffer, Method, Scene, SCREEN};
+use raster::show::{self, Entry, Stage, ENTRIES_IN_ORDER};
+use raster::{methods, scene_file, scenes, Framebuffer, Method, Scene, SCREEN};
 
 use crate::picture::Image;
 
 /// The method called `name`, or for `None` the scene's own (the method its
 /// source uses; `exact` for scene files).
 pub fn method_for(scene: &Scene, name: Option<&str>) -> Result<&'static dyn Method> {
-    let Some(name) = name else { return Ok(scene.method()) };
+    name.map_or(Ok(scene.method()), method_named)
+}
+
+/// The method called `name`.
+pub fn method_named(name: &str) -> Result<&'static dyn Method> {
     methods::by_name(name).with_context(|| {
         let valid: Vec<&str> = methods::ALL.iter().map(|m| m.info().name).collect();
         format!("unknown method `{name}`; valid methods: {}", valid.join(", "))
     })
+}
+
+/// The show entry called `name`.
+pub fn show_entry(name: &str) -> Result<&'static Entry> {
+    show::entry(name).with_context(|| {
+        let valid: Vec<&str> = ENTRIES_IN_ORDER.iter().map(|e| e.name).collect();
+        format!("unknown show entry `{name}`; valid entries: {}", valid.join(", "))
+    })
+}
+
+/// The method called `name` or, for `None`, the one `entry` draws frame
+/// `frame` with (its source's; for the race, whose turn it is).
+pub fn show_method(entry: &Entry, frame: u32, name: Option<&str>) -> Result<&'static dyn Method> {
+    name.map_or_else(|| Ok(entry.method_at(frame)), method_named)
 }
 
 /// The built-in scene called `name`.
@@ -53,9 +71,21 @@ pub fn render(scene: &Scene, method: &dyn Method) -> Image {
         .expect("a framebuffer has width x height pixels")
 }
 
+/// Frame `frame` of show entry `entry` drawn with `method` and labelled
+/// with `cycles` (the kernel's measurement, from its `SHOW` reply), as an
+/// indexed image with the show's palette: what `SHOW` puts on the screen.
+pub fn render_show(entry: &Entry, frame: u32, method: &dyn Method, cycles: u64) -> Image {
+    let mut stage = Stage::new();
+    stage.draw(entry, frame, method);
+    stage.label(entry, frame, method, cycles);
+    Image::from_dac(SCREEN.width as u32, SCREEN.height as u32, stage.pixels().to_vec(), &show::PALETTE)
+        .expect("a stage has width x height pixels")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::picture::Pixels;
 
     #[test]
     fn unknown_names_list_the_valid_ones() {
@@ -64,11 +94,33 @@ mod tests {
         assert!(error.starts_with("unknown method `nope`; valid methods: abrash_float"), "{error}");
         let error = format!("{:#}", builtin_scene("nope").unwrap_err());
         assert_eq!(error, format!("unknown scene `nope`; valid scenes: {}", scenes::NAMES.join(", ")));
+        let error = format!("{:#}", show_entry("nope").unwrap_err());
+        assert!(error.starts_with("unknown show entry `nope`; valid entries: abrash38-1, "), "{error}");
+        assert!(error.ends_with(", race"), "{error}");
         let error = format!("{:#}", scene_named_or_file("nope").unwrap_err());
         assert!(
             error.starts_with("`nope` is neither a built-in scene nor a scene file; valid scenes: abrash38-1,"),
             "{error}"
         );
+    }
+
+    #[test]
+    fn a_show_frame_uses_the_named_method_or_the_entry_s_own() {
+        let race = show_entry("race").unwrap();
+        let last = race.frames - 1;
+        assert_eq!(show_method(race, last, None).unwrap().info().name, race.method_at(last).info().name);
+        assert_eq!(show_method(race, last, Some("wgt")).unwrap().info().name, "wgt");
+        assert!(show_method(race, 0, Some("nope")).is_err());
+    }
+
+    #[test]
+    fn a_show_frame_is_drawn_in_the_show_palette() {
+        let entry = show_entry("abrash38-1").unwrap();
+        let shown = render_show(entry, 0, show_method(entry, 0, None).unwrap(), 1234);
+        let Pixels::Indexed { indices, palette } = shown.pixels() else { panic!("a show frame is indexed") };
+        let expected: Vec<[u8; 3]> = show::PALETTE.iter().map(|rgb| rgb.map(raster::palette::c6_to_8)).collect();
+        assert_eq!(palette, &expected);
+        assert!(indices.iter().any(|&i| i != 0), "the page is drawn");
     }
 
     #[test]

@@ -3,6 +3,7 @@
 
 use anyhow::{ensure, Result};
 use harness::checks::{dump_matches_host_render, screen_matches_dump};
+use harness::compare::compare_palettes;
 use harness::{Qemu, QemuOptions};
 use protocol::Command;
 use raster::methods;
@@ -39,16 +40,7 @@ fn screendump_shows_every_page_through_the_read_back_palette() -> Result<()> {
 fn read_back_palette_is_the_vga_default() -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     let dump = qemu.console.dump()?;
-    let wrong: Vec<usize> = (0..VGA_DEFAULT.len()).filter(|&i| dump.palette[i] != VGA_DEFAULT[i]).collect();
-    if let Some(&first) = wrong.first() {
-        anyhow::bail!(
-            "{} of 256 DAC entries differ from the VGA default; entry {first} reads {:?}, expected {:?}",
-            wrong.len(),
-            dump.palette[first],
-            VGA_DEFAULT[first]
-        );
-    }
-    Ok(())
+    compare_palettes("the DAC after boot against the VGA default", &VGA_DEFAULT, &dump.palette)
 }
 
 #[test]

@@ -6,6 +6,7 @@ mod dump;
 mod kbench;
 mod lab;
 mod opt;
+mod record;
 mod render;
 mod run;
 mod test;
@@ -26,6 +27,7 @@ fn main() -> Result<()> {
         }
         Action::Dump(opt) => dump::dump(&opt),
         Action::Render(opt) => render::render(&opt),
+        Action::Record(opt) => record::record(&opt),
         Action::Test(opt) => test::test(&opt),
         Action::Lab(opt) => lab::lab(&opt),
         Action::Kbench(opt) => kbench::kbench(&opt),

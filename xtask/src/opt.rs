@@ -5,7 +5,8 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 use protocol::{BENCH_DEFAULT_REPEATS, BENCH_MAX_REPEATS};
 
-/// The developer's hands: run the demo, build the image, dump, render, test.
+/// The developer's hands: run the demo, build the image, dump, render,
+/// record, test.
 #[derive(Parser, Debug)]
 #[command(name = "xtask", bin_name = "cargo xtask")]
 pub struct Cli {
@@ -25,6 +26,10 @@ pub enum Action {
     Dump(DumpOpt),
     /// Renders a scene on the host with the same raster code.
     Render(RenderOpt),
+    /// Boots the kernel headless, has it show frames of a show entry
+    /// (`SHOW`), dumps each and writes them as an animated GIF; every dump
+    /// is checked against the host render unless --no-verify.
+    Record(RecordOpt),
     /// Installs what is missing, builds the image once, and runs every test.
     Test(TestOpt),
     /// Measures every method for speed and accuracy (release build) and
@@ -69,6 +74,32 @@ pub struct RenderOpt {
     /// The PNG to write.
     #[arg(long, value_name = "FILE.png")]
     pub out: PathBuf,
+}
+
+#[derive(Args, Debug)]
+pub struct RecordOpt {
+    /// A show entry: an animation (e.g. lamothe-rotate, race) or a still page.
+    #[arg(long)]
+    pub scene: String,
+    /// How many frames to record.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    pub frames: u32,
+    /// The animated GIF to write; written beside it first, renamed when complete.
+    #[arg(long, value_name = "FILE.gif")]
+    pub out: PathBuf,
+    /// Fill method for every frame (default: the entry's own; in the race,
+    /// the method whose turn it is).
+    #[arg(long)]
+    pub method: Option<String>,
+    /// The first frame recorded (frame numbers wrap around the entry's frames).
+    #[arg(long, default_value_t = 0)]
+    pub start: u32,
+    /// Frames from one recorded frame to the next.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    pub step: u32,
+    /// Skip checking each dump against the host render and the show's palette.
+    #[arg(long)]
+    pub no_verify: bool,
 }
 
 #[derive(Args, Debug)]

@@ -31,6 +31,6 @@ pub mod sink;
 pub use classify::{classify, fill_auto};
 pub use coverage::{CoverageReport, CoverageSink};
 pub use geometry::{FillRule, PixelPoint, Point, Polygon, SUBPIXEL_BITS, SUBPIXEL_ONE};
-pub use method::{Class, Convention, Method, MethodInfo, Refusal};
+pub use method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
 pub use scene::{Op, Scene};
 pub use sink::{Framebuffer, Size, SpanSink, SCREEN};

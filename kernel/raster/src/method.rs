@@ -45,6 +45,29 @@ pub struct Convention {
     pub summary: &'static str,
 }
 
+/// When a method takes memory from the heap while it fills.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Heap {
+    /// Never: its state is a fixed size and lives on the stack.
+    Never,
+    /// Only for polygons that are not monotone in y (exact's active edge
+    /// table); triangles and convex polygons take nothing.
+    BeyondConvex,
+    /// For every polygon: the port keeps its per-polygon tables in `Vec`s,
+    /// where the original called `malloc` or used static arrays.
+    EveryPolygon,
+}
+
+impl Heap {
+    pub const fn name(self) -> &'static str {
+        match self {
+            Heap::Never => "never",
+            Heap::BeyondConvex => "beyond convex",
+            Heap::EveryPolygon => "every polygon",
+        }
+    }
+}
+
 /// What a method is, where it comes from and what it accepts.
 #[derive(Clone, Copy, Debug)]
 pub struct MethodInfo {
@@ -60,6 +83,8 @@ pub struct MethodInfo {
     /// Fill rules it honours. Methods for one-span-per-line polygons have
     /// no choice of rule and list both.
     pub rules: &'static [FillRule],
+    /// When it allocates (the kernel's show counts allocations per frame).
+    pub heap: Heap,
 }
 
 /// Why a method declined a polygon. Declining draws nothing.

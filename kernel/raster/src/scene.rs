@@ -38,6 +38,17 @@ pub struct DrawReport {
     pub first_refusal: Option<Refusal>,
 }
 
+impl DrawReport {
+    /// Counts one polygon and what its fill returned.
+    pub fn record(&mut self, fill: Result<(), Refusal>) {
+        self.polygons += 1;
+        if let Err(refusal) = fill {
+            self.refused += 1;
+            self.first_refusal.get_or_insert(refusal);
+        }
+    }
+}
+
 impl Scene {
     /// The method to draw this scene with when none is named.
     pub fn method(&self) -> &'static dyn Method {
@@ -51,13 +62,7 @@ impl Scene {
         for op in &self.ops {
             match op {
                 Op::Clear(color) => sink::clear(sink, *color),
-                Op::Fill(polygon) => {
-                    report.polygons += 1;
-                    if let Err(refusal) = method.fill(polygon, sink) {
-                        report.refused += 1;
-                        report.first_refusal.get_or_insert(refusal);
-                    }
-                }
+                Op::Fill(polygon) => report.record(method.fill(polygon, sink)),
             }
         }
         report

@@ -7,8 +7,10 @@ use crate::geometry::Polygon;
 use crate::scene::{Op, Scene};
 
 /// Names of the built-in scenes, in demo order.
-pub const NAMES: &[&str] =
-    &["abrash38-1", "abrash38-2", "abrash38-3", "abrash40-1", "abrash40-2", "abrash40-3", "abrash40-4", "wgt-triangle"];
+pub const NAMES: &[&str] = &[
+    "abrash38-1", "abrash38-2", "abrash38-3", "abrash40-1", "abrash40-2", "abrash40-3", "abrash40-4",
+    "lamothe-triangle", "wgt-triangle",
+];
 
 /// The built-in scene called `name`.
 pub fn by_name(name: &str) -> Option<Scene> {
@@ -20,6 +22,7 @@ pub fn by_name(name: &str) -> Option<Scene> {
         "abrash40-2" => (listing_40_4(2), "abrash_aet"),
         "abrash40-3" => (listing_40_4(3), "abrash_aet"),
         "abrash40-4" => (listing_40_4(4), "abrash_aet"),
+        "lamothe-triangle" => (lamothe_triangle(), "lamothe"),
         "wgt-triangle" => (wgt_triangle(), "wgt"),
         _ => return None,
     };
@@ -54,6 +57,17 @@ fn listing_40_4(page: u32) -> Vec<Op> {
         }
     }
     ops
+}
+
+/// LaMothe's example call `Draw_Triangle_2D(100,100, 200,150, 40,200, 30,
+/// ...)` (seed 002_6f1d312f285a1c70.txt), on the black screen of a mode set.
+/// He drew it on a 640x480 screen, where row 200 is in the middle; mode 13h's
+/// rows are 0..=199, so here the bottom vertex lies on the clip edge: his
+/// y clip (`if (y3>max_clip_y) y3=max_clip_y`) drops the one-pixel line of
+/// row 200, and under our convention no pixel centre (y + 0.5) reaches
+/// y = 200 anyway, so every method draws the triangle down to row 199.
+fn lamothe_triangle() -> Vec<Op> {
+    Vec::from([Op::Clear(0), Op::Fill(Polygon::from_pixels(&[(100, 100), (200, 150), (40, 200)], (0, 0), 30))])
 }
 
 /// The WGT tutorial's test triangle, (160,30), (50,150), (270,180)
@@ -154,7 +168,25 @@ mod tests {
         let methods: Vec<&str> = NAMES.iter().map(|n| by_name(n).unwrap().method().info().name).collect();
         assert_eq!(methods[..3], ["abrash_float"; 3]);
         assert_eq!(methods[3..7], ["abrash_aet"; 4]);
-        assert_eq!(methods[7], "wgt");
+        assert_eq!(methods[7..], ["lamothe", "wgt"]);
+    }
+
+    #[test]
+    fn lamothe_triangle_reaches_the_bottom_row() {
+        use crate::sink::{Framebuffer, SCREEN};
+        let scene = by_name("lamothe-triangle").unwrap();
+        let mut target = Framebuffer::new(SCREEN);
+        let report = scene.draw(scene.method(), &mut target);
+        assert_eq!((report.polygons, report.refused, target.stray_spans()), (1, 0, 0));
+        let rows: Vec<usize> = target
+            .pixels()
+            .chunks(SCREEN.width as usize)
+            .enumerate()
+            .filter(|(_, row)| row.contains(&30))
+            .map(|(y, _)| y)
+            .collect();
+        assert_eq!(rows, (100..200).collect::<Vec<_>>());
+        assert!(target.pixels().iter().all(|&p| p == 0 || p == 30));
     }
 
     #[test]

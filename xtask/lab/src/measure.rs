@@ -403,6 +403,7 @@ mod tests {
         numeric: "test",
         handles: raster::Class::Complex,
         rules: &[],
+        heap: raster::Heap::Never,
     };
 
     impl Method for Misfit {

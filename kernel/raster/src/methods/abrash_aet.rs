@@ -46,7 +46,7 @@ use alloc::vec::Vec;
 
 use super::abrash_int::ErrorTermStep;
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Class, Convention, Method, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Method, Heap, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 /// Listing 40.1.
@@ -63,6 +63,7 @@ static INFO: MethodInfo = MethodInfo {
     numeric: "integer vertices; integer error-term X stepping (i32)",
     handles: Class::Complex,
     rules: &[FillRule::EvenOdd],
+    heap: Heap::EveryPolygon,
 };
 
 impl Method for AbrashAet {

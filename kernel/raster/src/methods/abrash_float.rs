@@ -21,7 +21,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::method::{Class, Convention, Method, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Method, Heap, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 /// Listing 38.1.
@@ -41,6 +41,7 @@ static INFO: MethodInfo = MethodInfo {
     numeric: "integer vertices; f64 inverse slope with ceil",
     handles: Class::Convex,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
+    heap: Heap::EveryPolygon,
 };
 
 impl Method for AbrashFloat {

@@ -50,7 +50,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Point, Polygon, SUBPIXEL_BITS};
-use crate::method::{Class, Convention, Method, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Method, Heap, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 /// `poly()` and its helpers.
@@ -68,6 +68,7 @@ static INFO: MethodInfo = MethodInfo {
     numeric: "fp14 (32-bit, 14 fraction bits), truncated X step; coordinates within ±32768 px",
     handles: Class::Convex,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
+    heap: Heap::EveryPolygon,
 };
 
 impl Method for Pendleton {

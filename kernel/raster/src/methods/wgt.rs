@@ -48,7 +48,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Class, Convention, Method, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Method, Heap, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 /// The tutorial's `fillpoly`.
@@ -68,6 +68,7 @@ static INFO: MethodInfo = MethodInfo {
     numeric: "16-bit int vertices; 8.8 fixed point in a 32-bit long, slope truncated toward zero",
     handles: Class::Convex,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
+    heap: Heap::EveryPolygon,
 };
 
 impl Method for Wgt {

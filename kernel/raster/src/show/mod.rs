@@ -249,4 +249,10 @@ impl Stage {
     pub fn pixels(&self) -> &[u8] {
         self.target.pixels()
     }
+
+    /// Spans drawn outside the screen since the stage was made (a method
+    /// bug; they were clipped, not written).
+    pub fn stray_spans(&self) -> usize {
+        self.target.stray_spans()
+    }
 }

@@ -1,16 +1,147 @@
-//! PLACEHOLDER (helper 2 replaces this file).
-use super::Scratch;
+//! The method race: one slowly turning scene, drawn by each method of
+//! [`methods::ALL`] in turn for [`FRAMES_PER_METHOD`] frames, with the
+//! cycles each draw took in the label.
+//!
+//! The scene is one every method fills: single-contour convex polygons,
+//! triangles and quads. In the middle a wheel of [`SPOKES`] thin triangles
+//! in the palette's 24 hues shares its edges and its wobbling hub, so each
+//! method's rounding shows as gaps or overlaps along the spokes and at the
+//! hub (the exact method draws every pixel of the wheel once); on each side
+//! two columns of small squares spin one way and the other. It turns once
+//! over [`FRAMES`], slowly enough that the pixels a method gains or loses
+//! stay visible while it is on.
+
+use super::lamothe::regular;
+use super::trig::{angle_at, offset, polar, TURN};
+use super::{Ramp, Scratch, FRAMES_PER_SECOND};
+use crate::geometry::Point;
 use crate::method::Method;
 use crate::methods;
 use crate::scene::DrawReport;
 use crate::sink::Framebuffer;
+use crate::SUBPIXEL_ONE;
 
-pub(super) const FRAMES: u32 = 8 * 30;
+/// How long each method is on: 2 seconds.
+const FRAMES_PER_METHOD: u32 = 2 * FRAMES_PER_SECOND;
+/// Every method once.
+pub(super) const FRAMES: u32 = FRAMES_PER_METHOD * methods::ALL.len() as u32;
 
+/// Triangles in the wheel: one per hue of the palette's first ring
+/// (entries 32-55).
+const SPOKES: u32 = 24;
+const FIRST_HUE: u8 = 32;
+/// The wheel's centre and radius, and how far its hub wobbles, in pixels.
+const WHEEL_CENTRE: (i32, i32) = (160, 100);
+const WHEEL_RADIUS: i32 = 86;
+const HUB_WOBBLE: i32 = 5;
+
+/// The squares' columns (x of each, in pixels, left side then right side)
+/// and rows (y of each), and their circumradius in pixels.
+const SQUARE_COLUMNS: [i32; 4] = [22, 56, 264, 298];
+const SQUARE_ROWS: [i32; 5] = [30, 65, 100, 135, 170];
+const SQUARE_RADIUS: i32 = 16;
+
+/// The method whose turn it is at `frame` (modulo [`FRAMES`]).
 pub(super) fn method_at(frame: u32) -> &'static dyn Method {
-    methods::ALL[(frame / 30) as usize % methods::ALL.len()]
+    methods::ALL[(frame / FRAMES_PER_METHOD) as usize % methods::ALL.len()]
 }
 
-pub(super) fn draw(_frame: u32, _method: &dyn Method, _scratch: &mut Scratch, _target: &mut Framebuffer) -> DrawReport {
-    DrawReport::default()
+/// Draws frame `frame` of the race scene with `method`.
+pub(super) fn draw(frame: u32, method: &dyn Method, scratch: &mut Scratch, target: &mut Framebuffer) -> DrawReport {
+    let mut report = DrawReport::default();
+    let turn = angle_at(frame, FRAMES, 1);
+    let back = angle_at(frame, FRAMES, -1);
+
+    let centre = Point::from_pixels(WHEEL_CENTRE.0, WHEEL_CENTRE.1);
+    let wobble = polar((HUB_WOBBLE * SUBPIXEL_ONE, HUB_WOBBLE * SUBPIXEL_ONE), angle_at(frame, FRAMES, 3));
+    let hub = offset(centre, wobble);
+    let rim = |k: u32| {
+        let radius = WHEEL_RADIUS * SUBPIXEL_ONE;
+        offset(centre, polar((radius, radius), turn.wrapping_add(k * TURN / SPOKES)))
+    };
+    for (k, hue) in (0..SPOKES).zip(FIRST_HUE..) {
+        report.record(method.fill(scratch.polygon([hub, rim(k), rim(k + 1)], hue), target));
+    }
+
+    for (column, &x) in SQUARE_COLUMNS.iter().enumerate() {
+        for (row, &y) in SQUARE_ROWS.iter().enumerate() {
+            let spin = if (row + column) % 2 == 0 { turn } else { back };
+            let color = if column < 2 { Ramp::Gold } else { Ramp::Blue }.color(15 + 4 * row as i32);
+            let square = regular(Point::from_pixels(x, y), SQUARE_RADIUS, 4, spin.wrapping_add(TURN / 8));
+            report.record(method.fill(scratch.polygon(square, color), target));
+        }
+    }
+    report
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sink::SCREEN;
+    use alloc::vec::Vec;
+
+    fn frame(frame: u32, method: &dyn Method) -> (Framebuffer, DrawReport) {
+        let mut target = Framebuffer::new(SCREEN);
+        let report = draw(frame, method, &mut Scratch::new(), &mut target);
+        (target, report)
+    }
+
+    #[test]
+    fn the_methods_take_turns() {
+        let order: Vec<&str> = (0..FRAMES).step_by(FRAMES_PER_METHOD as usize).map(|f| method_at(f).info().name).collect();
+        let all: Vec<&str> = methods::ALL.iter().map(|m| m.info().name).collect();
+        assert_eq!(order, all);
+        assert_eq!(method_at(FRAMES_PER_METHOD - 1).info().name, all[0]);
+        assert_eq!(method_at(FRAMES).info().name, all[0]);
+    }
+
+    #[test]
+    fn a_full_race_comes_back_to_the_first_frame() {
+        assert_eq!(frame(0, &methods::exact::Exact).0, frame(FRAMES, &methods::exact::Exact).0);
+        assert_eq!(frame(0, method_at(0)).0, frame(FRAMES, method_at(FRAMES)).0);
+    }
+
+    #[test]
+    fn frames_are_deterministic_and_move() {
+        let method = &methods::exact::Exact;
+        assert_eq!(frame(123, method), frame(123, method));
+        assert_ne!(frame(0, method).0, frame(1, method).0);
+    }
+
+    #[test]
+    fn every_method_draws_every_tenth_frame_inside_the_screen() {
+        for method in methods::ALL {
+            for f in (0..FRAMES).step_by(10) {
+                let (target, report) = frame(f, *method);
+                let name = method.info().name;
+                assert_eq!(report.polygons, 44, "{name} frame {f}");
+                assert_eq!(report.refused, 0, "{name} frame {f}: {:?}", report.first_refusal);
+                assert_eq!(target.stray_spans(), 0, "{name} frame {f}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_exact_wheel_has_no_gaps() {
+        // Every pixel whose centre is well inside the rim is drawn.
+        for f in (0..FRAMES).step_by(10) {
+            let (target, _) = frame(f, &methods::exact::Exact);
+            let r = WHEEL_RADIUS - 2;
+            for y in -r..=r {
+                for x in -r..=r {
+                    if x * x + y * y < r * r {
+                        let pixel = target.get(WHEEL_CENTRE.0 + x, WHEEL_CENTRE.1 + y).unwrap();
+                        assert!((FIRST_HUE..FIRST_HUE + SPOKES as u8).contains(&pixel), "frame {f} at {x},{y}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn methods_differ_on_the_same_frame() {
+        let exact = frame(100, &methods::exact::Exact).0;
+        let lamothe = frame(100, &methods::lamothe::Lamothe).0;
+        assert_ne!(exact, lamothe);
+    }
 }

@@ -37,7 +37,7 @@ pub(crate) use active_edges::fill_active_edges;
 pub(crate) use monotone::{fill_monotone, fill_triangle};
 
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Class, Convention, Method, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Method, Heap, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 /// The exact method.
@@ -54,6 +54,7 @@ static INFO: MethodInfo = MethodInfo {
     numeric: "i32 vertices in 1/256 px; i64 edge setup (i128 for edges over 2^23 px), i64 error-term stepping; no floats",
     handles: Class::Complex,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
+    heap: Heap::BeyondConvex,
 };
 
 impl Method for Exact {

@@ -24,7 +24,7 @@
 //!   module's split and fan.
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::method::{Class, Convention, Method, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Method, Heap, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 use super::{EdgePair, FlatHalves};
@@ -48,6 +48,7 @@ static INFO: MethodInfo = MethodInfo {
     numeric: "integer vertices; 16.16 fixed point in i32 (wrapping), +0x8000 >> 16 rounding; split point (int)(0.5 + f32)",
     handles: Class::Triangle,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
+    heap: Heap::Never,
 };
 
 impl Method for LamotheFixed {

@@ -20,7 +20,7 @@
 //!   module's split and fan.
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::method::{Class, Convention, Method, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Method, Heap, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 use super::{EdgePair, FlatHalves};
@@ -39,6 +39,7 @@ static INFO: MethodInfo = MethodInfo {
     numeric: "integer vertices; f32 edges stepped by dx/dy, (int) truncation; split point (int)(0.5 + f32)",
     handles: Class::Triangle,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
+    heap: Heap::Never,
 };
 
 impl Method for Lamothe {

@@ -61,8 +61,6 @@ mod float;
 pub use fixed::LamotheFixed;
 pub use float::Lamothe;
 
-use alloc::vec::Vec;
-
 use crate::geometry::{PixelPoint, Polygon};
 use crate::method::Refusal;
 use crate::sink::{Size, SpanSink};
@@ -119,14 +117,15 @@ fn fill_polygon(variant: &impl FlatHalves, polygon: &Polygon, sink: &mut dyn Spa
     let Some(clip) = ClipRect::of(sink.size()) else {
         return Ok(());
     };
-    let v: Vec<PixelPoint> = contour.iter().map(|p| p.round_to_pixel()).collect();
+    // Rounded where used, so no vertex list is allocated.
+    let v = |i: usize| contour[i].round_to_pixel();
     let mut draw = |triangle| draw_triangle_2d(variant, triangle, clip, polygon.color, sink);
-    if let [a, b, c, d] = *v.as_slice() {
-        draw([a, b, d]);
-        draw([b, c, d]);
+    if contour.len() == 4 {
+        draw([v(0), v(1), v(3)]);
+        draw([v(1), v(2), v(3)]);
     } else {
-        for pair in v.windows(2).skip(1) {
-            draw([v[0], pair[0], pair[1]]);
+        for i in 2..contour.len() {
+            draw([v(0), v(i - 1), v(i)]);
         }
     }
     Ok(())

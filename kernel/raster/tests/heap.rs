@@ -1,0 +1,93 @@
+//! Each method's `MethodInfo::heap` against what it really does, counted
+//! by a global allocator; and the show's claim that its frames take
+//! nothing from the heap once an entry is running, when the method takes
+//! nothing itself.
+//!
+//! This file holds one test so that no other test thread allocates while
+//! it counts.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use raster::show::{Stage, ENTRIES_IN_ORDER};
+use raster::{methods, Framebuffer, Heap, Method, Point, Polygon, SCREEN};
+
+/// The system allocator, counting allocations.
+struct Counting;
+
+static ALLOCATIONS: AtomicU64 = AtomicU64::new(0);
+
+// SAFETY: every call is passed on unchanged to `System`, which upholds
+// the `GlobalAlloc` contract; the counter is only an atomic add.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: the caller's guarantees for `layout` hold for `System` too.
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: `ptr` came from `System.alloc` with this `layout`.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// Allocations made by `work`.
+fn allocations(work: impl FnOnce()) -> u64 {
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    work();
+    ALLOCATIONS.load(Ordering::Relaxed) - before
+}
+
+fn polygon(points: &[(i32, i32)]) -> Polygon {
+    Polygon::new(points.iter().map(|&(x, y)| Point::from_pixels(x, y)).collect(), 7)
+}
+
+fn fill_allocations(method: &dyn Method, polygon: &Polygon, target: &mut Framebuffer) -> u64 {
+    allocations(|| {
+        let _ = method.fill(polygon, target);
+    })
+}
+
+#[test]
+fn methods_allocate_as_their_info_says_and_the_show_adds_nothing() {
+    let triangle = polygon(&[(10, 10), (200, 40), (60, 180)]);
+    let convex = polygon(&[(100, 20), (180, 40), (200, 120), (150, 190), (60, 150), (50, 70)]);
+    // A star: not monotone in y, so exact needs its active edge table.
+    let star = polygon(&[(160, 10), (190, 190), (30, 70), (290, 70), (130, 190)]);
+    let mut target = Framebuffer::new(SCREEN);
+    let mut wrong = Vec::new();
+    for method in methods::ALL {
+        let info = method.info();
+        let simple = [&triangle, &convex].map(|p| fill_allocations(*method, p, &mut target));
+        let complex = fill_allocations(*method, &star, &mut target);
+        let agrees = match info.heap {
+            Heap::Never => simple == [0, 0] && complex == 0,
+            Heap::BeyondConvex => simple == [0, 0] && complex > 0,
+            Heap::EveryPolygon => simple.iter().all(|&n| n > 0),
+        };
+        if !agrees {
+            wrong.push(format!("{} says {:?}, allocated {simple:?} then {complex} (star)", info.name, info.heap));
+        }
+    }
+    assert!(wrong.is_empty(), "{wrong:#?}");
+
+    // Every animated entry, drawn and labelled with each method that takes
+    // nothing for convex polygons, allocates nothing after its first frame.
+    let mut stage = Stage::new();
+    for entry in ENTRIES_IN_ORDER.iter().filter(|e| e.is_animated()) {
+        for method in methods::ALL.iter().filter(|m| m.info().heap != Heap::EveryPolygon) {
+            stage.draw(entry, 0, *method);
+            for frame in [1, entry.frames / 2, entry.frames - 1] {
+                let count = allocations(|| {
+                    stage.draw(entry, frame, *method);
+                    stage.label(entry, frame, *method, u64::MAX);
+                });
+                assert_eq!(count, 0, "{} frame {frame} with {}", entry.name, method.info().name);
+            }
+        }
+    }
+}

@@ -1,0 +1,125 @@
+//! The show (`raster::show`), drawn by the kernel with `SHOW` in QEMU:
+//! every entry against the host render, labels and palette included; the
+//! race's turns; every method on an animation; no allocation once an
+//! animation runs with a method that allocates nothing itself; bad input.
+//! Each test boots its own QEMU; every `SHOW` is followed by a 64 KB
+//! `DUMP`, the bulk of the time.
+
+use anyhow::{bail, ensure, Result};
+use harness::checks::{screen_matches_dump, show_matches_host_render};
+use harness::{Qemu, QemuOptions, Reply, Shown};
+use protocol::Command;
+use raster::{methods, Heap};
+use raster::show::{self, Entry, ENTRIES_IN_ORDER};
+
+/// The frames checked of `entry`: its first, a third of the way, its last
+/// (one frame for a still).
+fn sampled_frames(entry: &Entry) -> Vec<u32> {
+    let mut frames = vec![0, entry.frames / 3, entry.frames - 1];
+    frames.dedup();
+    frames
+}
+
+/// What is wrong with a reply to a `SHOW` with the entry's own method:
+/// refused polygons or stray spans, or, once the entry's first frame has
+/// been shown (`again`), any allocation by a method whose `MethodInfo::heap`
+/// says it takes nothing for convex polygons (the show's own polygons all
+/// are). The faithful ports that keep per-polygon tables in `Vec`s
+/// (`Heap::EveryPolygon`) allocate on every frame, and say so.
+fn own_method_problems(reply: &Shown, again: bool) -> Vec<String> {
+    let Shown { entry, frame, method, allocs, polygons, refused, strays, .. } = reply;
+    let mut problems = Vec::new();
+    if *refused != 0 || *strays != 0 {
+        problems.push(format!("{entry} frame {frame} with its own {method}: refused={refused} strays={strays}"));
+    }
+    let allocating = methods::by_name(method).is_none_or(|m| m.info().heap == Heap::EveryPolygon);
+    if again && !allocating && *allocs != 0 {
+        problems.push(format!(
+            "{entry} frame {frame} with {method}, shown again: {allocs} allocations for {polygons} polygons"
+        ));
+    }
+    problems
+}
+
+/// Fails listing every failure, so one does not hide the others.
+fn none_failed(failures: Vec<String>) -> Result<()> {
+    ensure!(failures.is_empty(), "{} failures:\n{}", failures.len(), failures.join("\n"));
+    Ok(())
+}
+
+#[test]
+fn every_entry_shows_what_the_host_renders_at_its_first_middle_and_last_frame() -> Result<()> {
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    let mut failures = Vec::new();
+    for entry in ENTRIES_IN_ORDER {
+        for (shown_before, frame) in sampled_frames(entry).into_iter().enumerate() {
+            match show_matches_host_render(&mut qemu.console, entry.name, frame, None) {
+                // A still may allocate every time it is shown (it builds its
+                // page); an animation only on its first frame.
+                Ok((reply, _)) => failures.extend(own_method_problems(&reply, entry.is_animated() && shown_before > 0)),
+                Err(error) => failures.push(format!("{error:#}")),
+            }
+        }
+    }
+    none_failed(failures)
+}
+
+#[test]
+fn the_race_shows_each_method_from_the_first_frame_of_its_turn() -> Result<()> {
+    let race = show::entry("race").expect("the show has a race");
+    let turns: Vec<u32> = (0..race.frames)
+        .filter(|&frame| frame == 0 || race.method_at(frame).info().name != race.method_at(frame - 1).info().name)
+        .collect();
+    ensure!(turns.len() >= methods::ALL.len(), "the race gives turns to {} methods", turns.len());
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    let mut failures = Vec::new();
+    for (shown_before, frame) in turns.into_iter().enumerate() {
+        // The check also holds the reply's method to `method_at(frame)`.
+        match show_matches_host_render(&mut qemu.console, race.name, frame, None) {
+            Ok((reply, _)) => failures.extend(own_method_problems(&reply, shown_before > 0)),
+            Err(error) => failures.push(format!("{error:#}")),
+        }
+    }
+    none_failed(failures)
+}
+
+#[test]
+fn an_animation_shows_what_the_host_renders_with_every_method_named() -> Result<()> {
+    let entry = show::entry("lamothe-rotate").expect("the show has lamothe-rotate");
+    let frame = entry.frames / 3;
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    let failures = methods::ALL
+        .iter()
+        .filter_map(|method| {
+            show_matches_host_render(&mut qemu.console, entry.name, frame, Some(method.info().name)).err()
+        })
+        .map(|error| format!("{error:#}"))
+        .collect();
+    none_failed(failures)
+}
+
+#[test]
+fn the_screen_shows_a_shaded_frame_through_the_show_palette() -> Result<()> {
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    let (_, dump) = show_matches_host_render(&mut qemu.console, "wgt-gouraud", 0, None)?;
+    let screen = qemu.screendump()?;
+    screen_matches_dump("wgt-gouraud.0", &dump, &screen)
+}
+
+#[test]
+fn kernel_lists_the_show_and_refuses_bad_show_commands_and_keeps_serving() -> Result<()> {
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    let listing = qemu.console.list()?;
+    let expected: Vec<(String, u32)> = ENTRIES_IN_ORDER.iter().map(|e| (e.name.to_string(), e.frames)).collect();
+    ensure!(listing.shows == expected, "kernel lists the show {:?}, host has {expected:?}", listing.shows);
+    for (line, named) in [("SHOW nope 0", "nope"), ("SHOW race 0 nomethod", "nomethod"), ("SHOW race x", "`x`")] {
+        qemu.console.send_bytes(format!("{line}\n").as_bytes())?;
+        match qemu.console.reply()? {
+            Reply::Err(text) if text.contains(named) => {}
+            other => bail!("`{line}` answered {other:?}, expected an ERR naming `{named}`"),
+        }
+    }
+    let pong = qemu.console.ok(&Command::Ping)?;
+    ensure!(pong == "pong", "PING after bad SHOWs answered OK \"{pong}\"");
+    Ok(())
+}

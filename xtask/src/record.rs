@@ -1,0 +1,235 @@
+//! `cargo xtask record`: frames of a show entry drawn by the kernel with
+//! `SHOW`, read back with `DUMP` (framebuffer and DAC), written as an
+//! animated GIF paced like the demo.
+
+use std::fs::{self, Permissions};
+use std::io::{BufWriter, Write};
+use std::os::unix::fs::PermissionsExt;
+use std::path::Path;
+
+use anyhow::{ensure, Context, Result};
+use harness::checks::show_matches_host_render;
+use harness::render::{method_named, show_entry};
+use harness::{Console, Dump, Qemu, QemuOptions};
+use indicatif::{ProgressBar, ProgressStyle};
+use raster::palette::{to_rgb8, ENTRIES};
+use raster::show::{Entry, FRAMES_PER_SECOND};
+use raster::SCREEN;
+use tempfile::NamedTempFile;
+
+use crate::opt::RecordOpt;
+
+/// Centiseconds between two GIF frames: the show's pace, rounded.
+const DELAY: u16 = ((100 + FRAMES_PER_SECOND / 2) / FRAMES_PER_SECOND) as u16;
+
+pub fn record(opt: &RecordOpt) -> Result<()> {
+    // Everything that can be checked is checked before spending a boot.
+    let entry = show_entry(&opt.scene)?;
+    if let Some(method) = &opt.method {
+        method_named(method)?;
+    }
+    let partial = partial_file_for(&opt.out)?;
+    let mut frames = frame_numbers(entry, opt.start, opt.step, opt.frames);
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    let bar = ProgressBar::new(u64::from(opt.frames)).with_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} frames {msg}")
+            .expect("the progress template is valid")
+            .progress_chars("=> "),
+    );
+    let mut record_frame = |frame: u32| -> Result<Dump> {
+        bar.set_message(format!("{} frame {frame}", entry.name));
+        let dump = shoot(&mut qemu.console, entry, frame, opt.method.as_deref(), !opt.no_verify)
+            .with_context(|| format!("{} frame {frame}", entry.name))?;
+        bar.inc(1);
+        Ok(dump)
+    };
+    let first = frames.next().expect("at least one frame is recorded");
+    let mut gif = Gif::new(BufWriter::new(partial), &record_frame(first)?)?;
+    for frame in frames {
+        gif.add(&record_frame(frame)?)?;
+    }
+    bar.finish_and_clear();
+    let partial = gif.finish()?.into_inner().context("failed to write the GIF")?;
+    partial.persist(&opt.out).with_context(|| format!("failed to rename the GIF to {}", opt.out.display()))?;
+    qemu.quit()?;
+    println!("{}", opt.out.display());
+    Ok(())
+}
+
+/// A temporary file beside `out`, which must name a `.gif`: written first,
+/// renamed to `out` once complete (the rename stays on one file system),
+/// deleted if dropped before, so a failure leaves nothing half-written.
+/// Creating it proves `out`'s directory writable before QEMU boots.
+fn partial_file_for(out: &Path) -> Result<NamedTempFile> {
+    ensure!(
+        out.extension().is_some_and(|ext| ext == "gif"),
+        "--out {}: the recording is an animated GIF; name a FILE.gif",
+        out.display()
+    );
+    ensure!(!out.is_dir(), "--out {} is a directory; name a FILE.gif", out.display());
+    let dir = out.parent().filter(|dir| !dir.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    fs::create_dir_all(dir).with_context(|| format!("cannot create the directory {}", dir.display()))?;
+    tempfile::Builder::new()
+        .prefix(".record-")
+        .suffix(".gif.partial")
+        // What `File::create` asks for: the umask decides.
+        .permissions(Permissions::from_mode(0o666))
+        .tempfile_in(dir)
+        .with_context(|| format!("cannot write in {}", dir.display()))
+}
+
+/// The `count` frame numbers recorded: from `start`, every `step`-th,
+/// wrapping around the entry's frames.
+fn frame_numbers(entry: &Entry, start: u32, step: u32, count: u32) -> impl Iterator<Item = u32> {
+    let frames = u64::from(entry.frames);
+    (0..u64::from(count)).map(move |i| ((u64::from(start) + i * u64::from(step)) % frames) as u32)
+}
+
+/// Frame `frame` of `entry` shown by the kernel and dumped; with `verify`,
+/// checked against the host render and the show's palette first.
+fn shoot(console: &mut Console, entry: &Entry, frame: u32, method: Option<&str>, verify: bool) -> Result<Dump> {
+    if verify {
+        return Ok(show_matches_host_render(console, entry.name, frame, method)?.1);
+    }
+    console.show(entry.name, frame, method)?;
+    console.dump()
+}
+
+/// An animated GIF of dumps that loops forever, [`DELAY`] between frames.
+/// The first dump's DAC is the global palette; a later dump whose DAC
+/// differs carries its own.
+struct Gif<W: Write> {
+    encoder: gif::Encoder<W>,
+    palette: [[u8; 3]; ENTRIES],
+}
+
+impl<W: Write> Gif<W> {
+    /// Starts the GIF on `out` with `first` as its first frame.
+    fn new(out: W, first: &Dump) -> Result<Self> {
+        let (width, height) = (SCREEN.width as u16, SCREEN.height as u16);
+        let mut encoder = gif::Encoder::new(out, width, height, &to_rgb8(&first.palette))?;
+        encoder.set_repeat(gif::Repeat::Infinite)?;
+        let mut gif = Self { encoder, palette: first.palette };
+        gif.add(first)?;
+        Ok(gif)
+    }
+
+    fn add(&mut self, dump: &Dump) -> Result<()> {
+        let mut frame =
+            gif::Frame::from_indexed_pixels(SCREEN.width as u16, SCREEN.height as u16, dump.pixels.clone(), None);
+        frame.delay = DELAY;
+        if dump.palette != self.palette {
+            frame.palette = Some(to_rgb8(&dump.palette).to_vec());
+        }
+        self.encoder.write_frame(&frame).context("failed to encode a GIF frame")
+    }
+
+    /// Writes the trailer and hands the output back.
+    fn finish(self) -> Result<W> {
+        self.encoder.into_inner().context("failed to finish the GIF")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+    use raster::palette::VGA_DEFAULT;
+    use raster::show::{self, PALETTE};
+
+    use crate::opt::{Action, Cli};
+
+    fn parse(args: &[&str]) -> Result<RecordOpt, clap::Error> {
+        let args = ["cargo xtask", "record"].iter().chain(args);
+        Cli::try_parse_from(args).map(|cli| match cli.action {
+            Action::Record(opt) => opt,
+            other => panic!("parsed as {other:?}"),
+        })
+    }
+
+    #[test]
+    fn arguments_default_to_every_frame_from_the_first_with_verification() {
+        let opt = parse(&["--scene", "race", "--frames", "3", "--out", "r.gif"]).unwrap();
+        assert_eq!((opt.start, opt.step, opt.method, opt.no_verify), (0, 1, None, false));
+        let race = show::entry("race").unwrap();
+        let wrapped: Vec<u32> = frame_numbers(race, race.frames - 1, 2, 3).collect();
+        assert_eq!(wrapped, [race.frames - 1, 1, 3]);
+        let still = show::entry("abrash38-1").unwrap();
+        assert_eq!(frame_numbers(still, 5, 1, 2).collect::<Vec<_>>(), [0, 0]);
+    }
+
+    #[test]
+    fn no_frames_or_no_step_is_refused_by_the_parser() {
+        for bad in [["--frames", "0", "--step", "1"], ["--frames", "1", "--step", "0"]] {
+            let error = parse(&[&["--scene", "race", "--out", "r.gif"][..], &bad[..]].concat()).unwrap_err();
+            assert_eq!(error.kind(), clap::error::ErrorKind::ValueValidation, "{error}");
+        }
+    }
+
+    #[test]
+    fn bad_names_and_outputs_are_refused_before_any_boot() {
+        let opt = |scene: &str, method: Option<&str>, out: &str| RecordOpt {
+            scene: scene.into(),
+            frames: 1,
+            out: out.into(),
+            method: method.map(Into::into),
+            start: 0,
+            step: 1,
+            no_verify: false,
+        };
+        let error = |opt: RecordOpt| format!("{:#}", record(&opt).unwrap_err());
+        let unknown_scene = error(opt("nope", None, "/tmp/x.gif"));
+        assert!(unknown_scene.starts_with("unknown show entry `nope`; valid entries: abrash38-1"), "{unknown_scene}");
+        let unknown_method = error(opt("race", Some("nope"), "/tmp/x.gif"));
+        assert!(unknown_method.starts_with("unknown method `nope`; valid methods: abrash_float"), "{unknown_method}");
+        let not_gif = error(opt("race", None, "/tmp/x.png"));
+        assert!(not_gif.contains("the recording is an animated GIF"), "{not_gif}");
+        let dir = tempfile::tempdir().unwrap();
+        let directory = dir.path().join("d.gif");
+        fs::create_dir(&directory).unwrap();
+        let directory = error(opt("race", None, directory.to_str().unwrap()));
+        assert!(directory.ends_with("d.gif is a directory; name a FILE.gif"), "{directory}");
+        let unwritable = error(opt("race", None, "/proc/polylab/x.gif"));
+        assert!(unwritable.starts_with("cannot create the directory /proc/polylab"), "{unwritable}");
+    }
+
+    #[test]
+    fn a_failed_recording_leaves_nothing_behind() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("sub").join("x.gif");
+        drop(partial_file_for(&out).unwrap());
+        assert_eq!(fs::read_dir(out.parent().unwrap()).unwrap().count(), 0);
+    }
+
+    fn dump(fill: u8, palette: [[u8; 3]; ENTRIES]) -> Dump {
+        let pixels = (0..SCREEN.width * SCREEN.height).map(|i| (i as u8).wrapping_mul(fill)).collect();
+        Dump { pixels, palette }
+    }
+
+    #[test]
+    fn the_gif_decodes_to_the_dumps_in_their_palettes_looping_at_the_show_s_pace() {
+        let dumps = [dump(1, PALETTE), dump(3, PALETTE), dump(7, VGA_DEFAULT)];
+        let mut gif = Gif::new(Vec::new(), &dumps[0]).unwrap();
+        for dump in &dumps[1..] {
+            gif.add(dump).unwrap();
+        }
+        let bytes = gif.finish().unwrap();
+        let mut options = gif::DecodeOptions::new();
+        options.set_color_output(gif::ColorOutput::Indexed);
+        let mut decoder = options.read_info(bytes.as_slice()).unwrap();
+        assert_eq!((decoder.width(), decoder.height()), (320, 200));
+        assert_eq!(decoder.global_palette(), Some(&to_rgb8(&PALETTE)[..]));
+        let mut decoded = Vec::new();
+        while let Some(frame) = decoder.read_next_frame().unwrap() {
+            assert_eq!((frame.left, frame.top, frame.width, frame.height, frame.delay), (0, 0, 320, 200, 3));
+            decoded.push((frame.buffer.to_vec(), frame.palette.clone()));
+        }
+        assert_eq!(decoder.repeat(), gif::Repeat::Infinite);
+        let expected: Vec<_> = dumps
+            .iter()
+            .zip([None, None, Some(to_rgb8(&VGA_DEFAULT).to_vec())])
+            .map(|(dump, palette)| (dump.pixels.clone(), palette))
+            .collect();
+        assert_eq!(decoded, expected);
+    }
+}
