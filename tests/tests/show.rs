@@ -99,6 +99,21 @@ fn an_animation_shows_what_the_host_renders_with_every_method_named() -> Result<
 }
 
 #[test]
+fn every_animation_drawn_with_exact_allocates_nothing_after_its_first_frame() -> Result<()> {
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    let mut failures = Vec::new();
+    for entry in ENTRIES_IN_ORDER.iter().filter(|entry| entry.is_animated()) {
+        for frame in [0, 1, entry.frames / 2, entry.frames - 1] {
+            let reply = qemu.console.show(entry.name, frame, Some("exact"))?;
+            if frame > 0 && reply.allocs != 0 {
+                failures.push(format!("{} frame {frame} with exact: {} allocations", entry.name, reply.allocs));
+            }
+        }
+    }
+    none_failed(failures)
+}
+
+#[test]
 fn the_screen_shows_a_shaded_frame_through_the_show_palette() -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     let (_, dump) = show_matches_host_render(&mut qemu.console, "wgt-gouraud", 0, None)?;

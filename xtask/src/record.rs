@@ -10,7 +10,7 @@ use std::path::Path;
 use anyhow::{ensure, Context, Result};
 use harness::checks::show_matches_host_render;
 use harness::render::{method_named, show_entry};
-use harness::{Console, Dump, Qemu, QemuOptions};
+use harness::{Console, Dump, Qemu, QemuOptions, Shown};
 use indicatif::{ProgressBar, ProgressStyle};
 use raster::palette::{to_rgb8, ENTRIES};
 use raster::show::{Entry, FRAMES_PER_SECOND};
@@ -19,8 +19,13 @@ use tempfile::NamedTempFile;
 
 use crate::opt::RecordOpt;
 
-/// Centiseconds between two GIF frames: the show's pace, rounded.
-const DELAY: u16 = ((100 + FRAMES_PER_SECOND / 2) / FRAMES_PER_SECOND) as u16;
+/// Centiseconds between two GIF frames `step` show frames apart, so the
+/// GIF plays at the show's pace: `100 * step / FRAMES_PER_SECOND`, rounded,
+/// at least 1 (GIF viewers treat 0 as "as fast as you like").
+fn delay(step: u32) -> u16 {
+    let centiseconds = (100 * u64::from(step) + u64::from(FRAMES_PER_SECOND / 2)) / u64::from(FRAMES_PER_SECOND);
+    centiseconds.clamp(1, u64::from(u16::MAX)) as u16
+}
 
 pub fn record(opt: &RecordOpt) -> Result<()> {
     // Everything that can be checked is checked before spending a boot.
@@ -36,19 +41,23 @@ pub fn record(opt: &RecordOpt) -> Result<()> {
             .expect("the progress template is valid")
             .progress_chars("=> "),
     );
+    let mut shown = Vec::new();
     let mut record_frame = |frame: u32| -> Result<Dump> {
         bar.set_message(format!("{} frame {frame}", entry.name));
-        let dump = shoot(&mut qemu.console, entry, frame, opt.method.as_deref(), !opt.no_verify)
+        let (reply, dump) = shoot(&mut qemu.console, entry, frame, opt.method.as_deref(), !opt.no_verify)
             .with_context(|| format!("{} frame {frame}", entry.name))?;
+        shown.push(reply);
         bar.inc(1);
         Ok(dump)
     };
+    let delay = delay(opt.step);
     let first = frames.next().expect("at least one frame is recorded");
-    let mut gif = Gif::new(BufWriter::new(partial), &record_frame(first)?)?;
+    let mut gif = Gif::new(BufWriter::new(partial), &record_frame(first)?, delay)?;
     for frame in frames {
         gif.add(&record_frame(frame)?)?;
     }
     bar.finish_and_clear();
+    print!("{}", summary(&shown));
     let partial = gif.finish()?.into_inner().context("failed to write the GIF")?;
     partial.persist(&opt.out).with_context(|| format!("failed to rename the GIF to {}", opt.out.display()))?;
     qemu.quit()?;
@@ -85,31 +94,67 @@ fn frame_numbers(entry: &Entry, start: u32, step: u32, count: u32) -> impl Itera
     (0..u64::from(count)).map(move |i| ((u64::from(start) + i * u64::from(step)) % frames) as u32)
 }
 
-/// Frame `frame` of `entry` shown by the kernel and dumped; with `verify`,
-/// checked against the host render and the show's palette first.
-fn shoot(console: &mut Console, entry: &Entry, frame: u32, method: Option<&str>, verify: bool) -> Result<Dump> {
+/// Frame `frame` of `entry` shown by the kernel and dumped, with the
+/// kernel's reply; with `verify`, checked against the host render and the
+/// show's palette first.
+fn shoot(
+    console: &mut Console,
+    entry: &Entry,
+    frame: u32,
+    method: Option<&str>,
+    verify: bool,
+) -> Result<(Shown, Dump)> {
     if verify {
-        return Ok(show_matches_host_render(console, entry.name, frame, method)?.1);
+        return show_matches_host_render(console, entry.name, frame, method);
     }
-    console.show(entry.name, frame, method)?;
-    console.dump()
+    let reply = console.show(entry.name, frame, method)?;
+    Ok((reply, console.dump()?))
 }
 
-/// An animated GIF of dumps that loops forever, [`DELAY`] between frames.
+/// What the kernel reported over the recording, a line per method in the
+/// order first met: frames, the median and the largest rdtsc cycles of a
+/// frame's draw (TCG cycles), and the median allocations per frame.
+fn summary(shown: &[Shown]) -> String {
+    let mut methods: Vec<&str> = Vec::new();
+    for reply in shown {
+        if !methods.contains(&reply.method.as_str()) {
+            methods.push(&reply.method);
+        }
+    }
+    let mut text = String::new();
+    for method in methods {
+        let of_method = || shown.iter().filter(move |reply| reply.method == method);
+        let median = |mut values: Vec<u64>| {
+            values.sort_unstable();
+            values[values.len() / 2]
+        };
+        let cycles: Vec<u64> = of_method().map(|reply| reply.cycles).collect();
+        let (frames, most) = (cycles.len(), cycles.iter().max().copied().unwrap_or(0));
+        let cycles = median(cycles);
+        let allocs = median(of_method().map(|reply| reply.allocs).collect());
+        text += &format!(
+            "{method}: {frames} frames, draw cycles median {cycles} max {most} (rdtsc under TCG), allocations per frame median {allocs}\n"
+        );
+    }
+    text
+}
+
+/// An animated GIF of dumps that loops forever, `delay` centiseconds a frame.
 /// The first dump's DAC is the global palette; a later dump whose DAC
 /// differs carries its own.
 struct Gif<W: Write> {
     encoder: gif::Encoder<W>,
     palette: [[u8; 3]; ENTRIES],
+    delay: u16,
 }
 
 impl<W: Write> Gif<W> {
     /// Starts the GIF on `out` with `first` as its first frame.
-    fn new(out: W, first: &Dump) -> Result<Self> {
+    fn new(out: W, first: &Dump, delay: u16) -> Result<Self> {
         let (width, height) = (SCREEN.width as u16, SCREEN.height as u16);
         let mut encoder = gif::Encoder::new(out, width, height, &to_rgb8(&first.palette))?;
         encoder.set_repeat(gif::Repeat::Infinite)?;
-        let mut gif = Self { encoder, palette: first.palette };
+        let mut gif = Self { encoder, palette: first.palette, delay };
         gif.add(first)?;
         Ok(gif)
     }
@@ -117,7 +162,7 @@ impl<W: Write> Gif<W> {
     fn add(&mut self, dump: &Dump) -> Result<()> {
         let mut frame =
             gif::Frame::from_indexed_pixels(SCREEN.width as u16, SCREEN.height as u16, dump.pixels.clone(), None);
-        frame.delay = DELAY;
+        frame.delay = self.delay;
         if dump.palette != self.palette {
             frame.palette = Some(to_rgb8(&dump.palette).to_vec());
         }
@@ -207,9 +252,31 @@ mod tests {
     }
 
     #[test]
+    fn the_delay_keeps_the_show_s_pace_whatever_the_step() {
+        assert_eq!([delay(1), delay(2), delay(7), delay(35)], [3, 6, 20, 100]);
+        assert_eq!(delay(u32::MAX), u16::MAX);
+    }
+
+    #[test]
+    fn the_summary_gives_each_method_its_median_and_largest_cycles() {
+        let reply = |method: &str, cycles: u64, allocs: u64| Shown {
+            method: method.into(),
+            cycles,
+            allocs,
+            ..Shown::default()
+        };
+        let shown = [reply("wgt", 30, 2), reply("exact", 5, 0), reply("wgt", 10, 2), reply("wgt", 20, 4)];
+        assert_eq!(
+            summary(&shown),
+            "wgt: 3 frames, draw cycles median 20 max 30 (rdtsc under TCG), allocations per frame median 2\n\
+             exact: 1 frames, draw cycles median 5 max 5 (rdtsc under TCG), allocations per frame median 0\n"
+        );
+    }
+
+    #[test]
     fn the_gif_decodes_to_the_dumps_in_their_palettes_looping_at_the_show_s_pace() {
         let dumps = [dump(1, PALETTE), dump(3, PALETTE), dump(7, VGA_DEFAULT)];
-        let mut gif = Gif::new(Vec::new(), &dumps[0]).unwrap();
+        let mut gif = Gif::new(Vec::new(), &dumps[0], delay(1)).unwrap();
         for dump in &dumps[1..] {
             gif.add(dump).unwrap();
         }
