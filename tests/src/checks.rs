@@ -56,5 +56,12 @@ pub fn show_matches_host_render(
 /// read-back DAC (`c6_to_8`), every pixel a 2x2 block: zero differing
 /// pixels means the registers really put QEMU's VGA model in mode 13h.
 pub fn screen_matches_dump(name: &str, dump: &Dump, screen: &Image) -> Result<()> {
-    compare_images(&format!("{name}.screen"), &dump.image().scaled(SCREEN_SCALE), screen)
+    compare_images(&format!("{name}.screen"), &as_on_screen(&dump.image()), screen)
+}
+
+/// A 320x200 picture as QEMU's screendump shows it in mode 13h: 640x400,
+/// every pixel a [`SCREEN_SCALE`] x [`SCREEN_SCALE`] block of its colour.
+/// Row `y` of the picture is rows `y * SCREEN_SCALE` onwards of the screen.
+pub fn as_on_screen(picture: &Image) -> Image {
+    picture.scaled(SCREEN_SCALE)
 }

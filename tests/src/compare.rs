@@ -1,6 +1,7 @@
 //! Golden-image comparison that explains a mismatch with pictures, never
 //! with pixel values: expected, actual and diff PNGs written side by side.
 
+use std::ops::Range;
 use std::path::PathBuf;
 
 use anyhow::{bail, Result};
@@ -24,12 +25,16 @@ pub fn failures_dir() -> PathBuf {
 /// the actual image) into [`failures_dir`] and fails naming them and
 /// counting the differing pixels.
 pub fn compare_images(name: &str, expected: &Image, actual: &Image) -> Result<()> {
-    let same_size = (expected.width(), expected.height()) == (actual.width(), actual.height());
-    let differing: Vec<usize> = if same_size {
-        (0..expected.pixel_count()).filter(|&i| !same_pixel(expected, actual, i)).collect()
-    } else {
-        Vec::new()
-    };
+    compare_image_rows(name, expected, actual, 0..expected.height())
+}
+
+/// [`compare_images`] over rows `rows` only (cut at the image's height):
+/// for a picture part of which is known to change, such as a label with
+/// a measurement in it. The PNGs are whole; the diff marks differences in
+/// those rows only.
+pub fn compare_image_rows(name: &str, expected: &Image, actual: &Image, rows: Range<u32>) -> Result<()> {
+    let same_size = same_size(expected, actual);
+    let differing = if same_size { differing_pixels(expected, actual, rows.clone()) } else { Vec::new() };
     if same_size && differing.is_empty() {
         return Ok(());
     }
@@ -52,17 +57,42 @@ pub fn compare_images(name: &str, expected: &Image, actual: &Image) -> Result<()
     }
     let diff_path = path("diff");
     diff_image(actual, &differing)?.write_png(&diff_path)?;
+    let rows = rows.start.min(expected.height())..rows.end.min(expected.height());
+    let compared = rows.len() * expected.width() as usize;
+    let which_rows = if compared == expected.pixel_count() {
+        String::new()
+    } else {
+        format!(" in rows {}..{}", rows.start, rows.end)
+    };
     let first = differing[0] as u32;
     bail!(
-        "{name}: {} of {} pixels differ (first at x={}, y={}); wrote {}, {} and {}",
+        "{name}: {} of {compared} pixels{which_rows} differ (first at x={}, y={}); wrote {}, {} and {}",
         differing.len(),
-        expected.pixel_count(),
         first % expected.width(),
         first / expected.width(),
         expected_path.display(),
         actual_path.display(),
         diff_path.display()
     )
+}
+
+/// Whether the images have the same size and are equal pixel for pixel
+/// (as [`compare_images`] compares them) in rows `rows`. Writes nothing:
+/// for polling a picture that is expected to change.
+pub fn images_match_in_rows(expected: &Image, actual: &Image, rows: Range<u32>) -> bool {
+    same_size(expected, actual) && differing_pixels(expected, actual, rows).is_empty()
+}
+
+fn same_size(expected: &Image, actual: &Image) -> bool {
+    (expected.width(), expected.height()) == (actual.width(), actual.height())
+}
+
+/// Row-major indices of the pixels in rows `rows` (cut at the height) that
+/// differ between two images of the same size.
+fn differing_pixels(expected: &Image, actual: &Image, rows: Range<u32>) -> Vec<usize> {
+    let width = expected.width() as usize;
+    let rows = rows.start.min(expected.height()) as usize..rows.end.min(expected.height()) as usize;
+    (rows.start * width..rows.end.max(rows.start) * width).filter(|&i| !same_pixel(expected, actual, i)).collect()
 }
 
 /// Succeeds when two DAC palettes (6-bit levels) are equal entry for
@@ -135,6 +165,27 @@ mod tests {
         actual[9] = [0; 3];
         let error = compare_palettes("unit-dac", &expected, &actual).unwrap_err().to_string();
         assert_eq!(error, "unit-dac: 2 of 256 DAC entries differ; entry 7 reads [0, 2, 3], expected [1, 2, 3]");
+    }
+
+    #[test]
+    fn rows_outside_the_range_are_not_compared() {
+        let a = Image::rgb(2, 3, vec![[0; 3], [1; 3], [2; 3], [3; 3], [4; 3], [5; 3]]).unwrap();
+        let mut colors = vec![[9; 3], [1; 3], [2; 3], [3; 3], [9; 3], [5; 3]];
+        let b = Image::rgb(2, 3, colors.clone()).unwrap();
+        assert!(images_match_in_rows(&a, &b, 1..2));
+        compare_image_rows("unit-rows", &a, &b, 1..2).unwrap();
+        assert!(!images_match_in_rows(&a, &b, 1..3));
+        assert!(!images_match_in_rows(&a, &b, 0..1));
+        colors[3] = [0; 3];
+        let c = Image::rgb(2, 3, colors).unwrap();
+        let error = compare_image_rows("unit-rows", &a, &c, 1..9).unwrap_err().to_string();
+        assert!(
+            error.starts_with("unit-rows: 2 of 4 pixels in rows 1..3 differ (first at x=1, y=1); wrote "),
+            "{error}"
+        );
+        for what in ["expected", "actual", "diff"] {
+            std::fs::remove_file(failures_dir().join(format!("unit-rows.{what}.png"))).unwrap();
+        }
     }
 
     #[test]

@@ -195,6 +195,13 @@ impl Qemu {
         self.qmp()?.screendump(&scratch)
     }
 
+    /// Presses and releases the key QEMU names `qcode` on the PS/2 keyboard,
+    /// through QMP: nothing goes over the serial line, so the kernel's demo
+    /// keeps playing.
+    pub fn send_key(&mut self, qcode: &str) -> Result<()> {
+        self.qmp()?.send_key(qcode)
+    }
+
     /// Asks QEMU to quit through QMP and waits (at most [`QUIT_TIMEOUT`])
     /// for it to go.
     pub fn quit(mut self) -> Result<ExitStatus> {

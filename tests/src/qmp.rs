@@ -1,5 +1,6 @@
 //! The QEMU Machine Protocol client: JSON lines over a unix socket, used to
-//! take screendumps (QEMU's own view of the VGA card) and to quit.
+//! take screendumps (QEMU's own view of the VGA card), to press keys and
+//! to quit.
 
 use std::io::{BufRead, BufReader, ErrorKind, Write};
 use std::os::unix::net::UnixStream;
@@ -96,6 +97,16 @@ impl Qmp {
         self.execute("screendump", json!({ "filename": filename }))?;
         let bytes = std::fs::read(scratch).with_context(|| format!("failed to read the screendump {filename}"))?;
         parse_ppm(&bytes).with_context(|| format!("bad screendump {filename}"))
+    }
+
+    /// Presses and releases the key QEMU names `qcode` (`spc`, `ret`, `esc`,
+    /// `5`, ...) on the emulated keyboard (QMP `send-key`, which releases
+    /// it after QEMU's default hold time of 100 ms). Returns once QEMU has
+    /// queued the key, not once the guest has read it.
+    pub fn send_key(&mut self, qcode: &str) -> Result<()> {
+        self.execute("send-key", json!({ "keys": [{ "type": "qcode", "data": qcode }] }))
+            .with_context(|| format!("failed to press the key `{qcode}`"))?;
+        Ok(())
     }
 
     /// Asks QEMU to exit.

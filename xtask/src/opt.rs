@@ -17,7 +17,8 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Action {
     /// The demo in QEMU: in a window when a display is available; otherwise
-    /// headless, writing each page to target/run/<page>.png.
+    /// headless, playing the show into target/run: each still as
+    /// <entry>.png, each animation as <entry>.gif.
     Run(RunOpt),
     /// Builds the raw BIOS image (for QEMU or a USB stick); prints its path last.
     Image,

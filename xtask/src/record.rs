@@ -7,7 +7,7 @@ use std::io::{BufWriter, Write};
 use std::os::unix::fs::PermissionsExt;
 use std::path::Path;
 
-use anyhow::{ensure, Context, Result};
+use anyhow::{bail, ensure, Context, Result};
 use harness::checks::show_matches_host_render;
 use harness::render::{method_named, show_entry};
 use harness::{Console, Dump, Qemu, QemuOptions, Shown};
@@ -34,42 +34,70 @@ pub fn record(opt: &RecordOpt) -> Result<()> {
         method_named(method)?;
     }
     let partial = partial_file_for(&opt.out)?;
-    let mut frames = frame_numbers(entry, opt.start, opt.step, opt.frames);
     let mut qemu = Qemu::boot(QemuOptions::default())?;
-    let bar = ProgressBar::new(u64::from(opt.frames)).with_style(
-        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} frames {msg}")
-            .expect("the progress template is valid")
-            .progress_chars("=> "),
-    );
-    let mut shown = Vec::new();
-    let mut record_frame = |frame: u32| -> Result<Dump> {
-        bar.set_message(format!("{} frame {frame}", entry.name));
-        let (reply, dump) = shoot(&mut qemu.console, entry, frame, opt.method.as_deref(), !opt.no_verify)
-            .with_context(|| format!("{} frame {frame}", entry.name))?;
-        shown.push(reply);
-        bar.inc(1);
-        Ok(dump)
+    let take = Take {
+        entry,
+        frames: frame_numbers(entry, opt.start, opt.step, opt.frames).collect(),
+        step: opt.step,
+        method: opt.method.as_deref(),
+        verify: !opt.no_verify,
     };
-    let delay = delay(opt.step);
-    let first = frames.next().expect("at least one frame is recorded");
-    let mut gif = Gif::new(BufWriter::new(partial), &record_frame(first)?, delay)?;
-    for frame in frames {
-        gif.add(&record_frame(frame)?)?;
-    }
-    bar.finish_and_clear();
+    let shown = take.film(&mut qemu.console, partial, &opt.out)?;
     print!("{}", summary(&shown));
-    let partial = gif.finish()?.into_inner().context("failed to write the GIF")?;
-    partial.persist(&opt.out).with_context(|| format!("failed to rename the GIF to {}", opt.out.display()))?;
     qemu.quit()?;
     println!("{}", opt.out.display());
     Ok(())
+}
+
+/// Frames of one show entry to film.
+pub struct Take<'a> {
+    pub entry: &'static Entry,
+    /// Frame numbers in the order filmed, each `step` after the last.
+    pub frames: Vec<u32>,
+    pub step: u32,
+    /// The method for every frame; `None`, the entry's own.
+    pub method: Option<&'a str>,
+    /// Check every dump against the host render and the show's palette.
+    pub verify: bool,
+}
+
+impl Take<'_> {
+    /// Films the frames through `console` (`SHOW`, `DUMP`) into `partial`
+    /// (from [`partial_file_for`]), renamed to `out` once complete, with a
+    /// progress bar; returns the kernel's replies.
+    pub fn film(&self, console: &mut Console, partial: NamedTempFile, out: &Path) -> Result<Vec<Shown>> {
+        let Some((&first, rest)) = self.frames.split_first() else { bail!("no frames to record") };
+        let bar = ProgressBar::new(self.frames.len() as u64).with_style(
+            ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} frames {msg}")
+                .expect("the progress template is valid")
+                .progress_chars("=> "),
+        );
+        let name = self.entry.name;
+        let mut shown = Vec::with_capacity(self.frames.len());
+        let mut record_frame = |frame: u32| -> Result<Dump> {
+            bar.set_message(format!("{name} frame {frame}"));
+            let (reply, dump) = shoot(console, self.entry, frame, self.method, self.verify)
+                .with_context(|| format!("{name} frame {frame}"))?;
+            shown.push(reply);
+            bar.inc(1);
+            Ok(dump)
+        };
+        let mut gif = Gif::new(BufWriter::new(partial), &record_frame(first)?, delay(self.step))?;
+        for &frame in rest {
+            gif.add(&record_frame(frame)?)?;
+        }
+        bar.finish_and_clear();
+        let partial = gif.finish()?.into_inner().context("failed to write the GIF")?;
+        partial.persist(out).with_context(|| format!("failed to rename the GIF to {}", out.display()))?;
+        Ok(shown)
+    }
 }
 
 /// A temporary file beside `out`, which must name a `.gif`: written first,
 /// renamed to `out` once complete (the rename stays on one file system),
 /// deleted if dropped before, so a failure leaves nothing half-written.
 /// Creating it proves `out`'s directory writable before QEMU boots.
-fn partial_file_for(out: &Path) -> Result<NamedTempFile> {
+pub fn partial_file_for(out: &Path) -> Result<NamedTempFile> {
     ensure!(
         out.extension().is_some_and(|ext| ext == "gif"),
         "--out {}: the recording is an animated GIF; name a FILE.gif",
@@ -89,7 +117,7 @@ fn partial_file_for(out: &Path) -> Result<NamedTempFile> {
 
 /// The `count` frame numbers recorded: from `start`, every `step`-th,
 /// wrapping around the entry's frames.
-fn frame_numbers(entry: &Entry, start: u32, step: u32, count: u32) -> impl Iterator<Item = u32> {
+pub fn frame_numbers(entry: &Entry, start: u32, step: u32, count: u32) -> impl Iterator<Item = u32> {
     let frames = u64::from(entry.frames);
     (0..u64::from(count)).map(move |i| ((u64::from(start) + i * u64::from(step)) % frames) as u32)
 }
@@ -114,7 +142,7 @@ fn shoot(
 /// What the kernel reported over the recording, a line per method in the
 /// order first met: frames, the median and the largest rdtsc cycles of a
 /// frame's draw (TCG cycles), and the median allocations per frame.
-fn summary(shown: &[Shown]) -> String {
+pub fn summary(shown: &[Shown]) -> String {
     let mut methods: Vec<&str> = Vec::new();
     for reply in shown {
         if !methods.contains(&reply.method.as_str()) {
@@ -133,7 +161,8 @@ fn summary(shown: &[Shown]) -> String {
         let cycles = median(cycles);
         let allocs = median(of_method().map(|reply| reply.allocs).collect());
         text += &format!(
-            "{method}: {frames} frames, draw cycles median {cycles} max {most} (rdtsc under TCG), allocations per frame median {allocs}\n"
+            "{method}: {frames} frame{}, draw cycles median {cycles} max {most} (rdtsc under TCG), allocations per frame median {allocs}\n",
+            if frames == 1 { "" } else { "s" }
         );
     }
     text
@@ -269,7 +298,7 @@ mod tests {
         assert_eq!(
             summary(&shown),
             "wgt: 3 frames, draw cycles median 20 max 30 (rdtsc under TCG), allocations per frame median 2\n\
-             exact: 1 frames, draw cycles median 5 max 5 (rdtsc under TCG), allocations per frame median 0\n"
+             exact: 1 frame, draw cycles median 5 max 5 (rdtsc under TCG), allocations per frame median 0\n"
         );
     }
 

@@ -5,9 +5,15 @@ use std::path::Path;
 use anyhow::Result;
 use harness::workspace::target_dir;
 use harness::{build_image, Display, Qemu, QemuOptions};
-use raster::scenes::NAMES;
+use harness::checks::show_matches_host_render;
+use raster::show::ENTRIES_IN_ORDER;
 
 use crate::opt::RunOpt;
+use crate::record::{frame_numbers, partial_file_for, summary, Take};
+
+/// Show frames from one recorded frame to the next when running headless:
+/// a loop of 256 frames becomes a GIF of 64.
+const HEADLESS_STEP: u32 = 4;
 
 pub fn run(opt: &RunOpt) -> Result<()> {
     let has_display =
@@ -28,16 +34,33 @@ fn in_a_window() -> Result<()> {
     qemu.wait_until_closed()
 }
 
-/// No display: draws every page and writes the kernel's dump of each as
-/// `<page>.png` in `out`, printing each path.
+/// No display: plays the show through `SHOW` as the demo would, entry by
+/// entry, into `out`: a still as `<entry>.png`, an animation as
+/// `<entry>.gif` (every [`HEADLESS_STEP`]-th frame of one loop), each
+/// checked against the host render, printing each path and the cycles.
 fn headless(out: &Path) -> Result<()> {
-    eprintln!("xtask: no display (DISPLAY and WAYLAND_DISPLAY unset): running headless");
+    eprintln!("xtask: no display (DISPLAY and WAYLAND_DISPLAY unset): playing the show headless into {}", out.display());
     let mut qemu = Qemu::boot(QemuOptions::default())?;
-    for page in NAMES {
-        qemu.console.draw(page, None)?;
-        let path = out.join(format!("{page}.png"));
-        qemu.console.dump()?.image().write_png(&path)?;
-        println!("{}", path.display());
+    for entry in ENTRIES_IN_ORDER {
+        if entry.is_animated() {
+            let path = out.join(format!("{}.gif", entry.name));
+            let take = Take {
+                entry,
+                frames: frame_numbers(entry, 0, HEADLESS_STEP, entry.frames.div_ceil(HEADLESS_STEP)).collect(),
+                step: HEADLESS_STEP,
+                method: None,
+                verify: true,
+            };
+            let shown = take.film(&mut qemu.console, partial_file_for(&path)?, &path)?;
+            println!("{}", path.display());
+            print!("{}", summary(&shown));
+        } else {
+            let path = out.join(format!("{}.png", entry.name));
+            let (shown, dump) = show_matches_host_render(&mut qemu.console, entry.name, 0, None)?;
+            dump.image().write_png(&path)?;
+            println!("{}", path.display());
+            print!("{}", summary(&[shown]));
+        }
     }
     qemu.quit()?;
     Ok(())

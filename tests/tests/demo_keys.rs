@@ -1,0 +1,156 @@
+//! The demo's keys (README "The demo"), pressed on the PS/2 keyboard with
+//! QMP `send-key` while the kernel plays the show by itself: space and
+//! Enter move to the next entry, a digit draws every entry with that
+//! method, 0 gives each its own method again, Escape starts over. Nothing
+//! goes over the serial line, whose first byte would stop the demo: the
+//! harness only waits for READY, then uses QMP alone. Each step is checked
+//! on QEMU's screendump against the host render of the frame, less the
+//! bottom label, which carries the cycles the kernel measured.
+//!
+//! Timing: a still page stays up for 3 s, and only Space, Enter and Escape
+//! start a page afresh (a digit or 0 changes the method and leaves the
+//! page's timer running). The steps are arranged so that no page has to
+//! outlast more than three screen checks, and a step whose picture the
+//! timer alone would bring (the next entry, same method) has to show up
+//! before the timer could have moved the page on: otherwise an ignored
+//! Space or Enter would pass.
+
+use std::time::{Duration, Instant};
+
+use anyhow::{bail, ensure, Context, Result};
+use harness::checks::{as_on_screen, SCREEN_SCALE};
+use harness::compare::{compare_image_rows, images_match_in_rows};
+use harness::render::{render_show, show_entry, show_method};
+use harness::{Image, Qemu, QemuOptions};
+use raster::methods;
+use raster::show::{ENTRIES_IN_ORDER, FRAMES_PER_SECOND, STILL_FRAMES};
+
+/// The first row of the bottom label (method and cycles), whose glyphs
+/// sit on rows 191 to 198 ringed by black from row 190: the cycles differ
+/// from frame to frame, so the rows from here down are not compared. The
+/// top label (the entry's name, and no frame counter on a still) is.
+const BOTTOM_LABEL_ROW: u32 = 188;
+
+/// How long a still page surely stays up after it starts: its 3 s, less
+/// half a second for a frame the pacer lets through at once after a slow
+/// one and for the time between the kernel starting the page and the host
+/// noting it (the host notes a key's page when it sends the key, before
+/// the kernel can read it; the first page when READY arrives, just after
+/// the kernel sent it and started the show).
+fn page_lasts() -> Duration {
+    let still = Duration::from_millis(u64::from(STILL_FRAMES) * 1000 / u64::from(FRAMES_PER_SECOND));
+    still - Duration::from_millis(500)
+}
+
+/// Pause between screendumps while waiting for a key to take effect.
+const POLL: Duration = Duration::from_millis(20);
+
+/// One key and what the screen then shows.
+struct Step {
+    /// QEMU's qcode of the key; none for the screen the demo starts with.
+    key: Option<&'static str>,
+    /// The show entry on the screen.
+    entry: &'static str,
+    /// The digit whose method (`methods::ALL[digit - 1]`) draws every
+    /// entry; none for each entry's own.
+    digit: Option<usize>,
+}
+
+impl Step {
+    /// Whether the step starts a page, and with it the page's 3 s: boot,
+    /// Space, Enter and Escape do (frame 0 of an entry); a digit and 0
+    /// only change the method.
+    fn starts_a_page(&self) -> bool {
+        matches!(self.key, None | Some("spc" | "ret" | "esc"))
+    }
+
+    fn describe(&self) -> String {
+        self.key.map_or_else(|| "at boot".to_string(), |key| format!("after the key `{key}`"))
+    }
+}
+
+/// Boot, Space, a digit, Enter with the digit's method kept, 0, the digit
+/// again, then Escape, which also drops the digit's method. Every step's
+/// picture differs from the one before, so an ignored key shows. Digit 5
+/// (`lamothe`) because `abrash_int` (2) and `abrash_aet` (3) draw these
+/// pages exactly as their own `abrash_float` does.
+const STEPS: &[Step] = &[
+    Step { key: None, entry: "abrash38-1", digit: None },
+    Step { key: Some("spc"), entry: "abrash38-2", digit: None },
+    Step { key: Some("5"), entry: "abrash38-2", digit: Some(5) },
+    Step { key: Some("ret"), entry: "abrash38-3", digit: Some(5) },
+    Step { key: Some("0"), entry: "abrash38-3", digit: None },
+    Step { key: Some("5"), entry: "abrash38-3", digit: Some(5) },
+    Step { key: Some("esc"), entry: "abrash38-1", digit: None },
+];
+
+/// What the screen shows at `step`: frame 0 of its entry drawn and
+/// labelled by the host (with 0 cycles: the bottom label is not compared),
+/// in the show's palette, as QEMU displays it; and a name for it.
+fn expected_screen(step: &Step) -> Result<(String, Image)> {
+    let entry = show_entry(step.entry)?;
+    let method = match step.digit {
+        Some(digit) => *methods::ALL.get(digit - 1).with_context(|| format!("no method for the digit {digit}"))?,
+        None => show_method(entry, 0, None)?,
+    };
+    let name = format!("demo_keys.{}.{}", entry.name, method.info().name);
+    Ok((name, as_on_screen(&render_show(entry, 0, method, 0))))
+}
+
+/// Whether the timer alone, without the key, would bring `step`'s
+/// picture after `before`'s: the next entry in the show, same method.
+fn the_timer_would_show(before: &Step, step: &Step) -> bool {
+    let index = |name| ENTRIES_IN_ORDER.iter().position(|entry| entry.name == name);
+    let next = index(before.entry).map(|i| (i + 1) % ENTRIES_IN_ORDER.len());
+    next.is_some() && next == index(step.entry) && before.digit == step.digit
+}
+
+/// Takes screendumps until one shows `expected` above the bottom label,
+/// within `deadline`; otherwise fails with the last dump written next to
+/// the expected picture and their diff.
+fn screen_shows(qemu: &mut Qemu, name: &str, expected: &Image, deadline: Instant) -> Result<()> {
+    let rows = 0..BOTTOM_LABEL_ROW * SCREEN_SCALE;
+    loop {
+        let screen = qemu.screendump()?;
+        // The dump shows the screen as it was at some moment up to now.
+        let in_time = Instant::now() <= deadline;
+        if in_time && images_match_in_rows(expected, &screen, rows.clone()) {
+            return Ok(());
+        }
+        if !in_time {
+            compare_image_rows(name, expected, &screen, rows)?;
+            bail!("{name}: shown, but only after the deadline");
+        }
+        std::thread::sleep(POLL);
+    }
+}
+
+#[test]
+fn space_enter_digits_and_escape_move_the_running_demo() -> Result<()> {
+    // Everything the host draws is ready before QEMU starts: the clock runs
+    // from READY on.
+    let expected: Vec<(String, Image)> = STEPS.iter().map(expected_screen).collect::<Result<_>>()?;
+    for (pair, step) in expected.windows(2).zip(&STEPS[1..]) {
+        let ([(before, was), (name, is)], Some(key)) = (pair, step.key) else { unreachable!("windows of 2") };
+        let rows = 0..BOTTOM_LABEL_ROW * SCREEN_SCALE;
+        ensure!(!images_match_in_rows(was, is, rows), "{name} looks like {before}: an ignored `{key}` would pass");
+    }
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    let mut page_ends = Instant::now() + page_lasts();
+    for (i, (step, (name, picture))) in STEPS.iter().zip(&expected).enumerate() {
+        let name = format!("{i}.{name}");
+        let before_page_ends = page_ends;
+        if let Some(key) = step.key {
+            let pressed = Instant::now();
+            qemu.send_key(key)?;
+            if step.starts_a_page() {
+                page_ends = pressed + page_lasts();
+            }
+        }
+        let faked_by_the_timer = i > 0 && the_timer_would_show(&STEPS[i - 1], step);
+        let deadline = if faked_by_the_timer { before_page_ends } else { page_ends };
+        screen_shows(&mut qemu, &name, picture, deadline)
+            .with_context(|| format!("{}: the demo does not show {name} in time", step.describe()))?;
+    }
+    Ok(())
+}
