@@ -10,6 +10,12 @@
 //! Coordinates are fixed point with [`SUBPIXEL_BITS`] fractional bits (see
 //! [`Point`]); the classic ports round them to whole pixels first, as their
 //! originals only took integers.
+//!
+//! [`show`] is the kernel's demo as data: every frame of every entry (the
+//! seeds' pages, animations with shading, textures and depth through one
+//! attribute interpolator, the method race), drawn the same way on both
+//! sides and labelled with an 8x8 font (`font8x8`, the crate's one
+//! dependency).
 #![no_std]
 #![forbid(unsafe_code)]
 

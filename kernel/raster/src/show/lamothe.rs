@@ -95,43 +95,7 @@ mod tests {
     use crate::sink::SCREEN;
 
     fn frame(frame: u32, method: &dyn Method) -> (Framebuffer, DrawReport) {
-        let mut target = Framebuffer::new(SCREEN);
-        let report = draw(frame, method, &mut Scratch::new(), &mut target);
-        (target, report)
-    }
-
-    #[test]
-    fn a_full_turn_comes_back_to_the_first_frame() {
-        for method in [&methods::lamothe::Lamothe as &dyn Method, &methods::exact::Exact] {
-            assert_eq!(frame(0, method).0, frame(FRAMES, method).0, "{}", method.info().name);
-        }
-    }
-
-    #[test]
-    fn frames_are_deterministic_and_move() {
-        let method = &methods::lamothe::Lamothe;
-        assert_eq!(frame(37, method), frame(37, method));
-        assert_ne!(frame(0, method).0, frame(1, method).0);
-        // Reusing one scratch polygon gives the same frame as a fresh one.
-        let mut scratch = Scratch::new();
-        let mut target = Framebuffer::new(SCREEN);
-        draw(5, method, &mut scratch, &mut target);
-        target = Framebuffer::new(SCREEN);
-        draw(37, method, &mut scratch, &mut target);
-        assert_eq!(target, frame(37, method).0);
-    }
-
-    #[test]
-    fn every_method_draws_every_tenth_frame_inside_the_screen() {
-        for method in methods::ALL {
-            for f in (0..FRAMES).step_by(10) {
-                let (target, report) = frame(f, *method);
-                let name = method.info().name;
-                assert_eq!(report.polygons, 7, "{name} frame {f}");
-                assert_eq!(report.refused, 0, "{name} frame {f}: {:?}", report.first_refusal);
-                assert_eq!(target.stray_spans(), 0, "{name} frame {f}");
-            }
-        }
+        super::super::drawn_alone(draw, frame, method)
     }
 
     #[test]

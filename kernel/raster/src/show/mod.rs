@@ -256,3 +256,97 @@ impl Stage {
         self.target.stray_spans()
     }
 }
+
+/// What one animation's `draw` puts on a fresh screen with fresh scratch.
+#[cfg(test)]
+fn drawn_alone(
+    draw: fn(u32, &dyn Method, &mut Scratch, &mut Framebuffer) -> DrawReport,
+    frame: u32,
+    method: &dyn Method,
+) -> (Framebuffer, DrawReport) {
+    let mut target = Framebuffer::new(SCREEN);
+    let report = draw(frame, method, &mut Scratch::new(), &mut target);
+    (target, report)
+}
+
+#[cfg(test)]
+mod tests {
+    use alloc::vec::Vec;
+
+    use super::*;
+    use crate::methods::exact::Exact;
+
+    fn animations() -> impl Iterator<Item = &'static Entry> {
+        ENTRIES_IN_ORDER.iter().filter(|entry| entry.is_animated())
+    }
+
+    /// Frame `frame` of `entry` with `method` on `stage`, and its report.
+    fn frame_of(stage: &mut Stage, entry: &Entry, frame: u32, method: &dyn Method) -> (Vec<u8>, DrawReport) {
+        let report = stage.draw(entry, frame, method);
+        (stage.pixels().to_vec(), report)
+    }
+
+    #[test]
+    fn every_frame_is_a_pure_function_of_its_number_and_the_loop_closes() {
+        for entry in animations() {
+            let frames: Vec<u32> = (0..entry.frames).step_by(11).collect();
+            let mut stage = Stage::new();
+            let first: Vec<Vec<u8>> = frames.iter().map(|&f| frame_of(&mut stage, entry, f, &Exact).0).collect();
+            // A stage that drew other frames, in another order, draws the
+            // same pixels: nothing carries over from one frame to the next.
+            let mut other = Stage::new();
+            for (&f, pixels) in frames.iter().zip(&first).rev() {
+                assert_eq!(&frame_of(&mut other, entry, f, &Exact).0, pixels, "{} frame {f}", entry.name);
+            }
+            assert_eq!(frame_of(&mut stage, entry, entry.frames, &Exact).0, first[0], "{} does not loop", entry.name);
+            assert_ne!(frame_of(&mut stage, entry, 1, &Exact).0, first[0], "{}: frame 1 is frame 0", entry.name);
+        }
+    }
+
+    #[test]
+    fn every_method_draws_every_animation_whole_and_inside_the_screen() {
+        let mut stage = Stage::new();
+        for entry in animations() {
+            for &method in methods::ALL {
+                let name = method.info().name;
+                let (_, first) = frame_of(&mut stage, entry, 0, method);
+                for frame in (0..entry.frames).step_by(13) {
+                    let strays = stage.stray_spans();
+                    let (pixels, report) = frame_of(&mut stage, entry, frame, method);
+                    let at = || alloc::format!("{} frame {frame} with {name}: {report:?}", entry.name);
+                    assert!(report.polygons > 0 && report.polygons == first.polygons, "{}", at());
+                    assert_eq!(report.refused, 0, "{}", at());
+                    assert_eq!(stage.stray_spans(), strays, "{}", at());
+                    assert!(pixels.iter().any(|&p| p != 0), "{}: nothing drawn", at());
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_race_gives_every_method_a_turn_and_stills_keep_their_source_s() {
+        let race = entry("race").unwrap();
+        let turns: Vec<&str> = (0..race.frames).map(|f| race.method_at(f).info().name).collect();
+        for method in methods::ALL {
+            assert!(turns.contains(&method.info().name), "{} never races", method.info().name);
+        }
+        for still in ENTRIES_IN_ORDER.iter().filter(|e| !e.is_animated()) {
+            assert_eq!(still.method_at(7).info().name, still.method, "{}", still.name);
+            assert!(scenes::by_name(still.name).is_some(), "{} is not a scene", still.name);
+        }
+    }
+
+    #[test]
+    fn the_palette_keeps_the_vga_default_below_the_ramps_and_ramps_climb() {
+        assert_eq!(PALETTE[..usize::from(RAMP_BASE)], VGA_DEFAULT[..usize::from(RAMP_BASE)]);
+        for ramp in [Ramp::Red, Ramp::Green, Ramp::Blue, Ramp::Gold] {
+            assert_eq!(PALETTE[usize::from(ramp.color(0))], [0, 0, 0]);
+            assert_eq!(PALETTE[usize::from(ramp.color(i32::MAX))], ramp.top());
+            for level in 1..i32::from(RAMP_LEVELS) {
+                let (below, here) = (PALETTE[usize::from(ramp.color(level - 1))], PALETTE[usize::from(ramp.color(level))]);
+                assert!((0..3).all(|c| below[c] <= here[c]), "{ramp:?} level {level}");
+            }
+        }
+        assert_eq!(Ramp::Gold.color(-5), Ramp::Gold.color(0));
+    }
+}

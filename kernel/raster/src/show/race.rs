@@ -77,13 +77,10 @@ pub(super) fn draw(frame: u32, method: &dyn Method, scratch: &mut Scratch, targe
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sink::SCREEN;
     use alloc::vec::Vec;
 
     fn frame(frame: u32, method: &dyn Method) -> (Framebuffer, DrawReport) {
-        let mut target = Framebuffer::new(SCREEN);
-        let report = draw(frame, method, &mut Scratch::new(), &mut target);
-        (target, report)
+        super::super::drawn_alone(draw, frame, method)
     }
 
     #[test]
@@ -93,32 +90,6 @@ mod tests {
         assert_eq!(order, all);
         assert_eq!(method_at(FRAMES_PER_METHOD - 1).info().name, all[0]);
         assert_eq!(method_at(FRAMES).info().name, all[0]);
-    }
-
-    #[test]
-    fn a_full_race_comes_back_to_the_first_frame() {
-        assert_eq!(frame(0, &methods::exact::Exact).0, frame(FRAMES, &methods::exact::Exact).0);
-        assert_eq!(frame(0, method_at(0)).0, frame(FRAMES, method_at(FRAMES)).0);
-    }
-
-    #[test]
-    fn frames_are_deterministic_and_move() {
-        let method = &methods::exact::Exact;
-        assert_eq!(frame(123, method), frame(123, method));
-        assert_ne!(frame(0, method).0, frame(1, method).0);
-    }
-
-    #[test]
-    fn every_method_draws_every_tenth_frame_inside_the_screen() {
-        for method in methods::ALL {
-            for f in (0..FRAMES).step_by(10) {
-                let (target, report) = frame(f, *method);
-                let name = method.info().name;
-                assert_eq!(report.polygons, 44, "{name} frame {f}");
-                assert_eq!(report.refused, 0, "{name} frame {f}: {:?}", report.first_refusal);
-                assert_eq!(target.stray_spans(), 0, "{name} frame {f}");
-            }
-        }
     }
 
     #[test]
