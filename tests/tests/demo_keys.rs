@@ -169,3 +169,47 @@ fn space_enter_digits_and_escape_move_the_running_demo() -> Result<()> {
     }
     Ok(())
 }
+
+/// With no key at all the timer turns the pages: the second page follows
+/// the first by itself. Then, skipping to `lamothe-rotate` with Space, the
+/// animation plays by itself: screendumps taken apart show frames of it
+/// exactly as the host renders them (the top label names the frame), each
+/// later than the one before.
+#[test]
+fn with_no_key_the_timer_turns_the_pages_and_animations_play_by_themselves() -> Result<()> {
+    let (first, second) = (expected_screen(&STEPS[0])?, expected_screen(&Step { key: None, ..STEPS[1] })?);
+    let rotate = show_entry("lamothe-rotate")?;
+    let method = show_method(rotate, 0, None)?;
+    let frames: Vec<Image> = (0..rotate.frames).map(|f| as_on_screen(&render_show(rotate, f, method, 0))).collect();
+    let skips = ENTRIES_IN_ORDER.iter().position(|entry| entry.name == rotate.name).context("no lamothe-rotate")?;
+
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    let booted = Instant::now();
+    screen_shows(&mut qemu, "timer.0.abrash38-1", &first.1, booted + page_lasts())?;
+    // The page lasts 3 s; allow as much again for a loaded machine.
+    screen_shows(&mut qemu, "timer.1.abrash38-2", &second.1, booted + 2 * page_lasts() + Duration::from_secs(2))?;
+
+    for _ in 1..skips {
+        qemu.send_key("spc")?;
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    let mut shown = Vec::new();
+    let started = Instant::now();
+    while shown.len() < 4 && started.elapsed() < Duration::from_secs(30) {
+        let screen = qemu.screendump()?;
+        if let Some(frame) = frames.iter().position(|frame| images_match_in_rows(frame, &screen, COMPARED_ROWS)) {
+            if shown.last() != Some(&frame) {
+                shown.push(frame);
+            }
+        }
+        std::thread::sleep(Duration::from_millis(150));
+    }
+    eprintln!("harness: lamothe-rotate frames seen in turn: {shown:?}");
+    ensure!(shown.len() >= 4, "lamothe-rotate showed only the frames {shown:?} in 30 s");
+    // Each frame seen is ahead of the one before, modulo the loop (it may
+    // wrap between two dumps), by less than half the loop.
+    let loop_len = rotate.frames as usize;
+    let steps: Vec<usize> = shown.windows(2).map(|w| (w[1] + loop_len - w[0]) % loop_len).collect();
+    ensure!(steps.iter().all(|&s| s > 0 && s < loop_len / 2), "frames {shown:?} do not move forward");
+    Ok(())
+}
