@@ -42,7 +42,7 @@ pub fn classify(polygon: &Polygon) -> Class {
 /// everything else the active edge table. Simple and complex polygons share
 /// that path, so telling them apart would cost without saving anything.
 ///
-/// The common case, one contour, skips [`Shape::of`]'s collinearity test,
+/// The common case, one contour, skips `Shape::of`'s collinearity test,
 /// which there only tells drawing nothing from filling: a contour of three
 /// vertices goes to the triangle fill, one monotone in y to the monotone
 /// fill, any other to the active edge table, and each draws nothing for a

@@ -12,7 +12,7 @@
 //!   odd/even, as the book has no other rule; [`MethodInfo::rules`] tells
 //!   callers not to send one here.
 //! - Arithmetic: integer X stepping with error terms, `BuildGET`'s field
-//!   rules (an [`ErrorTermStep`] per edge); the GET sorted by `StartY` then
+//!   rules (an `ErrorTermStep` per edge); the GET sorted by `StartY` then
 //!   X, the AET kept in X order by one merging pass per scan line and the
 //!   book's bubble sort after each step. The bubble sort keeps the book's
 //!   cost profile too: next to nothing when X coherence holds, quadratic in
@@ -31,7 +31,7 @@
 //!   would cost quadratic time on thousands of vertices.
 //! - An edge that starts above the target enters the GET at row 0, with
 //!   the X and error term its stepping would have there (see
-//!   [`ErrorTermStep::skip`]); edges wholly above or below the target are
+//!   `ErrorTermStep::skip`); edges wholly above or below the target are
 //!   left out, and scan lines from the target's bottom on are not processed.
 //!   Work is then bounded by the edge count and the visible rows.
 //! - The book's `int` is 16 bits; here it is `i32`, wide enough for every

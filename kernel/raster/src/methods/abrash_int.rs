@@ -22,7 +22,7 @@
 //! than an edge's height, so with `i32` nothing overflows and nothing needs
 //! refusing. The driver is `abrash_float`'s, with its safety changes; on top
 //! of them, an edge that starts above the target jumps to its first visible
-//! line with [`ErrorTermStep::skip`], which gives the X and error term the
+//! line with `ErrorTermStep::skip`, which gives the X and error term the
 //! stepping would, so clipping moves no pixel.
 
 use core::ops::Range;
