@@ -109,8 +109,7 @@ impl SpanSink for Screen {
     }
 
     fn span(&mut self, y: i32, x_start: i32, x_end: i32, color: u8) {
-        let inside = (0..SCREEN.height).contains(&y) && 0 <= x_start && x_start < x_end && x_end <= SCREEN.width;
-        if !inside {
+        if !SCREEN.holds_span(y, x_start, x_end) {
             self.stray_spans += 1;
             return;
         }

@@ -119,7 +119,7 @@ impl SpanSink for CoverageSink {
     fn span(&mut self, y: i32, x_start: i32, x_end: i32, _color: u8) {
         let Size { width, height } = self.size;
         let row_inside = (0..height).contains(&y);
-        if !(row_inside && 0 <= x_start && x_start < x_end && x_end <= width) {
+        if !self.size.holds_span(y, x_start, x_end) {
             self.out_of_bounds += 1;
         }
         let (start, end) = (x_start.clamp(0, width), x_end.clamp(0, width));

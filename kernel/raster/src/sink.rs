@@ -10,6 +10,14 @@ pub struct Size {
     pub height: i32,
 }
 
+impl Size {
+    /// Whether the span `x_start..x_end` of row `y` keeps the sink
+    /// contract: inside the target and not empty.
+    pub fn holds_span(self, y: i32, x_start: i32, x_end: i32) -> bool {
+        (0..self.height).contains(&y) && 0 <= x_start && x_start < x_end && x_end <= self.width
+    }
+}
+
 /// Mode 13h: 320x200.
 pub const SCREEN: Size = Size { width: 320, height: 200 };
 
@@ -62,6 +70,12 @@ impl Framebuffer {
     pub fn stray_spans(&self) -> usize {
         self.stray_spans
     }
+
+    /// Counts a span that broke the sink contract on its way here, for a
+    /// sink standing in front of this one that clipped it itself.
+    pub fn note_stray_span(&mut self) {
+        self.stray_spans += 1;
+    }
 }
 
 impl SpanSink for Framebuffer {
@@ -70,8 +84,7 @@ impl SpanSink for Framebuffer {
     }
 
     fn span(&mut self, y: i32, x_start: i32, x_end: i32, color: u8) {
-        let inside = (0..self.size.height).contains(&y) && 0 <= x_start && x_start < x_end && x_end <= self.size.width;
-        if !inside {
+        if !self.size.holds_span(y, x_start, x_end) {
             self.stray_spans += 1;
         }
         if !(0..self.size.height).contains(&y) {

@@ -207,7 +207,7 @@ impl SpanSink for Window {
     }
 
     fn span(&mut self, y: i32, x_start: i32, x_end: i32, color: u8) {
-        if !((0..SCREEN.height).contains(&y) && 0 <= x_start && x_start < x_end && x_end <= SCREEN.width) {
+        if !SCREEN.holds_span(y, x_start, x_end) {
             self.off_screen += 1;
             return;
         }

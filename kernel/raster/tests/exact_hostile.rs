@@ -123,8 +123,7 @@ impl SpanSink for ContractSink {
 
     fn span(&mut self, y: i32, x_start: i32, x_end: i32, _color: u8) {
         self.spans += 1;
-        let inside = (0..self.size.height).contains(&y) && 0 <= x_start && x_start < x_end && x_end <= self.size.width;
-        self.broken += usize::from(!inside);
+        self.broken += usize::from(!self.size.holds_span(y, x_start, x_end));
     }
 }
 

@@ -44,8 +44,7 @@ pub fn normal_form(spans: &[Span]) -> Option<Vec<Span>> {
     sorted.sort_unstable_by_key(|s| (s.y, s.x_start));
     let mut normal: Vec<Span> = Vec::with_capacity(sorted.len());
     for s in sorted {
-        let inside = (0..SCREEN.height).contains(&s.y) && 0 <= s.x_start && s.x_start < s.x_end && s.x_end <= SCREEN.width;
-        if !inside {
+        if !SCREEN.holds_span(s.y, s.x_start, s.x_end) {
             return None;
         }
         match normal.last_mut() {
