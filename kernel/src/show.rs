@@ -43,7 +43,7 @@ pub fn play(
     screen.blit(stage.pixels());
     ShowReply {
         entry: entry.name,
-        frame: frame % entry.frames.max(1),
+        frame: entry.wrap(frame),
         method: method.info().name,
         cycles,
         allocs,

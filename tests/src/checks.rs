@@ -42,7 +42,7 @@ pub fn show_matches_host_render(
     let method_name = drawn_with.info().name;
     let name = format!("{}.{frame}.{method_name}.show", entry.name);
     let reply = console.show(entry.name, frame, method).with_context(|| format!("kernel failed to show {name}"))?;
-    let asked = (entry.name, frame % entry.frames, method_name);
+    let asked = (entry.name, entry.wrap(frame), method_name);
     let said = (reply.entry.as_str(), reply.frame, reply.method.as_str());
     ensure!(said == asked, "{name}: the kernel says it showed {said:?}, not {asked:?}");
     let dump = console.dump()?;

@@ -150,7 +150,7 @@ impl<const N: usize, F: FnMut(i32, i32, &[i32; N]) -> Option<u8>> SpanSink for S
 }
 
 /// Draws shaded triangles with one method into one target, counting what
-/// it did in a [`DrawReport`] like [`Scene::draw`](crate::Scene::draw).
+/// it did in a [`DrawReport`] as [`Scene::draw`](crate::Scene::draw) does.
 /// Allocates nothing: the triangle is built in the [`Scratch`] polygon.
 pub(super) struct Painter<'a> {
     method: &'a dyn Method,
@@ -172,7 +172,6 @@ impl<'a> Painter<'a> {
     where
         F: FnMut(i32, i32, &[i32; N]) -> Option<u8>,
     {
-        self.report.polygons += 1;
         let result = if in_range(v) {
             match Plane::new(v) {
                 Some(plane) => {
@@ -184,10 +183,7 @@ impl<'a> Painter<'a> {
         } else {
             Err(Refusal::OutOfRange)
         };
-        if let Err(refusal) = result {
-            self.report.refused += 1;
-            self.report.first_refusal.get_or_insert(refusal);
-        }
+        self.report.record(result);
     }
 
     /// Fills the quadrilateral `v` as the two triangles `v0 v1 v2` and

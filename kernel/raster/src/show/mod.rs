@@ -76,11 +76,17 @@ impl Entry {
         if self.is_animated() { self.frames } else { STILL_FRAMES }
     }
 
+    /// Frame `frame` as the entry draws it: frame numbers wrap around its
+    /// [`Entry::frames`].
+    pub fn wrap(&self, frame: u32) -> u32 {
+        frame % self.frames.max(1)
+    }
+
     /// The method that draws frame `frame` when the viewer picked none: the
     /// source's method, or for the race the method whose turn it is.
     pub fn method_at(&self, frame: u32) -> &'static dyn Method {
         match self.kind {
-            Kind::Race => race::method_at(frame % self.frames),
+            Kind::Race => race::method_at(self.wrap(frame)),
             _ => methods::by_name(self.method).unwrap_or(&methods::exact::Exact),
         }
     }
@@ -219,7 +225,7 @@ impl Stage {
     /// onto a black screen. Allocates only when a still page other than the
     /// last one is built.
     pub fn draw(&mut self, entry: &Entry, frame: u32, method: &dyn Method) -> DrawReport {
-        let frame = frame % entry.frames.max(1);
+        let frame = entry.wrap(frame);
         sink::clear(&mut self.target, 0);
         match entry.kind {
             Kind::Still => {
@@ -242,7 +248,7 @@ impl Stage {
     /// Draws the labels over the frame: the entry and frame number at the
     /// top, the method and the cycles its draw took at the bottom.
     pub fn label(&mut self, entry: &Entry, frame: u32, method: &dyn Method, cycles: u64) {
-        label::draw_labels(&mut self.target, entry, frame % entry.frames.max(1), method.info().name, cycles);
+        label::draw_labels(&mut self.target, entry, entry.wrap(frame), method.info().name, cycles);
     }
 
     /// The frame: 320x200 bytes, row after row.
