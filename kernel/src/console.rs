@@ -129,7 +129,11 @@ impl Console<'_> {
             Command::VgaCheck => {
                 let mismatches = vga::verify(self.screen.palette());
                 let summary = vga::summary(&mismatches);
-                if mismatches.is_empty() { ok(summary) } else { Err(summary) }
+                if mismatches.is_empty() {
+                    ok(summary)
+                } else {
+                    Err(summary)
+                }
             }
             Command::Exit(code) => exit_qemu(code),
             Command::Fault(kind) => fault::provoke(kind),

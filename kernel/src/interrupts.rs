@@ -39,7 +39,10 @@ extern "x86-interrupt" fn breakpoint(frame: InterruptStackFrame) {
 extern "x86-interrupt" fn page_fault(frame: InterruptStackFrame, error: PageFaultErrorCode) {
     // CR2 holds the address whose access faulted.
     let address = Cr2::read_raw();
-    fatal(format_args!("page fault at {address:#x} ({error:?}), instruction at {:#x}", frame.instruction_pointer.as_u64()))
+    fatal(format_args!(
+        "page fault at {address:#x} ({error:?}), instruction at {:#x}",
+        frame.instruction_pointer.as_u64()
+    ))
 }
 
 extern "x86-interrupt" fn general_protection_fault(frame: InterruptStackFrame, error: u64) {

@@ -247,7 +247,11 @@ pub fn verify(palette: &Palette) -> Vec<Mismatch> {
         }
     };
     check(Group::Misc, 0, mode.misc, vga::MISC_READ.read());
-    let groups = [(Group::Sequencer, SEQUENCER, mode.sequencer), (Group::Crtc, CRTC, mode.crtc), (Group::Graphics, GRAPHICS, mode.graphics)];
+    let groups = [
+        (Group::Sequencer, SEQUENCER, mode.sequencer),
+        (Group::Crtc, CRTC, mode.crtc),
+        (Group::Graphics, GRAPHICS, mode.graphics),
+    ];
     for (group, registers, values) in groups {
         for (index, &value) in (0..).zip(values) {
             check(group, usize::from(index), value, registers.read(index));

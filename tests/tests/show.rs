@@ -9,8 +9,8 @@ use anyhow::{bail, ensure, Result};
 use harness::checks::{screen_matches_dump, show_matches_host_render};
 use harness::{Qemu, QemuOptions, Reply, Shown};
 use protocol::Command;
-use raster::{methods, Heap};
 use raster::show::{self, Entry, ENTRIES_IN_ORDER};
+use raster::{methods, Heap};
 
 /// The frames checked of `entry`: its first, a third of the way, its last
 /// (one frame for a still).

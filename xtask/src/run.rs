@@ -3,9 +3,9 @@
 use std::path::Path;
 
 use anyhow::Result;
+use harness::checks::show_matches_host_render;
 use harness::workspace::target_dir;
 use harness::{build_image, Display, Qemu, QemuOptions};
-use harness::checks::show_matches_host_render;
 use raster::show::ENTRIES_IN_ORDER;
 
 use crate::opt::RunOpt;
@@ -39,7 +39,10 @@ fn in_a_window() -> Result<()> {
 /// `<entry>.gif` (every [`HEADLESS_STEP`]-th frame of one loop), each
 /// checked against the host render, printing each path and the cycles.
 fn headless(out: &Path) -> Result<()> {
-    eprintln!("xtask: no display (DISPLAY and WAYLAND_DISPLAY unset): playing the show headless into {}", out.display());
+    eprintln!(
+        "xtask: no display (DISPLAY and WAYLAND_DISPLAY unset): playing the show headless into {}",
+        out.display()
+    );
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     for entry in ENTRIES_IN_ORDER {
         if entry.is_animated() {

@@ -51,7 +51,8 @@ pub enum FaultKind {
 }
 
 impl FaultKind {
-    pub const ALL: [FaultKind; 4] = [FaultKind::Breakpoint, FaultKind::PageFault, FaultKind::DoubleFault, FaultKind::Panic];
+    pub const ALL: [FaultKind; 4] =
+        [FaultKind::Breakpoint, FaultKind::PageFault, FaultKind::DoubleFault, FaultKind::Panic];
 
     pub const fn name(self) -> &'static str {
         match self {
@@ -191,7 +192,10 @@ impl<'a> Command<'a> {
         let command = match name {
             "PING" => Command::Ping,
             "LIST" => Command::List,
-            "DRAW" => Command::Draw { scene: words.next().ok_or(CommandError::MissingArgument("scene"))?, method: words.next() },
+            "DRAW" => Command::Draw {
+                scene: words.next().ok_or(CommandError::MissingArgument("scene"))?,
+                method: words.next(),
+            },
             "SHOW" => {
                 let entry = words.next().ok_or(CommandError::MissingArgument("entry"))?;
                 let frame = words.next().ok_or(CommandError::MissingArgument("frame"))?;
@@ -225,7 +229,8 @@ impl<'a> Command<'a> {
             "EXIT" => Command::Exit(parse_u8(words.next().ok_or(CommandError::MissingArgument("code"))?)?),
             "FAULT" => {
                 let kind = words.next().ok_or(CommandError::MissingArgument("fault kind"))?;
-                let fault = FaultKind::ALL.into_iter().find(|k| k.name() == kind).ok_or(CommandError::BadArgument(kind))?;
+                let fault =
+                    FaultKind::ALL.into_iter().find(|k| k.name() == kind).ok_or(CommandError::BadArgument(kind))?;
                 Command::Fault(fault)
             }
             other => return Err(CommandError::Unknown(other)),
@@ -409,7 +414,16 @@ mod tests {
 
     #[test]
     fn show_replies_round_trip_and_reject_garbage() {
-        let reply = ShowReply { entry: "race", frame: 3, method: "wgt", cycles: 12345, allocs: 0, polygons: 9, refused: 1, strays: 0 };
+        let reply = ShowReply {
+            entry: "race",
+            frame: 3,
+            method: "wgt",
+            cycles: 12345,
+            allocs: 0,
+            polygons: 9,
+            refused: 1,
+            strays: 0,
+        };
         let text = reply.to_string();
         assert_eq!(ShowReply::parse(&text), Some(reply));
         assert_eq!(ShowReply::parse("entry=race frame=3"), None);

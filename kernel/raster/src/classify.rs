@@ -177,7 +177,13 @@ fn is_simple(vertices: &[Point]) -> bool {
 fn segments_meet(a: Point, b: Point, c: Point, d: Point) -> bool {
     let (abc, abd) = (orientation(a, b, c), orientation(a, b, d));
     let (cda, cdb) = (orientation(c, d, a), orientation(c, d, b));
-    if abc != abd && cda != cdb && abc != Ordering::Equal && abd != Ordering::Equal && cda != Ordering::Equal && cdb != Ordering::Equal {
+    if abc != abd
+        && cda != cdb
+        && abc != Ordering::Equal
+        && abd != Ordering::Equal
+        && cda != Ordering::Equal
+        && cdb != Ordering::Equal
+    {
         return true;
     }
     (abc == Ordering::Equal && within_box(a, b, c))
@@ -244,7 +250,10 @@ mod tests {
         // Touching at a vertex counts: the bowtie's two loops share (4, 4).
         assert_eq!(classify(&polygon(&[(0, 0), (4, 4), (8, 0), (8, 8), (4, 4), (0, 8)])), Class::Complex);
         let two = Polygon {
-            contours: alloc::vec![polygon(&[(0, 0), (4, 0), (0, 4)]).contours.remove(0), polygon(&[(5, 5), (9, 5), (5, 9)]).contours.remove(0)],
+            contours: alloc::vec![
+                polygon(&[(0, 0), (4, 0), (0, 4)]).contours.remove(0),
+                polygon(&[(5, 5), (9, 5), (5, 9)]).contours.remove(0)
+            ],
             color: 1,
             rule: FillRule::NonZero,
         };
@@ -270,7 +279,10 @@ mod tests {
     #[test]
     fn coordinates_at_the_i32_extremes_classify_exactly() {
         let (lo, hi) = (i32::MIN, i32::MAX);
-        let square = Polygon::new(alloc::vec![Point::new(lo, lo), Point::new(hi, lo), Point::new(hi, hi), Point::new(lo, hi)], 1);
+        let square = Polygon::new(
+            alloc::vec![Point::new(lo, lo), Point::new(hi, lo), Point::new(hi, hi), Point::new(lo, hi)],
+            1,
+        );
         assert_eq!(classify(&square), Class::Convex);
         let sliver = Polygon::new(alloc::vec![Point::new(lo, lo), Point::new(hi, hi), Point::new(hi - 1, hi)], 1);
         assert_eq!(classify(&sliver), Class::Triangle);

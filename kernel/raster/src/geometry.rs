@@ -24,19 +24,13 @@ impl Point {
 
     /// A point on the whole-pixel grid, saturating at the `i32` range.
     pub const fn from_pixels(x: i32, y: i32) -> Self {
-        Self {
-            x: x.saturating_mul(SUBPIXEL_ONE),
-            y: y.saturating_mul(SUBPIXEL_ONE),
-        }
+        Self { x: x.saturating_mul(SUBPIXEL_ONE), y: y.saturating_mul(SUBPIXEL_ONE) }
     }
 
     /// Rounds to the nearest whole pixel (halves go up), for the classic
     /// methods whose originals take integer coordinates.
     pub const fn round_to_pixel(self) -> PixelPoint {
-        PixelPoint {
-            x: round_subpixels(self.x),
-            y: round_subpixels(self.y),
-        }
+        PixelPoint { x: round_subpixels(self.x), y: round_subpixels(self.y) }
     }
 }
 
@@ -95,11 +89,7 @@ pub struct Polygon {
 impl Polygon {
     /// A single-contour polygon with the even-odd rule.
     pub fn new(vertices: Vec<Point>, color: u8) -> Self {
-        Self {
-            contours: alloc::vec![vertices],
-            color,
-            rule: FillRule::EvenOdd,
-        }
+        Self { contours: alloc::vec![vertices], color, rule: FillRule::EvenOdd }
     }
 
     /// A single-contour polygon from whole-pixel coordinates, each moved by

@@ -174,7 +174,10 @@ mod tests {
     #[test]
     fn extreme_coordinates_cover_the_whole_target() {
         let (lo, hi) = (i32::MIN, i32::MAX);
-        let square = Polygon::new(alloc::vec![Point::new(lo, lo), Point::new(hi, lo), Point::new(hi, hi), Point::new(lo, hi)], 1);
+        let square = Polygon::new(
+            alloc::vec![Point::new(lo, lo), Point::new(hi, lo), Point::new(hi, hi), Point::new(lo, hi)],
+            1,
+        );
         assert_eq!(draw(&square, SampleOffset::CENTRE), "######\n######\n######\n######\n");
     }
 }

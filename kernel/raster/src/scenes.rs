@@ -8,8 +8,15 @@ use crate::scene::{Op, Scene};
 
 /// Names of the built-in scenes, in demo order.
 pub const NAMES: &[&str] = &[
-    "abrash38-1", "abrash38-2", "abrash38-3", "abrash40-1", "abrash40-2", "abrash40-3", "abrash40-4",
-    "lamothe-triangle", "wgt-triangle",
+    "abrash38-1",
+    "abrash38-2",
+    "abrash38-3",
+    "abrash40-1",
+    "abrash40-2",
+    "abrash40-3",
+    "abrash40-4",
+    "lamothe-triangle",
+    "wgt-triangle",
 ];
 
 /// The built-in scene called `name`.
@@ -38,12 +45,24 @@ fn listing_40_4(page: u32) -> Vec<Op> {
     const POLYGON_2: &[(i32, i32)] =
         &[(0, 0), (320, 0), (320, 200), (0, 200), (0, 0), (50, 50), (270, 50), (270, 150), (50, 150), (50, 50)];
     const POLYGON_3: &[(i32, i32)] = &[
-        (0, 0), (10, 0), (105, 185), (260, 30), (15, 150), (5, 150), (5, 140), (260, 5), (300, 5), (300, 15),
-        (110, 200), (100, 200), (0, 10),
+        (0, 0),
+        (10, 0),
+        (105, 185),
+        (260, 30),
+        (15, 150),
+        (5, 150),
+        (5, 140),
+        (260, 5),
+        (300, 5),
+        (300, 15),
+        (110, 200),
+        (100, 200),
+        (0, 10),
     ];
     const POLYGON_4: &[(i32, i32)] = &[(0, 0), (30, -20), (30, 0), (0, 20), (-30, 0), (-30, -20)];
 
-    let fill = |points: &[(i32, i32)], offset: (i32, i32), color: u8| Op::Fill(Polygon::from_pixels(points, offset, color));
+    let fill =
+        |points: &[(i32, i32)], offset: (i32, i32), color: u8| Op::Fill(Polygon::from_pixels(points, offset, color));
     let mut ops = Vec::from([Op::Clear(0)]);
     for (shape, color) in [(POLYGON_1, 15), (POLYGON_2, 5), (POLYGON_3, 3)].into_iter().take(page as usize) {
         ops.push(fill(shape, (0, 0), color));
@@ -82,15 +101,33 @@ fn wgt_triangle() -> Vec<Op> {
 fn listing_38_3(page: u32) -> Vec<Op> {
     const SCREEN_RECTANGLE: &[(i32, i32)] = &[(0, 0), (320, 0), (320, 200), (0, 200)];
     const CONVEX_SHAPE: &[(i32, i32)] = &[
-        (0, 0), (121, 0), (320, 0), (200, 51), (301, 51), (250, 51), (319, 143), (320, 200), (22, 200),
-        (0, 200), (50, 180), (20, 160), (50, 140), (20, 120), (50, 100), (20, 80), (50, 60), (20, 40), (50, 20),
+        (0, 0),
+        (121, 0),
+        (320, 0),
+        (200, 51),
+        (301, 51),
+        (250, 51),
+        (319, 143),
+        (320, 200),
+        (22, 200),
+        (0, 200),
+        (50, 180),
+        (20, 160),
+        (50, 140),
+        (20, 120),
+        (50, 100),
+        (20, 80),
+        (50, 60),
+        (20, 40),
+        (50, 20),
     ];
     const TRIANGLE_1: &[(i32, i32)] = &[(30, 0), (15, 20), (0, 0)];
     const TRIANGLE_2: &[(i32, i32)] = &[(30, 20), (15, 0), (0, 20)];
     const TRIANGLE_3: &[(i32, i32)] = &[(0, 20), (20, 10), (0, 0)];
     const TRIANGLE_4: &[(i32, i32)] = &[(20, 20), (20, 0), (0, 10)];
 
-    let fill = |points: &[(i32, i32)], offset: (i32, i32), color: u8| Op::Fill(Polygon::from_pixels(points, offset, color));
+    let fill =
+        |points: &[(i32, i32)], offset: (i32, i32), color: u8| Op::Fill(Polygon::from_pixels(points, offset, color));
     let mut ops = Vec::new();
     ops.push(fill(SCREEN_RECTANGLE, (0, 0), 3));
     ops.push(fill(CONVEX_SHAPE, (0, 0), 6));

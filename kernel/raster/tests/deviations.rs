@@ -81,10 +81,8 @@ struct Measured {
     kinds: Kinds,
 }
 
-const NONE: Measured = Measured {
-    pages: [0; 3],
-    kinds: Kinds { rectangle: SAME, shape: SAME, triangles: [SAME; 4], hexagons: SAME },
-};
+const NONE: Measured =
+    Measured { pages: [0; 3], kinds: Kinds { rectangle: SAME, shape: SAME, triangles: [SAME; 4], hexagons: SAME } };
 
 /// One method under both conventions, and a few differing pixels of each
 /// kind for the failure messages.
@@ -134,11 +132,14 @@ fn kind(polygon: &Polygon) -> Kind {
 fn listing_38_3() -> (Vec<Polygon>, [usize; 3]) {
     let polygons = |name: &str| -> Vec<Polygon> {
         let scene = scenes::by_name(name).expect("built-in scene");
-        scene.ops.into_iter().map(|op| match op {
-            Op::Fill(polygon) => polygon,
-            Op::Clear(_) => panic!("Listing 38.3 never clears"),
-        })
-        .collect()
+        scene
+            .ops
+            .into_iter()
+            .map(|op| match op {
+                Op::Fill(polygon) => polygon,
+                Op::Clear(_) => panic!("Listing 38.3 never clears"),
+            })
+            .collect()
     };
     let pages = [polygons("abrash38-1"), polygons("abrash38-2"), polygons("abrash38-3")];
     for page in &pages[..2] {
@@ -177,8 +178,10 @@ impl Window {
             let high = (high.div_euclid(SUBPIXEL_ONE) + 1 + Self::MARGIN).clamp(low, limit);
             (low, high - low)
         };
-        let (left, width) = pixel_range(points().map(|p| p.x).min().unwrap(), points().map(|p| p.x).max().unwrap(), SCREEN.width);
-        let (top, height) = pixel_range(points().map(|p| p.y).min().unwrap(), points().map(|p| p.y).max().unwrap(), SCREEN.height);
+        let (left, width) =
+            pixel_range(points().map(|p| p.x).min().unwrap(), points().map(|p| p.x).max().unwrap(), SCREEN.width);
+        let (top, height) =
+            pixel_range(points().map(|p| p.y).min().unwrap(), points().map(|p| p.y).max().unwrap(), SCREEN.height);
         Self { left, top, drawn: CoverageSink::new(Size { width, height }), off_screen: 0, outside: 0 }
     }
 
@@ -332,10 +335,8 @@ fn abrash_float() {
     // hexagon 2 is one pixel closer each way: the centre rule, too, has
     // (202, 35) in and (118, 165) out, so the float errors land on pixels
     // the integer version has as a gap and an extra.
-    let ours = Measured {
-        pages: [282, 4182, 6340],
-        kinds: Kinds { hexagons: count(1079, 1079, 0), ..ABRASH_OURS.kinds },
-    };
+    let ours =
+        Measured { pages: [282, 4182, 6340], kinds: Kinds { hexagons: count(1079, 1079, 0), ..ABRASH_OURS.kinds } };
     assert_eq!(measured.ours, ours, "{}", measured.examples);
 }
 

@@ -35,7 +35,12 @@ fn assert_draws_nothing(contours: Vec<Vec<Point>>) {
         let polygon = with_rule(contours.clone(), rule);
         let mut drawn = CoverageSink::new(TARGET);
         assert_eq!(exact(&polygon, &mut drawn), Ok(()));
-        assert_eq!(drawn.report(&CoverageSink::new(TARGET)), CoverageReport::default(), "{polygon:?}\n{}", drawn.ascii());
+        assert_eq!(
+            drawn.report(&CoverageSink::new(TARGET)),
+            CoverageReport::default(),
+            "{polygon:?}\n{}",
+            drawn.ascii()
+        );
     }
 }
 
@@ -135,7 +140,8 @@ fn polygon_covering_the_i32_plane_costs_one_span_per_target_row() {
     let square = points(&[(lo, lo), (hi, lo), (hi, hi), (lo, hi)]);
     // Notched far below every target: not monotone, so the active-edge path.
     let notched = points(&[(lo, lo), (hi, lo), (hi, hi), (0, hi - 5), (lo, hi)]);
-    let sizes = [Size { width: 320, height: 200 }, Size { width: i32::MAX, height: 3 }, Size { width: 1, height: 1 << 16 }];
+    let sizes =
+        [Size { width: 320, height: 200 }, Size { width: i32::MAX, height: 3 }, Size { width: 1, height: 1 << 16 }];
     for contour in [square, notched] {
         for size in sizes {
             let mut sink = ContractSink { size, spans: 0, broken: 0 };
@@ -147,8 +153,16 @@ fn polygon_covering_the_i32_plane_costs_one_span_per_target_row() {
 
 #[test]
 fn targets_without_pixels_get_no_spans() {
-    let square = Polygon::new(points(&[(i32::MIN, i32::MIN), (i32::MAX, i32::MIN), (i32::MAX, i32::MAX), (i32::MIN, i32::MAX)]), 1);
-    for size in [Size { width: 0, height: 0 }, Size { width: -5, height: 10 }, Size { width: 10, height: -5 }, Size { width: i32::MIN, height: i32::MIN }] {
+    let square = Polygon::new(
+        points(&[(i32::MIN, i32::MIN), (i32::MAX, i32::MIN), (i32::MAX, i32::MAX), (i32::MIN, i32::MAX)]),
+        1,
+    );
+    for size in [
+        Size { width: 0, height: 0 },
+        Size { width: -5, height: 10 },
+        Size { width: 10, height: -5 },
+        Size { width: i32::MIN, height: i32::MIN },
+    ] {
         let mut sink = ContractSink { size, spans: 0, broken: 0 };
         assert_eq!(exact(&square, &mut sink), Ok(()));
         assert_eq!(sink.spans, 0, "{size:?}");

@@ -39,7 +39,10 @@ fn assert_fan_draws_each_pixel_once(ring: &[Point]) {
             let hub = Point::new(3 * PX + sub_x, 3 * PX + sub_y);
             let fan: Vec<[Point; 3]> = ring_edges.iter().map(|&(a, b)| [hub, a, b]).collect();
             let first_turn = turn(hub, ring_edges[0].0, ring_edges[0].1);
-            assert!(first_turn != 0 && fan.iter().all(|t| turn(t[0], t[1], t[2]) == first_turn), "hub {hub:?} must be inside the ring");
+            assert!(
+                first_turn != 0 && fan.iter().all(|t| turn(t[0], t[1], t[2]) == first_turn),
+                "hub {hub:?} must be inside the ring"
+            );
             let drawn = fill_triangles(&fan, SIZE);
             let report = drawn.report(&expected);
             assert_eq!(report, CoverageReport::default(), "hub {hub:?}\n{}", drawn.ascii_against(&expected));
@@ -80,7 +83,10 @@ fn triangulate(corners: [Point; 4], points: &[Point]) -> Vec<[Point; 3]> {
             .flat_map(|t| {
                 let contains = (0..3).all(|i| turn(t[i], t[(i + 1) % 3], p) != -winding);
                 let children: Vec<[Point; 3]> = if contains {
-                    (0..3).map(|i| [t[i], t[(i + 1) % 3], p]).filter(|child| turn(child[0], child[1], child[2]) != 0).collect()
+                    (0..3)
+                        .map(|i| [t[i], t[(i + 1) % 3], p])
+                        .filter(|child| turn(child[0], child[1], child[2]) != 0)
+                        .collect()
                 } else {
                     vec![t]
                 };

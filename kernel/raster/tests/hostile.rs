@@ -80,7 +80,8 @@ impl Case {
     /// the reference on thousands of vertices with both rules.
     fn on_the_screen_with_one_rule(self) -> [Self; 2] {
         let name = self.name.clone();
-        let on_the_screen = Self { name, polygon: self.polygon.clone(), targets: &[SCREEN], rules: &[FillRule::EvenOdd] };
+        let on_the_screen =
+            Self { name, polygon: self.polygon.clone(), targets: &[SCREEN], rules: &[FillRule::EvenOdd] };
         [Self { targets: SMALL_TARGETS, ..self }, on_the_screen]
     }
 }
@@ -126,7 +127,11 @@ fn survive(cases: Vec<Case>) {
         thread::sleep(Duration::from_millis(20));
         if let Some(r) = *running.lock().unwrap() {
             let elapsed = r.since.elapsed();
-            assert!(elapsed < HANG_LIMIT, "{} still running after {elapsed:?}", describe(&cases, r.case, r.method, r.rule, r.size));
+            assert!(
+                elapsed < HANG_LIMIT,
+                "{} still running after {elapsed:?}",
+                describe(&cases, r.case, r.method, r.rule, r.size)
+            );
         }
     }
     let failures = worker.join().expect("the worker catches every panic");
@@ -146,7 +151,9 @@ fn fill_all(cases: &[Case], running: &Mutex<Option<Running>>) -> Vec<String> {
                     let outcome = panic::catch_unwind(AssertUnwindSafe(|| method.fill(&polygon, &mut sink)));
                     let failure = match outcome {
                         Err(payload) => Some(format!("panicked: {}", panic_message(payload.as_ref()))),
-                        Ok(_) if sink.out_of_bounds() > 0 => Some(format!("{} spans outside the target", sink.out_of_bounds())),
+                        Ok(_) if sink.out_of_bounds() > 0 => {
+                            Some(format!("{} spans outside the target", sink.out_of_bounds()))
+                        }
                         Ok(Err(refusal)) if !may_refuse(method.info().name, &polygon, refusal) => {
                             Some(format!("declined it: {}", refusal.describe()))
                         }
@@ -164,7 +171,11 @@ fn fill_all(cases: &[Case], running: &Mutex<Option<Running>>) -> Vec<String> {
 }
 
 fn panic_message(payload: &(dyn std::any::Any + Send)) -> &str {
-    payload.downcast_ref::<&str>().copied().or_else(|| payload.downcast_ref::<String>().map(String::as_str)).unwrap_or("?")
+    payload
+        .downcast_ref::<&str>()
+        .copied()
+        .or_else(|| payload.downcast_ref::<String>().map(String::as_str))
+        .unwrap_or("?")
 }
 
 /// A small deterministic generator (Numerical Recipes' LCG), so the random
@@ -200,7 +211,10 @@ fn fewer_than_three_vertices_collinear_and_repeated_points() {
         Case::pixels("every vertex twice", &[(1, 1), (1, 1), (4, 4), (4, 4)]),
         Case::pixels("a square, every vertex twice", &[(1, 1), (1, 1), (6, 1), (6, 1), (6, 4), (6, 4), (1, 4), (1, 4)]),
         Case::pixels("collinear, diagonal", &[(0, 0), (4, 2), (8, 4)]),
-        Case::subpixels("collinear through centres, back and forth", &[(128, 128), (2688, 2688), (1408, 1408), (5248, 5248)]),
+        Case::subpixels(
+            "collinear through centres, back and forth",
+            &[(128, 128), (2688, 2688), (1408, 1408), (5248, 5248)],
+        ),
         Case::subpixels("collinear, horizontal, doubling back", &[(0, 300), (9000, 300), (-4000, 300)]),
         Case::pixels("collinear, vertical", &[(4, -1), (4, 50), (4, 3)]),
         Case::subpixels("collinear across the plane", &[(MIN, MIN), (MAX, MAX), (0, 0), (-1, -1)]),
@@ -214,7 +228,8 @@ fn contours_of_i32_extremes(vertices: usize) -> Vec<Vec<Point>> {
     let points: Vec<Point> = values.iter().flat_map(|&x| values.iter().map(move |&y| Point::new(x, y))).collect();
     let mut contours = vec![vec![]];
     for _ in 0..vertices {
-        contours = contours.iter().flat_map(|c: &Vec<Point>| points.iter().map(move |&p| [&c[..], &[p]].concat())).collect();
+        contours =
+            contours.iter().flat_map(|c: &Vec<Point>| points.iter().map(move |&p| [&c[..], &[p]].concat())).collect();
     }
     contours
 }
@@ -230,7 +245,8 @@ fn every_quad_of_i32_extremes() {
     // where each fill would work through all its rows to learn nothing the
     // 7x3 target does not show: the same arithmetic on the same extremes,
     // the same clipping (their vertices at 0 are inside both targets).
-    let quads = contours_of_i32_extremes(4).into_iter().map(|c| Case::new(format!("quad {c:?}"), vec![c]).off_screen_only());
+    let quads =
+        contours_of_i32_extremes(4).into_iter().map(|c| Case::new(format!("quad {c:?}"), vec![c]).off_screen_only());
     survive(quads.collect());
 }
 
@@ -270,7 +286,10 @@ fn absurd_but_finite_coordinates() {
         Case::subpixels("across the plane, one subpixel tall", &[(MIN, 1000), (MAX, 1001), (0, 1001)]),
         Case::subpixels("a needle from the top of the plane", &[(0, MIN), (1, MAX), (-1, MAX)]),
         Case::subpixels("slope across the plane", &[(MIN, 0), (MAX, 256), (0, MAX)]),
-        Case::subpixels("near the i32 end, almost flat", &[(8_388_000 * PX, 0), (-8_388_000 * PX, 10 * PX), (0, 20 * PX)]),
+        Case::subpixels(
+            "near the i32 end, almost flat",
+            &[(8_388_000 * PX, 0), (-8_388_000 * PX, 10 * PX), (0, 20 * PX)],
+        ),
         Case::subpixels(
             "beyond 16 bits",
             &[(40_000 * PX, -30_000 * PX), (-40_000 * PX, 30_000 * PX), (32_767 * PX, 32_767 * PX)],
@@ -290,7 +309,8 @@ fn thousands_of_random_vertices() {
     let mut random = Lcg(0x2545_f491);
     let near_the_screen: Vec<(i32, i32)> =
         (0..3000).map(|_| (random.within(-40 * PX, 360 * PX), random.within(-40 * PX, 240 * PX))).collect();
-    let scattered: Vec<(i32, i32)> = (0..3000).map(|_| (random.next(), random.next() >> (random.next() as u32 & 31))).collect();
+    let scattered: Vec<(i32, i32)> =
+        (0..3000).map(|_| (random.next(), random.next() >> (random.next() as u32 & 31))).collect();
     survive(
         [
             Case::subpixels("3000 random points near the screen", &near_the_screen).on_the_screen_with_one_rule(),
@@ -326,10 +346,13 @@ fn several_contours() {
         contour.reverse();
         contour
     };
-    let plane: Vec<Point> = [(MIN, MIN), (MAX, MIN), (MAX, MAX), (MIN, MAX)].iter().map(|&(x, y)| Point::new(x, y)).collect();
+    let plane: Vec<Point> =
+        [(MIN, MIN), (MAX, MIN), (MAX, MAX), (MIN, MAX)].iter().map(|&(x, y)| Point::new(x, y)).collect();
     let mut random = Lcg(0x0bad_cafe);
     let triangles: Vec<Vec<Point>> = (0..1000)
-        .map(|_| (0..3).map(|_| Point::new(random.within(-20 * PX, 340 * PX), random.within(-20 * PX, 220 * PX))).collect())
+        .map(|_| {
+            (0..3).map(|_| Point::new(random.within(-20 * PX, 340 * PX), random.within(-20 * PX, 220 * PX))).collect()
+        })
         .collect();
     survive(vec![
         Case::new(

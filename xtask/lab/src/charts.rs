@@ -195,11 +195,7 @@ where
 }
 
 /// The legend box every chart uses, at `position` with `size`-point text.
-fn draw_legend<'a, DB, CT>(
-    chart: &mut ChartContext<'a, DB, CT>,
-    position: SeriesLabelPosition,
-    size: u32,
-) -> Result<()>
+fn draw_legend<'a, DB, CT>(chart: &mut ChartContext<'a, DB, CT>, position: SeriesLabelPosition, size: u32) -> Result<()>
 where
     DB: DrawingBackend + 'a,
     DB::ErrorType: 'static,
@@ -261,7 +257,10 @@ where
             root.draw(&Rectangle::new(cell, shade.filled()))?;
             let failures = row.failures.unwrap_or(0);
             if failures > 0 {
-                root.draw(&Rectangle::new([(x0 + 3, y0 + 3), (x0 + cell_w - 3, y0 + cell_h - 3)], BLACK.stroke_width(3)))?;
+                root.draw(&Rectangle::new(
+                    [(x0 + 3, y0 + 3), (x0 + cell_w - 3, y0 + cell_h - 3)],
+                    BLACK.stroke_width(3),
+                ))?;
             }
             let dark = u32::from(shade.0) + u32::from(shade.1) + u32::from(shade.2) < 400;
             let text_color = if dark { WHITE } else { BLACK };

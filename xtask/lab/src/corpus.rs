@@ -9,10 +9,10 @@
 use std::f64::consts::TAU;
 use std::ops::Range;
 
-use raster::scene::Op;
-use raster::{FillRule, Point, Polygon, SCREEN};
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64Mcg;
+use raster::scene::Op;
+use raster::{FillRule, Point, Polygon, SCREEN};
 
 /// The corpus seed. Changing it changes every family.
 pub const SEED: u64 = 0x1AB_5EED;
@@ -133,14 +133,38 @@ pub fn build(budget: Budget) -> Vec<Family> {
     vec![
         demo_scenes(),
         random_family("small_triangles", Group::Random, "random triangles 10-50 px across", random, small_triangle),
-        random_family("medium_convex", Group::Random, "convex hulls of random points, 50-120 px across", random, medium_convex),
-        random_family("large_convex", Group::Random, "convex polygons near full screen, some past its edges", random, large_convex),
+        random_family(
+            "medium_convex",
+            Group::Random,
+            "convex hulls of random points, 50-120 px across",
+            random,
+            medium_convex,
+        ),
+        random_family(
+            "large_convex",
+            Group::Random,
+            "convex polygons near full screen, some past its edges",
+            random,
+            large_convex,
+        ),
         random_family("concave", Group::Random, "star-shaped simple polygons with random radii", random, concave),
         random_family("stars", Group::Random, "self-intersecting {n/k} stars, even-odd and non-zero", random, star),
         random_family("holes", Group::Random, "outer contour with 1-3 hole contours, both rules", random, with_holes),
         random_family("slivers", Group::Random, "needles and narrow wedges, 0.02-2 px wide", random, sliver),
-        random_family("subpixel_triangles", Group::Random, "small triangles with vertices 0-1/256 px off sample points", random, subpixel_triangle),
-        random_family("partly_offscreen", Group::Random, "convex polygons straddling a screen edge", random, partly_offscreen),
+        random_family(
+            "subpixel_triangles",
+            Group::Random,
+            "small triangles with vertices 0-1/256 px off sample points",
+            random,
+            subpixel_triangle,
+        ),
+        random_family(
+            "partly_offscreen",
+            Group::Random,
+            "convex polygons straddling a screen edge",
+            random,
+            partly_offscreen,
+        ),
         mesh_family("triangle_mesh", "jittered grids split into triangles, covering the screen", budget.meshes, false),
         mesh_family("quad_mesh", "jittered grids of convex quads, covering the screen", budget.meshes, true),
         rotating_fan(budget.angle_step),
@@ -170,7 +194,8 @@ fn rng_for(name: &str) -> Pcg64Mcg {
 
 /// A point in pixels, snapped to the nearest subpixel (saturating at `i32`).
 fn snap(x: f64, y: f64) -> Point {
-    let to_subpixels = |v: f64| (v * f64::from(raster::SUBPIXEL_ONE)).round().clamp(f64::from(i32::MIN), f64::from(i32::MAX)) as i32;
+    let to_subpixels =
+        |v: f64| (v * f64::from(raster::SUBPIXEL_ONE)).round().clamp(f64::from(i32::MIN), f64::from(i32::MAX)) as i32;
     Point::new(to_subpixels(x), to_subpixels(y))
 }
 
@@ -183,7 +208,11 @@ fn color(rng: &mut Pcg64Mcg) -> u8 {
 }
 
 fn rule(rng: &mut Pcg64Mcg) -> FillRule {
-    if rng.random_bool(0.5) { FillRule::EvenOdd } else { FillRule::NonZero }
+    if rng.random_bool(0.5) {
+        FillRule::EvenOdd
+    } else {
+        FillRule::NonZero
+    }
 }
 
 /// `n` points evenly around a circle, starting at angle `phase`.
@@ -249,7 +278,14 @@ fn random_family(
     make: fn(&mut Pcg64Mcg) -> Polygon,
 ) -> Family {
     let mut rng = rng_for(name);
-    Family { name, group, description, polygons: (0..count).map(|_| make(&mut rng)).collect(), tilings: vec![], sweep: None }
+    Family {
+        name,
+        group,
+        description,
+        polygons: (0..count).map(|_| make(&mut rng)).collect(),
+        tilings: vec![],
+        sweep: None,
+    }
 }
 
 fn demo_scenes() -> Family {
@@ -279,7 +315,8 @@ fn small_triangle(rng: &mut Pcg64Mcg) -> Polygon {
     let size = rng.random_range(10.0..50.0);
     let (x, y) = on_screen(rng, 0.0);
     loop {
-        let p: Vec<(f64, f64)> = (0..3).map(|_| (x + rng.random_range(0.0..size), y + rng.random_range(0.0..size))).collect();
+        let p: Vec<(f64, f64)> =
+            (0..3).map(|_| (x + rng.random_range(0.0..size), y + rng.random_range(0.0..size))).collect();
         // Keep triangles that look like triangles: area at least a fifth of the box's.
         let area = ((p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[2].0 - p[0].0) * (p[1].1 - p[0].1)).abs() / 2.0;
         if area >= size * size / 10.0 {
@@ -345,7 +382,8 @@ fn with_holes(rng: &mut Pcg64Mcg) -> Polygon {
         // inside the outer contour and apart from each other.
         let a = phase + TAU * h as f64 / holes as f64;
         let at = (centre.0 + radius / 2.0 * a.cos(), centre.1 + radius / 2.0 * a.sin());
-        let hole = regular(rng.random_range(3..9), at, radius * rng.random_range(0.08..0.25), rng.random_range(0.0..TAU));
+        let hole =
+            regular(rng.random_range(3..9), at, radius * rng.random_range(0.08..0.25), rng.random_range(0.0..TAU));
         // Reversed, so the non-zero rule leaves the hole empty too.
         contours.push(hole.iter().rev().map(|&(x, y)| snap(x, y)).collect());
     }
@@ -392,7 +430,8 @@ fn partly_offscreen(rng: &mut Pcg64Mcg) -> Polygon {
         let points = scatter(rng, n, centre, radius);
         let (x0, x1) = points.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| (lo.min(p.0), hi.max(p.0)));
         let (y0, y1) = points.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| (lo.min(p.1), hi.max(p.1)));
-        let straddles = (x0 < 0.0 || x1 > WIDTH || y0 < 0.0 || y1 > HEIGHT) && x1 > 0.0 && x0 < WIDTH && y1 > 0.0 && y0 < HEIGHT;
+        let straddles =
+            (x0 < 0.0 || x1 > WIDTH || y0 < 0.0 || y1 > HEIGHT) && x1 > 0.0 && x0 < WIDTH && y1 > 0.0 && y0 < HEIGHT;
         if straddles {
             return hull_polygon(&points, color(rng));
         }
@@ -422,7 +461,13 @@ fn offscreen(rng: &mut Pcg64Mcg) -> Polygon {
 /// A jittered grid of `columns` x `rows` cells of `cell` px from `origin`,
 /// every inner point moved by at most a fifth of a cell (which keeps every
 /// cell a convex quad), as points in pixels.
-fn jittered_grid(rng: &mut Pcg64Mcg, origin: (f64, f64), cell: f64, columns: usize, rows: usize) -> Vec<Vec<(f64, f64)>> {
+fn jittered_grid(
+    rng: &mut Pcg64Mcg,
+    origin: (f64, f64),
+    cell: f64,
+    columns: usize,
+    rows: usize,
+) -> Vec<Vec<(f64, f64)>> {
     (0..=rows)
         .map(|j| {
             (0..=columns)
@@ -439,7 +484,12 @@ fn jittered_grid(rng: &mut Pcg64Mcg, origin: (f64, f64), cell: f64, columns: usi
 
 /// The cells of a grid as quads, or split along a random diagonal into
 /// triangles, all with one colour per tile.
-fn grid_tiles(rng: &mut Pcg64Mcg, grid: &[Vec<(f64, f64)>], quads: bool, map: impl Fn((f64, f64)) -> (f64, f64)) -> Vec<Polygon> {
+fn grid_tiles(
+    rng: &mut Pcg64Mcg,
+    grid: &[Vec<(f64, f64)>],
+    quads: bool,
+    map: impl Fn((f64, f64)) -> (f64, f64),
+) -> Vec<Polygon> {
     let mut tiles = Vec::new();
     for j in 0..grid.len() - 1 {
         for i in 0..grid[j].len() - 1 {
@@ -569,7 +619,11 @@ fn scale_sweep(values: usize, per_value: usize) -> Family {
         let area = 1.5 * 3f64.sqrt() * radius * radius;
         for _ in 0..per_value {
             let centre = (WIDTH / 2.0 + rng.random_range(-50.0..50.0), HEIGHT / 2.0 + rng.random_range(-0.5..0.5));
-            polygons.push(polygon(&regular(6, centre, radius, rng.random_range(0.0..TAU)), color(&mut rng), FillRule::EvenOdd));
+            polygons.push(polygon(
+                &regular(6, centre, radius, rng.random_range(0.0..TAU)),
+                color(&mut rng),
+                FillRule::EvenOdd,
+            ));
             areas.push(area);
         }
     }

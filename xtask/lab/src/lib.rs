@@ -77,8 +77,7 @@ pub fn run(options: &LabOptions) -> Result<()> {
 fn measure_corpus(quick: bool, budget: Budget, timing: Timing) -> Results {
     let families = corpus::build(budget);
     let contenders = Contender::all();
-    let work: u64 =
-        families.iter().map(|f| f.polygons.len() as u64 + timing::jobs(f, contenders.len())).sum();
+    let work: u64 = families.iter().map(|f| f.polygons.len() as u64 + timing::jobs(f, contenders.len())).sum();
     let bar = ProgressBar::new(work).with_style(
         ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {percent:>3}% {msg}")
             .expect("the progress template is valid")
@@ -147,7 +146,11 @@ mod tests {
 
     #[test]
     fn exact_must_have_nothing_wrong() {
-        let row = |wrong: u64| format!(r#"{{"rows": [{{"name": "exact", "family": "f", "wrong_pixels": {wrong}, "overdraw": 0, "gaps": null, "failures": 0}}]}}"#);
+        let row = |wrong: u64| {
+            format!(
+                r#"{{"rows": [{{"name": "exact", "family": "f", "wrong_pixels": {wrong}, "overdraw": 0, "gaps": null, "failures": 0}}]}}"#
+            )
+        };
         let (_dir, path) = results_file(&row(0));
         assert!(check(&path).is_ok());
         let (_dir, path) = results_file(&row(3));

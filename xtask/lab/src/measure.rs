@@ -181,11 +181,8 @@ fn coverage_of(spans: &[Span]) -> CoverageSink {
 /// as failures; the caller should silence the panic hook (see [`quietly`]).
 pub fn judge(family: &Family, contenders: &[Contender], progress: &(dyn Fn() + Sync)) -> Judged {
     let plan = Plan::new(family, contenders);
-    let canvases: Vec<Range<usize>> = if plan.tiled() {
-        family.tilings.clone()
-    } else {
-        (0..family.polygons.len()).map(|i| i..i + 1).collect()
-    };
+    let canvases: Vec<Range<usize>> =
+        if plan.tiled() { family.tilings.clone() } else { (0..family.polygons.len()).map(|i| i..i + 1).collect() };
     // Contiguous blocks of canvases, taken in turn by the workers and merged
     // back in order, so that "first failure" means the same on any machine.
     let workers = thread::available_parallelism().map_or(1, |n| n.get());
@@ -253,7 +250,11 @@ impl<'a> Plan<'a> {
         Judged {
             exact: Vec::new(),
             tallies: self.takes.iter().map(|&t| t.then(Tally::default)).collect(),
-            run_tallies: self.takes.iter().map(|&t| if t { vec![Tally::default(); self.runs.len()] } else { vec![] }).collect(),
+            run_tallies: self
+                .takes
+                .iter()
+                .map(|&t| if t { vec![Tally::default(); self.runs.len()] } else { vec![] })
+                .collect(),
             runs: self.runs.clone(),
             timed: vec![Vec::new(); self.contenders.len()],
         }
@@ -473,7 +474,9 @@ mod tests {
 
     #[test]
     fn failed_polygons_are_not_timed() {
-        let judged = quietly(|| judge(&family(vec![square(1), square(2), square(3)], vec![]), &[Contender::Method(&Misfit)], &|| {}));
+        let judged = quietly(|| {
+            judge(&family(vec![square(1), square(2), square(3)], vec![]), &[Contender::Method(&Misfit)], &|| {})
+        });
         assert_eq!(judged.timed[0], vec![0, 2]);
         assert_eq!(judged.exact.len(), 3);
     }

@@ -94,7 +94,8 @@ impl Peer {
                 })
             }
             Peer::EmbeddedGraphics => {
-                let shapes: Vec<Styled<Triangle, PrimitiveStyle<Gray8>>> = polygons.iter().filter_map(|p| triangle(p)).collect();
+                let shapes: Vec<Styled<Triangle, PrimitiveStyle<Gray8>>> =
+                    polygons.iter().filter_map(|p| triangle(p)).collect();
                 let mut screen = Framebuffer::new(SCREEN);
                 Box::new(move || {
                     for shape in &shapes {
@@ -158,7 +159,10 @@ fn triangle(polygon: &Polygon) -> Option<Styled<Triangle, PrimitiveStyle<Gray8>>
         let q = p.round_to_pixel();
         embedded_graphics::geometry::Point::new(q.x, q.y)
     };
-    Some(Triangle::new(corner(a), corner(b), corner(c)).into_styled(PrimitiveStyle::with_fill(Gray8::new(polygon.color))))
+    Some(
+        Triangle::new(corner(a), corner(b), corner(c))
+            .into_styled(PrimitiveStyle::with_fill(Gray8::new(polygon.color))),
+    )
 }
 
 fn draw_triangle(shape: &Styled<Triangle, PrimitiveStyle<Gray8>>, sink: &mut dyn SpanSink) {

@@ -50,7 +50,15 @@ pub fn markdown(results: &Results) -> String {
 fn corpus_table(out: &mut String, results: &Results) {
     let _ = writeln!(out, "## Corpus\n\n| family | group | polygons | exact pixels | what |\n|---|---|---:|---:|---|");
     for f in &results.families {
-        let _ = writeln!(out, "| {} | {} | {} | {} | {} |", f.name, group(f.group), count(f.polygons as u64), count(f.pixels), f.description);
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} | {} |",
+            f.name,
+            group(f.group),
+            count(f.polygons as u64),
+            count(f.pixels),
+            f.description
+        );
     }
     out.push('\n');
 }
@@ -94,7 +102,12 @@ fn exact_goals(out: &mut String, results: &Results) {
         let _ = writeln!(out, "- {text}: {value} (goal {target}).");
     };
     goal(out, "Small triangles, tiny-skia's time over exact's", ratio("small_triangles", "tiny-skia"), "≥ 10×");
-    goal(out, "Small triangles, embedded-graphics' time over exact's", ratio("small_triangles", "embedded-graphics"), "> 1×");
+    goal(
+        out,
+        "Small triangles, embedded-graphics' time over exact's",
+        ratio("small_triangles", "embedded-graphics"),
+        "> 1×",
+    );
     goal(
         out,
         "Small triangles, exact's time over the span-write bound's",
@@ -187,13 +200,15 @@ fn own_rate(r: &Row) -> f64 {
 }
 
 /// A table of one measure, families down, contenders across.
-fn measure_table(out: &mut String, results: &Results, title: &str, with_bounds: bool, cell: impl Fn(&Row) -> Option<String>) {
-    let columns: Vec<&str> = results
-        .contenders
-        .iter()
-        .filter(|c| with_bounds || c.kind != Kind::Bound)
-        .map(|c| c.name)
-        .collect();
+fn measure_table(
+    out: &mut String,
+    results: &Results,
+    title: &str,
+    with_bounds: bool,
+    cell: impl Fn(&Row) -> Option<String>,
+) {
+    let columns: Vec<&str> =
+        results.contenders.iter().filter(|c| with_bounds || c.kind != Kind::Bound).map(|c| c.name).collect();
     let _ = writeln!(out, "## {title}\n\n| family | {} |", columns.join(" | "));
     let _ = writeln!(out, "|---|{}", "---:|".repeat(columns.len()));
     for f in &results.families {

@@ -145,7 +145,9 @@ impl Results {
 
     /// Adds what was measured on `family`.
     pub fn add_family(&mut self, family: &Family, contenders: &[Contender], judged: &Judged, speeds: &Speeds) {
-        let pixels_of = |indices: &mut dyn Iterator<Item = usize>| indices.map(|i| spans::pixel_count(&judged.exact[i])).sum::<u64>();
+        let pixels_of = |indices: &mut dyn Iterator<Item = usize>| {
+            indices.map(|i| spans::pixel_count(&judged.exact[i])).sum::<u64>()
+        };
         let pixels = pixels_of(&mut (0..family.polygons.len()));
         self.families.push(FamilyInfo {
             name: family.name,
@@ -186,7 +188,14 @@ impl Results {
             let timed = &judged.timed[c];
             let kind = if contender.is_peer() { Kind::Peer } else { Kind::Method };
             let ns = speeds.contenders[c];
-            let base = row(contender.name(), kind, tally.polygons, timed.len() as u64, pixels_of(&mut timed.iter().copied()), ns);
+            let base = row(
+                contender.name(),
+                kind,
+                tally.polygons,
+                timed.len() as u64,
+                pixels_of(&mut timed.iter().copied()),
+                ns,
+            );
             self.rows.push(with_tally(base, tally, !family.tilings.is_empty()));
         }
         for bound in Bound::ALL {

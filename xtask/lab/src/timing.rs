@@ -129,7 +129,13 @@ pub fn jobs(family: &Family, contenders: usize) -> u64 {
 /// fail on, and the bounds on all of them; per sweep value where the
 /// family's axis asks for it, the family's figure then being the mean over
 /// its polygons. `progress` is told of each job done.
-pub fn time_family(family: &Family, judged: &Judged, contenders: &[Contender], timing: Timing, progress: &dyn Fn()) -> Speeds {
+pub fn time_family(
+    family: &Family,
+    judged: &Judged,
+    contenders: &[Contender],
+    timing: Timing,
+    progress: &dyn Fn(),
+) -> Speeds {
     let per_value = family.sweep.as_ref().is_some_and(|s| s.axis.timed_per_value());
     if !per_value {
         return time_range(family, judged, contenders, timing, 0..family.polygons.len(), progress);
@@ -173,7 +179,9 @@ fn time_range(
         .map(|(c, contender)| {
             let polygons: Vec<&Polygon> =
                 judged.timed[c].iter().filter(|i| range.contains(i)).map(|&i| &family.polygons[i]).collect();
-            let ns = judged.tallies[c].as_ref().and_then(|_| timing.ns_per_polygon(&mut *contender.pass(&polygons), polygons.len()));
+            let ns = judged.tallies[c]
+                .as_ref()
+                .and_then(|_| timing.ns_per_polygon(&mut *contender.pass(&polygons), polygons.len()));
             progress();
             ns
         })

@@ -46,7 +46,7 @@ use alloc::vec::Vec;
 
 use super::abrash_int::ErrorTermStep;
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Class, Convention, Method, Heap, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 /// Listing 40.1.

@@ -21,7 +21,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::method::{Class, Convention, Method, Heap, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 /// Listing 38.1.
@@ -246,7 +246,11 @@ fn scan_edge(segment: &Segment, rows: core::ops::Range<i64>, xs: &mut [i32]) {
 /// correct the positive fractions.
 fn ceil(v: f64) -> f64 {
     let t = v as i64 as f64;
-    if t < v { t + 1.0 } else { t }
+    if t < v {
+        t + 1.0
+    } else {
+        t
+    }
 }
 
 #[cfg(test)]
@@ -280,7 +284,10 @@ pub(super) mod tests {
 
     #[test]
     fn off_screen_and_huge_polygons_are_clipped() {
-        assert_eq!(draw(&AbrashFloat, &[(-1 << 22, -1 << 22), (1 << 22, -1 << 22), (1 << 22, 1 << 22), (-1 << 22, 1 << 22)]), full());
+        assert_eq!(
+            draw(&AbrashFloat, &[(-1 << 22, -1 << 22), (1 << 22, -1 << 22), (1 << 22, 1 << 22), (-1 << 22, 1 << 22)]),
+            full()
+        );
         assert_eq!(draw(&AbrashFloat, &[(100, 100), (120, 100), (120, 120)]), empty());
     }
 

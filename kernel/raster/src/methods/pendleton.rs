@@ -50,7 +50,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Point, Polygon, SUBPIXEL_BITS};
-use crate::method::{Class, Convention, Method, Heap, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 /// `poly()` and its helpers.
@@ -261,8 +261,10 @@ fn poly(color: u8, pnts: &[FpPoint], sink: &mut dyn SpanSink) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::methods::test_support::{assert_clipping_changes_no_pixel, draw, empty, fill, full, SMALL, TALL_TRIANGLES};
     use crate::coverage::CoverageSink;
+    use crate::methods::test_support::{
+        assert_clipping_changes_no_pixel, draw, empty, fill, full, SMALL, TALL_TRIANGLES,
+    };
 
     /// The picture of a polygon from coordinates in half pixels.
     fn draw_halves(points: &[(i32, i32)]) -> alloc::string::String {

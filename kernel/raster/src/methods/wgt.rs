@@ -48,7 +48,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Class, Convention, Method, Heap, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 /// The tutorial's `fillpoly`.
@@ -179,8 +179,8 @@ fn polyline(lines: &mut LineArrays, a: Vertex, b: Vertex) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Point;
     use crate::coverage::CoverageSink;
+    use crate::geometry::Point;
     use crate::methods::test_support::{draw, fill, full, SMALL};
     use crate::sink::SCREEN;
 
@@ -214,7 +214,10 @@ mod tests {
 
     #[test]
     fn top_row_skipped_bottom_row_and_both_ends_drawn() {
-        assert_eq!(draw(&Wgt, &[(1, 1), (5, 1), (5, 4), (1, 4)]), "........\n........\n.#####..\n.#####..\n.#####..\n........\n");
+        assert_eq!(
+            draw(&Wgt, &[(1, 1), (5, 1), (5, 4), (1, 4)]),
+            "........\n........\n.#####..\n.#####..\n.#####..\n........\n"
+        );
     }
 
     #[test]

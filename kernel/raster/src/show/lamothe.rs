@@ -91,8 +91,8 @@ pub(super) fn regular(centre: Point, radius: i32, sides: u32, angle: u32) -> imp
 mod tests {
     use super::*;
     use crate::methods;
-    use alloc::vec::Vec;
     use crate::sink::SCREEN;
+    use alloc::vec::Vec;
 
     fn frame(frame: u32, method: &dyn Method) -> (Framebuffer, DrawReport) {
         super::super::drawn_alone(draw, frame, method)

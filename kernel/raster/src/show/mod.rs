@@ -73,7 +73,11 @@ impl Entry {
 
     /// How many frames the demo shows this entry for before moving on.
     pub fn demo_frames(&self) -> u32 {
-        if self.is_animated() { self.frames } else { STILL_FRAMES }
+        if self.is_animated() {
+            self.frames
+        } else {
+            STILL_FRAMES
+        }
     }
 
     /// Frame `frame` as the entry draws it: frame numbers wrap around its
@@ -132,7 +136,13 @@ pub enum Ramp {
 impl Ramp {
     /// The palette index of `level` (clamped to `0..RAMP_LEVELS`).
     pub const fn color(self, level: i32) -> u8 {
-        let level = if level < 0 { 0 } else if level >= RAMP_LEVELS as i32 { RAMP_LEVELS as i32 - 1 } else { level };
+        let level = if level < 0 {
+            0
+        } else if level >= RAMP_LEVELS as i32 {
+            RAMP_LEVELS as i32 - 1
+        } else {
+            level
+        };
         RAMP_BASE + self as u8 * RAMP_LEVELS + level as u8
     }
 
@@ -349,7 +359,8 @@ mod tests {
             assert_eq!(PALETTE[usize::from(ramp.color(0))], [0, 0, 0]);
             assert_eq!(PALETTE[usize::from(ramp.color(i32::MAX))], ramp.top());
             for level in 1..i32::from(RAMP_LEVELS) {
-                let (below, here) = (PALETTE[usize::from(ramp.color(level - 1))], PALETTE[usize::from(ramp.color(level))]);
+                let (below, here) =
+                    (PALETTE[usize::from(ramp.color(level - 1))], PALETTE[usize::from(ramp.color(level))]);
                 assert!((0..3).all(|c| below[c] <= here[c]), "{ramp:?} level {level}");
             }
         }

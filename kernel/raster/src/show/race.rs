@@ -85,7 +85,8 @@ mod tests {
 
     #[test]
     fn the_methods_take_turns() {
-        let order: Vec<&str> = (0..FRAMES).step_by(FRAMES_PER_METHOD as usize).map(|f| method_at(f).info().name).collect();
+        let order: Vec<&str> =
+            (0..FRAMES).step_by(FRAMES_PER_METHOD as usize).map(|f| method_at(f).info().name).collect();
         let all: Vec<&str> = methods::ALL.iter().map(|m| m.info().name).collect();
         assert_eq!(order, all);
         assert_eq!(method_at(FRAMES_PER_METHOD - 1).info().name, all[0]);

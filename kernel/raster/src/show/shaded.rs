@@ -122,9 +122,7 @@ fn texture_quad(frame: u32) -> [Vertex<2>; 4] {
 /// Draws frame `frame` of `wgt-texture`.
 pub(super) fn texture(frame: u32, method: &dyn Method, scratch: &mut Scratch, target: &mut Framebuffer) -> DrawReport {
     let mut painter = Painter::new(method, scratch, target);
-    painter.quad(&texture_quad(frame), &mut |_, _, &[u, v]: &[i32; 2]| {
-        Some(texel(u >> TEXEL_BITS, v >> TEXEL_BITS))
-    });
+    painter.quad(&texture_quad(frame), &mut |_, _, &[u, v]: &[i32; 2]| Some(texel(u >> TEXEL_BITS, v >> TEXEL_BITS)));
     painter.report()
 }
 
@@ -283,8 +281,7 @@ mod tests {
 
     #[test]
     fn pixels_are_black_or_ramp_colours() {
-        let expected: [&[Ramp]; 3] =
-            [&[Ramp::Gold], &[Ramp::Red, Ramp::Gold], &[Ramp::Red, Ramp::Green, Ramp::Blue]];
+        let expected: [&[Ramp]; 3] = [&[Ramp::Gold], &[Ramp::Red, Ramp::Gold], &[Ramp::Red, Ramp::Green, Ramp::Blue]];
         let mut stage = Stage::new();
         for (entry, ramps) in entries().into_iter().zip(expected) {
             // For each ramp, the frames that show more than a speck of it.
@@ -402,5 +399,4 @@ mod tests {
             }
         }
     }
-
 }

@@ -79,8 +79,9 @@ fn contour_of(points: usize) -> impl Strategy<Value = Vec<Point>> {
 }
 
 fn collinear_contour() -> impl Strategy<Value = Vec<Point>> {
-    (nearby_point(), (-3 * PX..3 * PX, -3 * PX..3 * PX), prop::collection::vec(-8..8, 0..7))
-        .prop_map(|(origin, (dx, dy), steps)| steps.iter().map(|&t| Point::new(origin.x + t * dx, origin.y + t * dy)).collect())
+    (nearby_point(), (-3 * PX..3 * PX, -3 * PX..3 * PX), prop::collection::vec(-8..8, 0..7)).prop_map(
+        |(origin, (dx, dy), steps)| steps.iter().map(|&t| Point::new(origin.x + t * dx, origin.y + t * dy)).collect(),
+    )
 }
 
 fn monotone_contour() -> impl Strategy<Value = Vec<Point>> {
@@ -102,8 +103,22 @@ fn monotone_contour() -> impl Strategy<Value = Vec<Point>> {
 
 /// Sixteen directions in angular order, scaled to 256.
 const DIRECTIONS: [(i32, i32); 16] = [
-    (256, 0), (237, 98), (181, 181), (98, 237), (0, 256), (-98, 237), (-181, 181), (-237, 98),
-    (-256, 0), (-237, -98), (-181, -181), (-98, -237), (0, -256), (98, -237), (181, -181), (237, -98),
+    (256, 0),
+    (237, 98),
+    (181, 181),
+    (98, 237),
+    (0, 256),
+    (-98, 237),
+    (-181, 181),
+    (-237, 98),
+    (-256, 0),
+    (-237, -98),
+    (-181, -181),
+    (-98, -237),
+    (0, -256),
+    (98, -237),
+    (181, -181),
+    (237, -98),
 ];
 
 /// A contour with one vertex on each of the sixteen directions from
@@ -127,7 +142,12 @@ fn star_contour() -> impl Strategy<Value = Vec<Point>> {
 }
 
 fn polygon_with_holes() -> impl Strategy<Value = Vec<Vec<Point>>> {
-    (nearby_point(), prop::collection::vec(12 * PX..24 * PX, 16), prop::collection::vec(PX..6 * PX, 16), any::<(bool, bool)>())
+    (
+        nearby_point(),
+        prop::collection::vec(12 * PX..24 * PX, 16),
+        prop::collection::vec(PX..6 * PX, 16),
+        any::<(bool, bool)>(),
+    )
         .prop_map(|(centre, outer, inner, (outer_clockwise, inner_clockwise))| {
             vec![star_around(centre, &outer, outer_clockwise), star_around(centre, &inner, inner_clockwise)]
         })
@@ -184,7 +204,7 @@ pub fn polygon_of(kind: Kind) -> impl Strategy<Value = Polygon> {
 
 /// A polygon of any kind but huge, with the kind it was built as.
 pub fn any_polygon() -> impl Strategy<Value = (Kind, Polygon)> {
-    let kinds = vec![Kind::Collinear, Kind::Triangle, Kind::Monotone, Kind::Star, Kind::Scribble, Kind::Holes, Kind::Contours];
-    prop::sample::select(kinds)
-        .prop_flat_map(|kind| polygon_of(kind).prop_map(move |polygon| (kind, polygon)))
+    let kinds =
+        vec![Kind::Collinear, Kind::Triangle, Kind::Monotone, Kind::Star, Kind::Scribble, Kind::Holes, Kind::Contours];
+    prop::sample::select(kinds).prop_flat_map(|kind| polygon_of(kind).prop_map(move |polygon| (kind, polygon)))
 }

@@ -282,7 +282,13 @@ fn assign_parts<const NON_ZERO: bool>(active: &mut [ActiveEdge]) -> bool {
 /// reaches the right border. Columns are clamped to the target, which
 /// changes no visible pixel's inside test.
 #[inline]
-fn emit_and_step(row: i64, active: &mut [ActiveEdge], open_at_end: bool, target: Target, sink: &mut dyn SpanSink) -> bool {
+fn emit_and_step(
+    row: i64,
+    active: &mut [ActiveEdge],
+    open_at_end: bool,
+    target: Target,
+    sink: &mut dyn SpanSink,
+) -> bool {
     let width = i64::from(target.width);
     // The open run's start, and the run waiting to be emitted: the next one
     // may touch it. `-1`, left of every visible column, stands for none.

@@ -209,7 +209,11 @@ mod tests {
             let mut stepper = EdgeStepper::at_row(top, bottom, rows.start);
             for row in rows {
                 let fresh = EdgeStepper::at_row(top, bottom, row);
-                assert_eq!((stepper.column, stepper.error), (fresh.column, fresh.error), "{top:?}-{bottom:?} row {row}");
+                assert_eq!(
+                    (stepper.column, stepper.error),
+                    (fresh.column, fresh.error),
+                    "{top:?}-{bottom:?} row {row}"
+                );
                 stepper.step();
             }
         }

@@ -37,7 +37,7 @@ pub(crate) use active_edges::fill_active_edges;
 pub(crate) use monotone::{fill_monotone, fill_triangle};
 
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Class, Convention, Method, Heap, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 /// The exact method.
@@ -51,7 +51,8 @@ static INFO: MethodInfo = MethodInfo {
         sample_y: edge::SAMPLE_OFFSET,
         summary: "pixel centres, exact; left edges and flat tops in, right edges and flat bottoms out",
     },
-    numeric: "i32 vertices in 1/256 px; i64 edge setup (i128 for edges over 2^23 px), i64 error-term stepping; no floats",
+    numeric:
+        "i32 vertices in 1/256 px; i64 edge setup (i128 for edges over 2^23 px), i64 error-term stepping; no floats",
     handles: Class::Complex,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
     heap: Heap::BeyondConvex,
@@ -81,7 +82,10 @@ mod tests {
 
     #[test]
     fn convention_is_the_references_centre() {
-        assert_eq!(crate::reference::SampleOffset::of(&Exact.info().convention), crate::reference::SampleOffset::CENTRE);
+        assert_eq!(
+            crate::reference::SampleOffset::of(&Exact.info().convention),
+            crate::reference::SampleOffset::CENTRE
+        );
     }
 
     #[test]
@@ -106,7 +110,8 @@ mod tests {
             [(from, from), (to, from), (to, to), (from, to)].iter().map(|&(x, y)| Point::from_pixels(x, y)).collect()
         };
         let mut inner = square(2, 3);
-        let mut polygon = Polygon { contours: alloc::vec![square(1, 4), inner.clone()], color: 1, rule: FillRule::EvenOdd };
+        let mut polygon =
+            Polygon { contours: alloc::vec![square(1, 4), inner.clone()], color: 1, rule: FillRule::EvenOdd };
         assert_eq!(draw(&polygon), "........\n.###....\n.#.#....\n.###....\n........\n");
         polygon.rule = FillRule::NonZero;
         assert_eq!(draw(&polygon), "........\n.###....\n.###....\n.###....\n........\n");

@@ -125,7 +125,15 @@ fn columns_fit(min_x: i32, max_x: i32, width: i32) -> bool {
 
 /// [`span_rows`] for `left` never right of `right`.
 #[inline(always)]
-fn emit_ordered(rows: Range<i64>, left: &mut EdgeStepper, right: &mut EdgeStepper, clip: bool, color: u8, width: i32, sink: &mut dyn SpanSink) {
+fn emit_ordered(
+    rows: Range<i64>,
+    left: &mut EdgeStepper,
+    right: &mut EdgeStepper,
+    clip: bool,
+    color: u8,
+    width: i32,
+    sink: &mut dyn SpanSink,
+) {
     if clip {
         span_rows::<true, true>(rows, left, right, color, width, sink);
     } else {
@@ -151,9 +159,11 @@ pub(super) fn span_rows<const ORDERED: bool, const CLIP: bool>(
     // Local copies: the steppers then need not be stored on every row.
     let (mut a_, mut b_) = (*a, *b);
     for row in rows {
-        let (start, end) = if ORDERED { (a_.column, b_.column) } else { (a_.column.min(b_.column), a_.column.max(b_.column)) };
+        let (start, end) =
+            if ORDERED { (a_.column, b_.column) } else { (a_.column.min(b_.column), a_.column.max(b_.column)) };
         // Without `CLIP` both are in `0..=width`, so they fit an `i32`.
-        let (start, end) = if CLIP { (visible_column(start, width), visible_column(end, width)) } else { (start as i32, end as i32) };
+        let (start, end) =
+            if CLIP { (visible_column(start, width), visible_column(end, width)) } else { (start as i32, end as i32) };
         if start < end {
             // `row` is in `0..height`, an `i32`.
             sink.span(row as i32, start, end, color);
@@ -204,8 +214,11 @@ impl Chain<'_> {
             self.vertex = next;
             let end_row = first_sample_at_or_after(bottom.y.into());
             if first_sample_at_or_after(top.y.into()) <= row && row < end_row {
-                let stepper =
-                    if end_row - row == 1 { EdgeStepper::at_last_row(top, bottom, row) } else { EdgeStepper::at_row(top, bottom, row) };
+                let stepper = if end_row - row == 1 {
+                    EdgeStepper::at_last_row(top, bottom, row)
+                } else {
+                    EdgeStepper::at_row(top, bottom, row)
+                };
                 return Some(ChainEdge { stepper, end_row });
             }
         }

@@ -24,7 +24,7 @@
 //!   module's split and fan.
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::method::{Class, Convention, Method, Heap, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 use super::{EdgePair, FlatHalves};
@@ -45,7 +45,8 @@ static INFO: MethodInfo = MethodInfo {
         sample_y: 0,
         summary: "integer rows; flat halves draw their top and bottom rows and both span ends (overlaps); x rounded",
     },
-    numeric: "integer vertices; 16.16 fixed point in i32 (wrapping), +0x8000 >> 16 rounding; split point (int)(0.5 + f32)",
+    numeric:
+        "integer vertices; 16.16 fixed point in i32 (wrapping), +0x8000 >> 16 rounding; split point (int)(0.5 + f32)",
     handles: Class::Triangle,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
     heap: Heap::Never,
@@ -160,14 +161,20 @@ mod tests {
 
     #[test]
     fn split_triangle_draws_the_middle_row_twice() {
-        assert_eq!(draw(&LamotheFixed, &[(1, 0), (6, 2), (2, 4)]), ".#......\n..###...\n..22222.\n..###...\n..#.....\n........\n");
+        assert_eq!(
+            draw(&LamotheFixed, &[(1, 0), (6, 2), (2, 4)]),
+            ".#......\n..###...\n..22222.\n..###...\n..#.....\n........\n"
+        );
     }
 
     #[test]
     fn quad_overlaps_on_its_diagonal_and_overshoots_its_right_edge() {
         // Second half, row 2: xs = 3.5 rounds to 4, xe - xs = 2.5 rounds to
         // 3, so 4 pixels from 4 reach x = 7, right of the quad's x = 6.
-        assert_eq!(draw(&LamotheFixed, &[(1, 0), (6, 0), (6, 4), (1, 4)]), ".#####2.\n.####2#.\n.###2###\n.#2####.\n.2#####.\n........\n");
+        assert_eq!(
+            draw(&LamotheFixed, &[(1, 0), (6, 0), (6, 4), (1, 4)]),
+            ".#####2.\n.####2#.\n.###2###\n.#2####.\n.2#####.\n........\n"
+        );
     }
 
     #[test]

@@ -20,7 +20,7 @@
 //!   module's split and fan.
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::method::{Class, Convention, Method, Heap, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
 use crate::sink::SpanSink;
 
 use super::{EdgePair, FlatHalves};
@@ -138,7 +138,10 @@ mod tests {
     #[test]
     fn split_triangle_draws_the_middle_row_twice() {
         // new_x = 1 + (int)(0.5 + 2 * 1 / 4) = 2 on row 2, drawn by both halves.
-        assert_eq!(draw(&Lamothe, &[(1, 0), (6, 2), (2, 4)]), ".#......\n.###....\n..22222.\n..###...\n..#.....\n........\n");
+        assert_eq!(
+            draw(&Lamothe, &[(1, 0), (6, 2), (2, 4)]),
+            ".#......\n.###....\n..22222.\n..###...\n..#.....\n........\n"
+        );
     }
 
     #[test]
@@ -146,7 +149,10 @@ mod tests {
         // Draw_QuadFP_2D's split: (0, 1, 3) and (1, 2, 3), diagonal 1-3.
         // The second half's right edge is x = 6, but its no-x-clip count
         // starts from the truncated left end: column 6 is lost on rows 1-3.
-        assert_eq!(draw(&Lamothe, &[(1, 0), (6, 0), (6, 4), (1, 4)]), ".#####2.\n.###22..\n.##22#..\n.#2###..\n.2#####.\n........\n");
+        assert_eq!(
+            draw(&Lamothe, &[(1, 0), (6, 0), (6, 4), (1, 4)]),
+            ".#####2.\n.###22..\n.##22#..\n.#2###..\n.2#####.\n........\n"
+        );
     }
 
     #[test]
@@ -163,7 +169,10 @@ mod tests {
     #[test]
     fn pentagon_is_filled_as_a_fan_from_vertex_zero() {
         // Triangles (0,1,2), (0,2,3), (0,3,4): vertex 0 is drawn three times.
-        assert_eq!(draw(&Lamothe, &[(3, 0), (6, 2), (5, 5), (1, 5), (0, 2)]), "...3....\n.#2##...\n2233222.\n#22###..\n#2##2#..\n#2####..\n");
+        assert_eq!(
+            draw(&Lamothe, &[(3, 0), (6, 2), (5, 5), (1, 5), (0, 2)]),
+            "...3....\n.#2##...\n2233222.\n#22###..\n#2##2#..\n#2####..\n"
+        );
     }
 
     #[test]

@@ -77,7 +77,12 @@ struct ClipRect {
 impl ClipRect {
     /// The whole sink, or `None` when it has no pixels.
     fn of(size: Size) -> Option<Self> {
-        (size.width > 0 && size.height > 0).then(|| Self { min_x: 0, max_x: size.width - 1, min_y: 0, max_y: size.height - 1 })
+        (size.width > 0 && size.height > 0).then(|| Self {
+            min_x: 0,
+            max_x: size.width - 1,
+            min_y: 0,
+            max_y: size.height - 1,
+        })
     }
 
     fn contains_x(&self, x: i32) -> bool {
@@ -133,7 +138,13 @@ fn fill_polygon(variant: &impl FlatHalves, polygon: &Polygon, sink: &mut dyn Spa
 
 /// `Draw_Triangle_2D` / `Draw_TriangleFP_2D` (the two differ only in the
 /// halves they call).
-fn draw_triangle_2d(variant: &impl FlatHalves, [p1, p2, p3]: [PixelPoint; 3], clip: ClipRect, color: u8, sink: &mut dyn SpanSink) {
+fn draw_triangle_2d(
+    variant: &impl FlatHalves,
+    [p1, p2, p3]: [PixelPoint; 3],
+    clip: ClipRect,
+    color: u8,
+    sink: &mut dyn SpanSink,
+) {
     // "test for h lines and v lines"
     if (p1.x == p2.x && p2.x == p3.x) || (p1.y == p2.y && p2.y == p3.y) {
         return;
@@ -185,7 +196,15 @@ fn long_edge_offset(p1: PixelPoint, p2: PixelPoint, p3: PixelPoint) -> i32 {
 /// The body shared by `Draw_Top_Tri`, `Draw_Bottom_Tri` and their FP twins
 /// after the setup: y clip, then lines `y1..=y3` by the no-x-clip path when
 /// all three x lie inside the clip rectangle, else by the x-clip path.
-fn scan_half(mut edges: impl EdgePair, xs: [i32; 3], mut y1: i32, mut y3: i32, clip: ClipRect, color: u8, sink: &mut dyn SpanSink) {
+fn scan_half(
+    mut edges: impl EdgePair,
+    xs: [i32; 3],
+    mut y1: i32,
+    mut y3: i32,
+    clip: ClipRect,
+    color: u8,
+    sink: &mut dyn SpanSink,
+) {
     if y1 < clip.min_y {
         edges.skip_lines(clip.min_y - y1);
         y1 = clip.min_y;
