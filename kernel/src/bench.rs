@@ -11,12 +11,13 @@ use core::fmt::Write;
 use core::sync::atomic::{compiler_fence, Ordering};
 
 use protocol::BENCH_UNIT_LINE;
-use raster::{methods, Scene};
+use raster::methods;
+use scenes::Scene;
 
 use crate::video::Screen;
 
 /// The `BENCH` payload for `scene`: [`BENCH_UNIT_LINE`], then per method
-/// in `methods::ALL` order `NAME CYCLES`, the median of `repeats` whole-scene
+/// in `raster::MethodId::ALL` order `NAME CYCLES`, the median of `repeats` whole-scene
 /// draws. Bounded: `methods::ALL.len() * repeats` draws, `repeats` being at
 /// most `protocol::BENCH_MAX_REPEATS`. The screen keeps the last draw.
 pub fn run(screen: &mut Screen, scene: &Scene, repeats: u8) -> String {

@@ -13,12 +13,13 @@ use core::fmt::Write;
 use core::hint::spin_loop;
 
 use protocol::{Command, CommandError, FrameKind, MAX_LINE};
-use raster::show::{Stage, ENTRIES_IN_ORDER};
-use raster::{methods, scene_file, scenes, Method, Op, Scene};
+use raster::MethodId;
+use scenes::show::{Stage, ENTRIES_IN_ORDER};
+use scenes::{builtin, file, Op, Scene};
 
 use crate::exit::exit_qemu;
 use crate::video::Screen;
-use crate::{bench, fault, serial, show, vga};
+use crate::{bench, fault, player, serial, vga};
 
 /// Tells the host the kernel is up: a `LOG` frame per VGA register or DAC
 /// entry that did not read back as written, then `READY` with the
@@ -94,36 +95,27 @@ impl Console<'_> {
             Command::Ping => ok("pong"),
             Command::List => Ok((FrameKind::List, listing().into_bytes())),
             Command::Draw { scene, method } => {
-                let scene = scenes::by_name(scene).ok_or_else(|| format!("unknown scene `{scene}`"))?;
-                let method = match method {
-                    Some(name) => method_named(name)?,
-                    None => scene.method(),
-                };
-                ok(self.screen.draw(&scene, method))
+                let scene = builtin_scene(scene)?;
+                let method = method.unwrap_or(scene.method);
+                ok(self.screen.draw(&scene, method.method()))
             }
             Command::Show { entry, frame, method } => {
-                let entry = raster::show::entry(entry).ok_or_else(|| format!("unknown show entry `{entry}`"))?;
-                let method = match method {
-                    Some(name) => method_named(name)?,
-                    None => entry.method_at(frame),
-                };
-                ok(show::play(self.screen, self.stage, entry, frame, method, None))
+                let entry = scenes::show::entry(entry).ok_or_else(|| format!("unknown show entry `{entry}`"))?;
+                let method = method.unwrap_or(entry.method_at(frame));
+                ok(player::play(self.screen, self.stage, entry, frame, method, None))
             }
             Command::Clear(color) => {
                 self.screen.clear(color);
                 ok(format_args!("clear {color}"))
             }
             Command::Poly { method, spec } => {
-                let method = method_named(method)?;
-                // The spec is a scene-file `poly` line without its keyword.
-                let op = scene_file::parse_line(&format!("poly {spec}")).map_err(|error| error.to_string())?;
-                let Some(fill @ Op::Fill(_)) = op else { return Err(String::from("POLY takes one polygon")) };
-                let scene = Scene { name: String::from("POLY"), ops: vec![fill], method: None };
-                ok(self.screen.draw(&scene, method))
+                let polygon = file::parse_poly(spec).map_err(|error| error.to_string())?;
+                let scene = Scene { name: String::from("POLY"), ops: vec![Op::Fill(polygon)], method };
+                ok(self.screen.draw(&scene, method.method()))
             }
             Command::Dump => Ok((FrameKind::Dump, self.screen.dump())),
             Command::Bench { scene, repeats } => {
-                let scene = scenes::by_name(scene).ok_or_else(|| format!("unknown scene `{scene}`"))?;
+                let scene = builtin_scene(scene)?;
                 Ok((FrameKind::Bench, bench::run(self.screen, &scene, repeats).into_bytes()))
             }
             Command::VgaCheck => {
@@ -145,9 +137,9 @@ fn ok(text: impl core::fmt::Display) -> Reply {
     Ok((FrameKind::Ok, text.to_string().into_bytes()))
 }
 
-/// The method called `name`.
-fn method_named(name: &str) -> Result<&'static dyn Method, String> {
-    methods::by_name(name).ok_or_else(|| format!("unknown method `{name}`"))
+/// The built-in scene called `name`, built.
+fn builtin_scene(name: &str) -> Result<Scene, String> {
+    builtin::scene(name).ok_or_else(|| format!("unknown scene `{name}`"))
 }
 
 /// The `LIST` payload: a `scene NAME` line per built-in scene, a
@@ -156,14 +148,14 @@ fn method_named(name: &str) -> Result<&'static dyn Method, String> {
 fn listing() -> String {
     let mut text = String::new();
     // Writing to a `String` cannot fail.
-    for name in scenes::NAMES {
-        let _ = writeln!(text, "scene {name}");
+    for page in &builtin::ALL {
+        let _ = writeln!(text, "scene {}", page.name);
     }
     for entry in ENTRIES_IN_ORDER {
         let _ = writeln!(text, "show {} {}", entry.name, entry.frames);
     }
-    for method in methods::ALL {
-        let _ = writeln!(text, "method {}", method.info().name);
+    for method in MethodId::ALL {
+        let _ = writeln!(text, "method {method}");
     }
     text
 }

@@ -1,12 +1,12 @@
 //! The demo that runs when no host talks: the show
-//! (`raster::show::ENTRIES_IN_ORDER`: the pages of Listings 38.3 and 40.4,
+//! (`scenes::show::ENTRIES_IN_ORDER`: the pages of Listings 38.3 and 40.4,
 //! the LaMothe, WGT and Pendleton pieces, the race of every method) in
 //! turn, round and round, at `FRAMES_PER_SECOND`, each entry for its
 //! `demo_frames()` with the method of its source. Every frame goes through
-//! `show::play`, as a `SHOW` would. It works with no keyboard and no serial
+//! `player::play`, as a `SHOW` would. It works with no keyboard and no serial
 //! line: the timer alone moves it on. Keys (PS/2, `keyboard`): space or
 //! Enter, the next entry; 1 to 8, every entry with that method of
-//! `methods::ALL` until 0 gives each its own again; Escape, from the
+//! `MethodId::ALL` until 0 gives each its own again; Escape, from the
 //! start.
 //!
 //! The first byte from the host stops it for good and leaves the screen
@@ -14,12 +14,12 @@
 //! host draws is all that is on the screen when it asks for a dump, and
 //! the palette is the one `DRAW` uses whichever frame the demo was at.
 
-use raster::show::{Stage, ENTRIES_IN_ORDER};
-use raster::Method;
+use raster::MethodId;
+use scenes::show::{Stage, ENTRIES_IN_ORDER};
 
 use crate::keyboard::{self, Key};
+use crate::player::{self, Pacer};
 use crate::serial;
-use crate::show::{self, Pacer};
 use crate::video::Screen;
 
 /// Runs the demo on `stage` until the host sends a byte, clears the
@@ -30,11 +30,11 @@ pub fn run(screen: &mut Screen, stage: &mut Stage) -> u8 {
     let mut index = 0;
     let mut frame = 0;
     // The method the viewer picked for every entry, if any.
-    let mut picked: Option<&'static dyn Method> = None;
+    let mut picked: Option<MethodId> = None;
     loop {
         let entry = &ENTRIES_IN_ORDER[index];
         let method = picked.unwrap_or_else(|| entry.method_at(frame));
-        show::play(screen, stage, entry, frame, method, Some(&mut pacer));
+        player::play(screen, stage, entry, frame, method, Some(&mut pacer));
         frame += 1;
         let mut next = frame >= entry.demo_frames();
         match keyboard::poll() {

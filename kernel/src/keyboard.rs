@@ -3,7 +3,7 @@
 //! With no keyboard, or no controller (status reads 0xFF, which looks like
 //! mouse data), no key is ever pressed.
 
-use raster::{methods, Method};
+use raster::MethodId;
 
 use crate::port::ps2;
 
@@ -26,8 +26,8 @@ const SPACE: u8 = 0x39;
 pub enum Key {
     /// Space or Enter: the next entry.
     Next,
-    /// A digit d from 1: every entry drawn with `methods::ALL[d - 1]`.
-    Method(&'static dyn Method),
+    /// A digit d from 1: every entry drawn with `MethodId::ALL[d - 1]`.
+    Method(MethodId),
     /// 0: every entry with its own method again.
     OwnMethods,
     /// Escape: the first entry from frame 0, with its own method.
@@ -59,7 +59,7 @@ pub fn poll() -> Option<Key> {
 fn decode(code: u8) -> Option<Key> {
     match code {
         SPACE | ENTER => Some(Key::Next),
-        DIGIT_1..=DIGIT_9 => methods::ALL.get(usize::from(code - DIGIT_1)).map(|&method| Key::Method(method)),
+        DIGIT_1..=DIGIT_9 => MethodId::ALL.get(usize::from(code - DIGIT_1)).map(|&method| Key::Method(method)),
         DIGIT_0 => Some(Key::OwnMethods),
         ESCAPE => Some(Key::Restart),
         _ => None,

@@ -24,9 +24,9 @@ mod heap;
 mod interrupts;
 mod keyboard;
 mod pit;
+mod player;
 mod port;
 mod serial;
-mod show;
 mod vga;
 mod video;
 
@@ -56,7 +56,7 @@ fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
     screen.clear(0);
     console::announce(&screen);
     // The show's memory, allocated once for the demo and `SHOW`.
-    let mut stage = raster::show::Stage::new();
+    let mut stage = scenes::show::Stage::new();
     let first_byte = demo::run(&mut screen, &mut stage);
     console::serve(&mut screen, &mut stage, first_byte)
 }

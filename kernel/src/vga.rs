@@ -13,7 +13,7 @@ use alloc::string::String;
 use alloc::vec::Vec;
 use core::fmt::{self, Write};
 
-use raster::palette::ENTRIES;
+use scenes::palette::ENTRIES;
 
 use crate::port::{bochs, vga, IoPort};
 

@@ -11,9 +11,9 @@ use core::ptr::NonNull;
 
 use bootloader_api::BootInfo;
 use protocol::{DUMP_LEN, FRAMEBUFFER_LEN};
-use raster::palette::VGA_DEFAULT;
-use raster::scene::DrawReport;
-use raster::{sink, Method, Scene, Size, SpanSink, SCREEN};
+use raster::{sink, Method, Size, SpanSink, SCREEN};
+use scenes::palette::VGA_DEFAULT;
+use scenes::{DrawReport, Scene};
 use volatile::VolatilePtr;
 
 use crate::vga::{self, Palette};

@@ -1,12 +1,13 @@
 //! The end-to-end checks that the integration tests and the xtask share.
 
 use anyhow::{ensure, Context, Result};
-use raster::{show, Method};
+use raster::MethodId;
+use scenes::show;
 
 use crate::compare::{compare_images, compare_palettes};
 use crate::console::{Console, Dump, Shown};
 use crate::picture::Image;
-use crate::render::{builtin_scene, render, render_show, show_entry, show_method};
+use crate::render::{builtin_scene, render, render_show, show_entry};
 
 /// QEMU shows each mode-13h pixel as a 2x2 block of its 640x400 screen.
 pub const SCREEN_SCALE: u32 = 2;
@@ -14,14 +15,11 @@ pub const SCREEN_SCALE: u32 = 2;
 /// Has the kernel draw built-in scene `scene` with `method` on a black
 /// screen, and checks its dump against the host render byte for byte.
 /// Returns the dump for further checks.
-pub fn dump_matches_host_render(console: &mut Console, scene: &str, method: &dyn Method) -> Result<Dump> {
-    let method_name = method.info().name;
-    let expected = render(&builtin_scene(scene)?, method);
-    console
-        .draw(scene, Some(method_name))
-        .with_context(|| format!("kernel failed to draw {scene} with {method_name}"))?;
+pub fn dump_matches_host_render(console: &mut Console, scene: &str, method: MethodId) -> Result<Dump> {
+    let expected = render(&builtin_scene(scene)?, method.method());
+    console.draw(scene, Some(method)).with_context(|| format!("kernel failed to draw {scene} with {method}"))?;
     let dump = console.dump()?;
-    compare_images(&format!("{scene}.{method_name}.dump"), &expected, &dump.image())?;
+    compare_images(&format!("{scene}.{method}.dump"), &expected, &dump.image())?;
     Ok(dump)
 }
 
@@ -35,18 +33,17 @@ pub fn show_matches_host_render(
     console: &mut Console,
     entry: &str,
     frame: u32,
-    method: Option<&str>,
+    method: Option<MethodId>,
 ) -> Result<(Shown, Dump)> {
     let entry = show_entry(entry)?;
-    let drawn_with = show_method(entry, frame, method)?;
-    let method_name = drawn_with.info().name;
-    let name = format!("{}.{frame}.{method_name}.show", entry.name);
+    let drawn_with = method.unwrap_or(entry.method_at(frame));
+    let name = format!("{}.{frame}.{drawn_with}.show", entry.name);
     let reply = console.show(entry.name, frame, method).with_context(|| format!("kernel failed to show {name}"))?;
-    let asked = (entry.name, entry.wrap(frame), method_name);
-    let said = (reply.entry.as_str(), reply.frame, reply.method.as_str());
+    let asked = (entry.name, entry.wrap(frame), drawn_with);
+    let said = (reply.entry.as_str(), reply.frame, reply.method);
     ensure!(said == asked, "{name}: the kernel says it showed {said:?}, not {asked:?}");
     let dump = console.dump()?;
-    let expected = render_show(entry, frame, drawn_with, reply.cycles);
+    let expected = render_show(entry, frame, drawn_with.method(), reply.cycles);
     compare_images(&name, &expected, &dump.image())?;
     compare_palettes(&name, &show::PALETTE, &dump.palette)?;
     Ok((reply, dump))

@@ -5,7 +5,7 @@ use std::ops::Range;
 use std::path::PathBuf;
 
 use anyhow::{bail, Result};
-use raster::palette::ENTRIES;
+use scenes::palette::ENTRIES;
 
 use crate::picture::{Image, Pixels, Rgb};
 use crate::workspace;

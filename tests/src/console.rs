@@ -5,8 +5,8 @@ use std::time::Duration;
 
 use anyhow::{bail, ensure, Context, Result};
 use protocol::{Command, FrameKind, ShowReply, BENCH_UNIT_LINE, DUMP_LEN, FRAMEBUFFER_LEN};
-use raster::palette::ENTRIES;
-use raster::SCREEN;
+use raster::{MethodId, SCREEN};
+use scenes::palette::ENTRIES;
 
 use crate::picture::Image;
 use crate::serial::{Frame, FrameReader};
@@ -27,7 +27,7 @@ pub enum Reply {
     List(Listing),
     Dump(Box<Dump>),
     /// The answer to `BENCH`: `(method, cycles)` per method, in order.
-    Bench(Vec<(String, u64)>),
+    Bench(Vec<(MethodId, u64)>),
     Fatal(String),
 }
 
@@ -92,12 +92,12 @@ impl Listing {
 
 /// The answer to `SHOW`: [`ShowReply`]'s fields, owned (the protocol's
 /// type borrows the reply's text).
-#[derive(Clone, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Shown {
     pub entry: String,
     /// The frame drawn, reduced modulo the entry's frames.
     pub frame: u32,
-    pub method: String,
+    pub method: MethodId,
     /// rdtsc cycles of the polygon drawing (labels excluded), the number
     /// the labels show.
     pub cycles: u64,
@@ -112,13 +112,13 @@ pub struct Shown {
 impl From<ShowReply<'_>> for Shown {
     fn from(reply: ShowReply<'_>) -> Self {
         let ShowReply { entry, frame, method, cycles, allocs, polygons, refused, strays } = reply;
-        Self { entry: entry.to_string(), frame, method: method.to_string(), cycles, allocs, polygons, refused, strays }
+        Self { entry: entry.to_string(), frame, method, cycles, allocs, polygons, refused, strays }
     }
 }
 
 /// A `BENCH` payload: its first line must be [`BENCH_UNIT_LINE`] (the
 /// numbers are meaningless without their unit), then `METHOD CYCLES` lines.
-fn parse_bench(text: &str) -> Result<Vec<(String, u64)>> {
+fn parse_bench(text: &str) -> Result<Vec<(MethodId, u64)>> {
     let mut lines = text.lines();
     let unit = lines.next().unwrap_or_default();
     ensure!(unit == BENCH_UNIT_LINE, "BENCH starts with `{unit}`, not its unit line `{BENCH_UNIT_LINE}`");
@@ -127,8 +127,9 @@ fn parse_bench(text: &str) -> Result<Vec<(String, u64)>> {
         .map(|line| {
             let (method, cycles) =
                 line.split_once(' ').with_context(|| format!("BENCH line `{line}` is not `METHOD CYCLES`"))?;
+            let method = method.parse().with_context(|| format!("BENCH line `{line}`"))?;
             let cycles = cycles.parse().with_context(|| format!("BENCH line `{line}`: bad cycle count"))?;
-            Ok((method.to_string(), cycles))
+            Ok((method, cycles))
         })
         .collect()
 }
@@ -240,7 +241,7 @@ impl Console {
 
     /// Clears the screen to black (the host render's starting point) and
     /// draws a built-in scene.
-    pub fn draw(&mut self, scene: &str, method: Option<&str>) -> Result<()> {
+    pub fn draw(&mut self, scene: &str, method: Option<MethodId>) -> Result<()> {
         self.ok(&Command::Clear(0))?;
         self.ok(&Command::Draw { scene, method })?;
         Ok(())
@@ -248,7 +249,7 @@ impl Console {
 
     /// Has the kernel show frame `frame` of show entry `entry`, with
     /// `method` or, for `None`, the entry's own method for that frame.
-    pub fn show(&mut self, entry: &str, frame: u32, method: Option<&str>) -> Result<Shown> {
+    pub fn show(&mut self, entry: &str, frame: u32, method: Option<MethodId>) -> Result<Shown> {
         let command = Command::Show { entry, frame, method };
         let text = self.ok(&command)?;
         let reply =
@@ -264,9 +265,9 @@ impl Console {
     }
 
     /// Times every method drawing built-in `scene` `repeats` times: per
-    /// method in `raster::methods::ALL` order, its name and the median
+    /// method in [`MethodId::ALL`] order, the method and the median
     /// rdtsc cycles of one draw (emulated cycles under QEMU TCG).
-    pub fn bench(&mut self, scene: &str, repeats: u8) -> Result<Vec<(String, u64)>> {
+    pub fn bench(&mut self, scene: &str, repeats: u8) -> Result<Vec<(MethodId, u64)>> {
         let command = Command::Bench { scene, repeats };
         match self.request(&command)? {
             Reply::Bench(rows) => Ok(rows),
@@ -360,7 +361,7 @@ mod tests {
         let payload = format!("{BENCH_UNIT_LINE}\nabrash_float 1200\nexact 900\n");
         let (mut console, sent, _keep) = console(&[(FrameKind::Bench, payload.as_bytes())]);
         let rows = console.bench("abrash38-1", 3).unwrap();
-        assert_eq!(rows, [("abrash_float".to_string(), 1200), ("exact".to_string(), 900)]);
+        assert_eq!(rows, [(MethodId::AbrashFloat, 1200), (MethodId::Exact, 900)]);
         assert_eq!(sent.0.lock().unwrap().as_slice(), b"BENCH abrash38-1 3\n");
         assert!(parse_bench("abrash_float 1200\n").is_err(), "a BENCH without its unit line");
         assert!(parse_bench(&format!("{BENCH_UNIT_LINE}\nexact many\n")).is_err());
@@ -378,7 +379,7 @@ mod tests {
         let reply = ShowReply {
             entry: "race",
             frame: 30,
-            method: "abrash_int",
+            method: MethodId::AbrashInt,
             cycles: 9,
             allocs: 0,
             polygons: 4,
@@ -389,10 +390,10 @@ mod tests {
         let (mut console, sent, _keep) = console(&[(FrameKind::Ok, text.as_bytes()), (FrameKind::Ok, b"drawn")]);
         let shown = console.show("race", 30, None).unwrap();
         assert_eq!(
-            (shown.entry.as_str(), shown.frame, shown.method.as_str(), shown.polygons),
-            ("race", 30, "abrash_int", 4)
+            (shown.entry.as_str(), shown.frame, shown.method, shown.polygons),
+            ("race", 30, MethodId::AbrashInt, 4)
         );
-        let error = console.show("race", 0, Some("exact")).unwrap_err().to_string();
+        let error = console.show("race", 0, Some(MethodId::Exact)).unwrap_err().to_string();
         assert_eq!(error, "`SHOW race 0 exact` answered OK \"drawn\", not a SHOW reply");
         assert_eq!(sent.0.lock().unwrap().as_slice(), b"SHOW race 30\nSHOW race 0 exact\n");
     }

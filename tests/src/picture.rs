@@ -7,7 +7,7 @@ use std::io::{BufReader, BufWriter};
 use std::path::Path;
 
 use anyhow::{bail, ensure, Context, Result};
-use raster::palette::{to_rgb8, ENTRIES};
+use scenes::palette::{to_rgb8, ENTRIES};
 
 /// An 8-bit red, green, blue colour.
 pub type Rgb = [u8; 3];
@@ -157,7 +157,7 @@ impl Image {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use raster::palette::VGA_DEFAULT;
+    use scenes::palette::VGA_DEFAULT;
 
     fn temp_png(name: &str) -> std::path::PathBuf {
         std::env::temp_dir().join(format!("harness-picture-{}-{name}.png", std::process::id()))

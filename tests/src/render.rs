@@ -5,25 +5,12 @@
 use std::path::Path;
 
 use anyhow::{anyhow, bail, Context, Result};
-use raster::palette::VGA_DEFAULT;
-use raster::show::{self, Entry, Stage, ENTRIES_IN_ORDER};
-use raster::{methods, scene_file, scenes, Framebuffer, Method, Scene, SCREEN};
+use raster::{Framebuffer, Method, SCREEN};
+use scenes::palette::VGA_DEFAULT;
+use scenes::show::{self, Entry, Stage, ENTRIES_IN_ORDER};
+use scenes::{builtin, file, Scene};
 
 use crate::picture::Image;
-
-/// The method called `name`, or for `None` the scene's own (the method its
-/// source uses; `exact` for scene files).
-pub fn method_for(scene: &Scene, name: Option<&str>) -> Result<&'static dyn Method> {
-    name.map_or(Ok(scene.method()), method_named)
-}
-
-/// The method called `name`.
-pub fn method_named(name: &str) -> Result<&'static dyn Method> {
-    methods::by_name(name).with_context(|| {
-        let valid: Vec<&str> = methods::ALL.iter().map(|m| m.info().name).collect();
-        format!("unknown method `{name}`; valid methods: {}", valid.join(", "))
-    })
-}
 
 /// The show entry called `name`.
 pub fn show_entry(name: &str) -> Result<&'static Entry> {
@@ -33,33 +20,32 @@ pub fn show_entry(name: &str) -> Result<&'static Entry> {
     })
 }
 
-/// The method called `name` or, for `None`, the one `entry` draws frame
-/// `frame` with (its source's; for the race, whose turn it is).
-pub fn show_method(entry: &Entry, frame: u32, name: Option<&str>) -> Result<&'static dyn Method> {
-    name.map_or_else(|| Ok(entry.method_at(frame)), method_named)
+/// The names of the built-in scenes, `, `-separated, for error messages.
+fn builtin_names() -> String {
+    builtin::ALL.map(|page| page.name).join(", ")
 }
 
 /// The built-in scene called `name`.
 pub fn builtin_scene(name: &str) -> Result<Scene> {
-    scenes::by_name(name).with_context(|| format!("unknown scene `{name}`; valid scenes: {}", scenes::NAMES.join(", ")))
+    builtin::scene(name).with_context(|| format!("unknown scene `{name}`; valid scenes: {}", builtin_names()))
 }
 
 /// A built-in scene by name or, failing that, a scene file by path.
 pub fn scene_named_or_file(name_or_path: &str) -> Result<Scene> {
-    if let Some(scene) = scenes::by_name(name_or_path) {
+    if let Some(scene) = builtin::scene(name_or_path) {
         return Ok(scene);
     }
     let path = Path::new(name_or_path);
     if !path.is_file() {
         bail!(
             "`{name_or_path}` is neither a built-in scene nor a scene file; valid scenes: {}, or the path of a scene file",
-            scenes::NAMES.join(", ")
+            builtin_names()
         );
     }
     let text =
         std::fs::read_to_string(path).with_context(|| format!("failed to read scene file {}", path.display()))?;
     let name = path.file_stem().map_or_else(|| name_or_path.to_string(), |s| s.to_string_lossy().into_owned());
-    scene_file::parse(&name, &text).map_err(|error| anyhow!("{}: bad scene file: {error}", path.display()))
+    file::parse(&name, &text).map_err(|error| anyhow!("{}: bad scene file: {error}", path.display()))
 }
 
 /// `scene` drawn with `method` on a black 320x200 screen, as an indexed
@@ -89,11 +75,9 @@ mod tests {
 
     #[test]
     fn unknown_names_list_the_valid_ones() {
-        let Err(error) = method_for(&Scene::default(), Some("nope")) else { panic!("`nope` is a method") };
-        let error = format!("{error:#}");
-        assert!(error.starts_with("unknown method `nope`; valid methods: abrash_float"), "{error}");
         let error = format!("{:#}", builtin_scene("nope").unwrap_err());
-        assert_eq!(error, format!("unknown scene `nope`; valid scenes: {}", scenes::NAMES.join(", ")));
+        assert!(error.starts_with("unknown scene `nope`; valid scenes: abrash38-1, abrash38-2, "), "{error}");
+        assert!(error.ends_with(", wgt-triangle"), "{error}");
         let error = format!("{:#}", show_entry("nope").unwrap_err());
         assert!(error.starts_with("unknown show entry `nope`; valid entries: abrash38-1, "), "{error}");
         assert!(error.ends_with(", race"), "{error}");
@@ -105,20 +89,11 @@ mod tests {
     }
 
     #[test]
-    fn a_show_frame_uses_the_named_method_or_the_entry_s_own() {
-        let race = show_entry("race").unwrap();
-        let last = race.frames - 1;
-        assert_eq!(show_method(race, last, None).unwrap().info().name, race.method_at(last).info().name);
-        assert_eq!(show_method(race, last, Some("wgt")).unwrap().info().name, "wgt");
-        assert!(show_method(race, 0, Some("nope")).is_err());
-    }
-
-    #[test]
     fn a_show_frame_is_drawn_in_the_show_palette() {
         let entry = show_entry("abrash38-1").unwrap();
-        let shown = render_show(entry, 0, show_method(entry, 0, None).unwrap(), 1234);
+        let shown = render_show(entry, 0, entry.method_at(0).method(), 1234);
         let Pixels::Indexed { indices, palette } = shown.pixels() else { panic!("a show frame is indexed") };
-        let expected: Vec<[u8; 3]> = show::PALETTE.iter().map(|rgb| rgb.map(raster::palette::c6_to_8)).collect();
+        let expected: Vec<[u8; 3]> = show::PALETTE.iter().map(|rgb| rgb.map(scenes::palette::c6_to_8)).collect();
         assert_eq!(palette, &expected);
         assert!(indices.iter().any(|&i| i != 0), "the page is drawn");
     }
@@ -138,7 +113,7 @@ mod tests {
         std::fs::write(&path, "clear 4\n").unwrap();
         let scene = scene_named_or_file(path.to_str().unwrap()).unwrap();
         std::fs::remove_file(&path).unwrap();
-        let image = render(&scene, scene.method());
+        let image = render(&scene, scene.method.method());
         assert_eq!(image.color(0), [168, 0, 0]);
         assert_eq!(image.pixel_count(), 64_000);
     }

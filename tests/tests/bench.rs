@@ -1,20 +1,20 @@
 //! `BENCH` answers for every demo scene with one cycle count per method,
-//! in the order of `raster::methods::ALL`. Only the shape of the answer is
+//! in the order of `raster::MethodId::ALL`. Only the shape of the answer is
 //! checked: the cycles are emulated (QEMU TCG) and speed is never asserted.
 
 use anyhow::{bail, ensure, Result};
 use harness::{Qemu, QemuOptions, Reply};
 use protocol::Command;
-use raster::{methods, scenes};
+use raster::MethodId;
+use scenes::builtin;
 
 #[test]
 fn bench_answers_one_positive_cycle_count_per_method_for_every_demo_scene() -> Result<()> {
-    let expected: Vec<&str> = methods::ALL.iter().map(|method| method.info().name).collect();
     let mut qemu = Qemu::boot(QemuOptions::default())?;
-    for scene in scenes::NAMES {
+    for scene in builtin::ALL.map(|page| page.name) {
         let rows = qemu.console.bench(scene, 1)?;
-        let names: Vec<&str> = rows.iter().map(|(name, _)| name.as_str()).collect();
-        ensure!(names == expected, "BENCH {scene} listed methods {names:?}, expected {expected:?}");
+        let methods: Vec<MethodId> = rows.iter().map(|&(method, _)| method).collect();
+        ensure!(methods == MethodId::ALL, "BENCH {scene} listed methods {methods:?}, expected {:?}", MethodId::ALL);
         for (method, cycles) in &rows {
             ensure!(*cycles > 0, "BENCH {scene}: {method} took {cycles} cycles");
         }

@@ -21,10 +21,10 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, ensure, Context, Result};
 use harness::checks::{as_on_screen, SCREEN_SCALE};
 use harness::compare::{compare_image_rows, images_match_in_rows};
-use harness::render::{render_show, show_entry, show_method};
+use harness::render::{render_show, show_entry};
 use harness::{Image, Qemu, QemuOptions};
-use raster::methods;
-use raster::show::{ENTRIES_IN_ORDER, FRAMES_PER_SECOND, STILL_FRAMES};
+use raster::MethodId;
+use scenes::show::{ENTRIES_IN_ORDER, FRAMES_PER_SECOND, STILL_FRAMES};
 
 /// The first row of the bottom label (method and cycles), whose glyphs
 /// sit on rows 191 to 198 ringed by black from row 190: the cycles differ
@@ -56,7 +56,7 @@ struct Step {
     key: Option<&'static str>,
     /// The show entry on the screen.
     entry: &'static str,
-    /// The digit whose method (`methods::ALL[digit - 1]`) draws every
+    /// The digit whose method (`MethodId::ALL[digit - 1]`) draws every
     /// entry; none for each entry's own.
     digit: Option<usize>,
 }
@@ -95,11 +95,11 @@ const STEPS: &[Step] = &[
 fn expected_screen(step: &Step) -> Result<(String, Image)> {
     let entry = show_entry(step.entry)?;
     let method = match step.digit {
-        Some(digit) => *methods::ALL.get(digit - 1).with_context(|| format!("no method for the digit {digit}"))?,
-        None => show_method(entry, 0, None)?,
+        Some(digit) => *MethodId::ALL.get(digit - 1).with_context(|| format!("no method for the digit {digit}"))?,
+        None => entry.method_at(0),
     };
-    let name = format!("{}.{}", entry.name, method.info().name);
-    Ok((name, as_on_screen(&render_show(entry, 0, method, 0))))
+    let name = format!("{}.{method}", entry.name);
+    Ok((name, as_on_screen(&render_show(entry, 0, method.method(), 0))))
 }
 
 /// Whether the timer alone, without the key, would bring `step`'s
@@ -179,7 +179,7 @@ fn space_enter_digits_and_escape_move_the_running_demo() -> Result<()> {
 fn with_no_key_the_timer_turns_the_pages_and_animations_play_by_themselves() -> Result<()> {
     let (first, second) = (expected_screen(&STEPS[0])?, expected_screen(&Step { key: None, ..STEPS[1] })?);
     let rotate = show_entry("lamothe-rotate")?;
-    let method = show_method(rotate, 0, None)?;
+    let method = rotate.method_at(0).method();
     let frames: Vec<Image> = (0..rotate.frames).map(|f| as_on_screen(&render_show(rotate, f, method, 0))).collect();
     let skips = ENTRIES_IN_ORDER.iter().position(|entry| entry.name == rotate.name).context("no lamothe-rotate")?;
 

@@ -6,17 +6,17 @@ use harness::checks::{dump_matches_host_render, screen_matches_dump};
 use harness::compare::compare_palettes;
 use harness::{Qemu, QemuOptions};
 use protocol::Command;
-use raster::methods;
-use raster::palette::VGA_DEFAULT;
-use raster::scenes::NAMES;
+use raster::MethodId;
+use scenes::builtin;
+use scenes::palette::VGA_DEFAULT;
 
 #[test]
 fn every_page_with_every_method_dumps_what_the_host_renders() -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     // Every combination runs, so one failure does not hide the others.
-    let failures: Vec<String> = NAMES
+    let failures: Vec<String> = builtin::ALL
         .iter()
-        .flat_map(|scene| methods::ALL.iter().map(move |method| (*scene, *method)))
+        .flat_map(|page| MethodId::ALL.map(move |method| (page.name, method)))
         .filter_map(|(scene, method)| dump_matches_host_render(&mut qemu.console, scene, method).err())
         .map(|error| format!("{error:#}"))
         .collect();
@@ -27,7 +27,7 @@ fn every_page_with_every_method_dumps_what_the_host_renders() -> Result<()> {
 #[test]
 fn screendump_shows_every_page_through_the_read_back_palette() -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions::default())?;
-    for scene in NAMES {
+    for scene in builtin::ALL.map(|page| page.name) {
         qemu.console.draw(scene, None)?;
         let dump = qemu.console.dump()?;
         let screen = qemu.screendump()?;
@@ -47,8 +47,9 @@ fn read_back_palette_is_the_vga_default() -> Result<()> {
 fn kernel_lists_the_scenes_and_methods_the_host_knows() -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     let listing = qemu.console.list()?;
-    let methods: Vec<&str> = methods::ALL.iter().map(|m| m.info().name).collect();
-    ensure!(listing.scenes == NAMES, "kernel lists scenes {:?}, host has {NAMES:?}", listing.scenes);
+    let methods = MethodId::ALL.map(MethodId::name);
+    let scenes = builtin::ALL.map(|page| page.name);
+    ensure!(listing.scenes == scenes, "kernel lists scenes {:?}, host has {scenes:?}", listing.scenes);
     ensure!(listing.methods == methods, "kernel lists methods {:?}, host has {methods:?}", listing.methods);
     Ok(())
 }

@@ -1,4 +1,4 @@
-//! The show (`raster::show`), drawn by the kernel with `SHOW` in QEMU:
+//! The show (`scenes::show`), drawn by the kernel with `SHOW` in QEMU:
 //! every entry against the host render, labels and palette included; the
 //! race's turns; every method on an animation; no allocation once an
 //! animation runs with a method that allocates nothing itself; bad input.
@@ -9,8 +9,8 @@ use anyhow::{bail, ensure, Result};
 use harness::checks::{screen_matches_dump, show_matches_host_render};
 use harness::{Qemu, QemuOptions, Reply, Shown};
 use protocol::Command;
-use raster::show::{self, Entry, ENTRIES_IN_ORDER};
-use raster::{methods, Heap};
+use raster::{Heap, MethodId};
+use scenes::show::{self, Entry, ENTRIES_IN_ORDER};
 
 /// The frames checked of `entry`: its first, a third of the way, its last
 /// (one frame for a still).
@@ -32,7 +32,7 @@ fn own_method_problems(reply: &Shown, again: bool) -> Vec<String> {
     if *refused != 0 || *strays != 0 {
         problems.push(format!("{entry} frame {frame} with its own {method}: refused={refused} strays={strays}"));
     }
-    let allocating = methods::by_name(method).is_none_or(|m| m.info().heap == Heap::EveryPolygon);
+    let allocating = method.method().info().heap == Heap::EveryPolygon;
     if again && !allocating && *allocs != 0 {
         problems.push(format!(
             "{entry} frame {frame} with {method}, shown again: {allocs} allocations for {polygons} polygons"
@@ -67,10 +67,9 @@ fn every_entry_shows_what_the_host_renders_at_its_first_middle_and_last_frame() 
 #[test]
 fn the_race_shows_each_method_from_the_first_frame_of_its_turn() -> Result<()> {
     let race = show::entry("race").expect("the show has a race");
-    let turns: Vec<u32> = (0..race.frames)
-        .filter(|&frame| frame == 0 || race.method_at(frame).info().name != race.method_at(frame - 1).info().name)
-        .collect();
-    ensure!(turns.len() >= methods::ALL.len(), "the race gives turns to {} methods", turns.len());
+    let turns: Vec<u32> =
+        (0..race.frames).filter(|&frame| frame == 0 || race.method_at(frame) != race.method_at(frame - 1)).collect();
+    ensure!(turns.len() >= MethodId::ALL.len(), "the race gives turns to {} methods", turns.len());
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     let mut failures = Vec::new();
     for (shown_before, frame) in turns.into_iter().enumerate() {
@@ -88,11 +87,9 @@ fn an_animation_shows_what_the_host_renders_with_every_method_named() -> Result<
     let entry = show::entry("lamothe-rotate").expect("the show has lamothe-rotate");
     let frame = entry.frames / 3;
     let mut qemu = Qemu::boot(QemuOptions::default())?;
-    let failures = methods::ALL
-        .iter()
-        .filter_map(|method| {
-            show_matches_host_render(&mut qemu.console, entry.name, frame, Some(method.info().name)).err()
-        })
+    let failures = MethodId::ALL
+        .into_iter()
+        .filter_map(|method| show_matches_host_render(&mut qemu.console, entry.name, frame, Some(method)).err())
         .map(|error| format!("{error:#}"))
         .collect();
     none_failed(failures)
@@ -104,7 +101,7 @@ fn every_animation_drawn_with_exact_allocates_nothing_after_its_first_frame() ->
     let mut failures = Vec::new();
     for entry in ENTRIES_IN_ORDER.iter().filter(|entry| entry.is_animated()) {
         for frame in [0, 1, entry.frames / 2, entry.frames - 1] {
-            let reply = qemu.console.show(entry.name, frame, Some("exact"))?;
+            let reply = qemu.console.show(entry.name, frame, Some(MethodId::Exact))?;
             if frame > 0 && reply.allocs != 0 {
                 failures.push(format!("{} frame {frame} with exact: {} allocations", entry.name, reply.allocs));
             }

@@ -4,12 +4,12 @@
 use anyhow::Result;
 use harness::checks::dump_matches_host_render;
 use harness::{Medium, Qemu, QemuOptions};
-use raster::scenes::{self, NAMES};
+use scenes::builtin;
 
 #[test]
 fn usb_stick_boot_draws_page_1_like_the_host() -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions { medium: Medium::UsbStick, ..QemuOptions::default() })?;
-    let page_1 = scenes::by_name(NAMES[0]).expect("page 1 is built in");
-    dump_matches_host_render(&mut qemu.console, NAMES[0], page_1.method())?;
+    let page_1 = builtin::ABRASH38_1;
+    dump_matches_host_render(&mut qemu.console, page_1.name, page_1.method)?;
     Ok(())
 }

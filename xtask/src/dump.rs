@@ -2,7 +2,7 @@
 
 use anyhow::Result;
 use harness::checks::screen_matches_dump;
-use harness::render::{builtin_scene, method_for};
+use harness::render::builtin_scene;
 use harness::{Qemu, QemuOptions};
 
 use crate::opt::DumpOpt;
@@ -10,7 +10,7 @@ use crate::opt::DumpOpt;
 pub fn dump(opt: &DumpOpt) -> Result<()> {
     // Check the names before spending a boot on them.
     let scene = builtin_scene(&opt.scene)?;
-    let method = method_for(&scene, opt.method.as_deref())?.info().name;
+    let method = opt.method.unwrap_or(scene.method);
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     qemu.console.draw(&opt.scene, Some(method))?;
     let dump = qemu.console.dump()?;

@@ -10,7 +10,8 @@ use std::path::absolute;
 use anyhow::{ensure, Context, Result};
 use harness::{Qemu, QemuOptions};
 use protocol::BENCH_UNIT_LINE;
-use raster::{methods, scenes};
+use raster::MethodId;
+use scenes::builtin;
 use serde_json::json;
 
 use crate::opt::KbenchOpt;
@@ -44,20 +45,21 @@ pub fn kbench(opt: &KbenchOpt) -> Result<()> {
 }
 
 fn measure(repeats: u8) -> Result<Table> {
-    let methods: Vec<&str> = methods::ALL.iter().map(|method| method.info().name).collect();
+    let methods: Vec<&str> = MethodId::ALL.map(MethodId::name).to_vec();
+    let scenes: Vec<&str> = builtin::ALL.map(|page| page.name).to_vec();
     let mut cycles = vec![Vec::new(); methods.len()];
     let mut qemu = Qemu::boot(QemuOptions::default())?;
-    for scene in scenes::NAMES {
+    for &scene in &scenes {
         eprintln!("xtask: BENCH {scene} {repeats}");
         let rows = qemu.console.bench(scene, repeats)?;
-        let names: Vec<&str> = rows.iter().map(|(name, _)| name.as_str()).collect();
-        ensure!(names == methods, "BENCH {scene} listed methods {names:?}, expected {methods:?}");
+        let listed: Vec<MethodId> = rows.iter().map(|&(method, _)| method).collect();
+        ensure!(listed == MethodId::ALL, "BENCH {scene} listed methods {listed:?}, expected {:?}", MethodId::ALL);
         for (column, (_, count)) in cycles.iter_mut().zip(rows) {
             column.push(count);
         }
     }
     qemu.quit()?;
-    Ok(Table { scenes: scenes::NAMES.to_vec(), methods, cycles })
+    Ok(Table { scenes, methods, cycles })
 }
 
 fn markdown(table: &Table, repeats: u8) -> String {

@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use protocol::{BENCH_DEFAULT_REPEATS, BENCH_MAX_REPEATS};
+use raster::MethodId;
 
 /// The developer's hands: run the demo, build the image, dump, render,
 /// record, test.
@@ -57,7 +58,7 @@ pub struct DumpOpt {
     /// Fill method (default: the scene's own, the method its source uses;
     /// exact for scene files).
     #[arg(long)]
-    pub method: Option<String>,
+    pub method: Option<MethodId>,
     /// Directory for the two PNGs.
     #[arg(long)]
     pub out: PathBuf,
@@ -71,7 +72,7 @@ pub struct RenderOpt {
     /// Fill method (default: the scene's own, the method its source uses;
     /// exact for scene files).
     #[arg(long)]
-    pub method: Option<String>,
+    pub method: Option<MethodId>,
     /// The PNG to write.
     #[arg(long, value_name = "FILE.png")]
     pub out: PathBuf,
@@ -91,7 +92,7 @@ pub struct RecordOpt {
     /// Fill method for every frame (default: the entry's own; in the race,
     /// the method whose turn it is).
     #[arg(long)]
-    pub method: Option<String>,
+    pub method: Option<MethodId>,
     /// The first frame recorded (frame numbers wrap around the entry's frames).
     #[arg(long, default_value_t = 0)]
     pub start: u32,

@@ -9,12 +9,12 @@ use std::path::Path;
 
 use anyhow::{bail, ensure, Context, Result};
 use harness::checks::show_matches_host_render;
-use harness::render::{method_named, show_entry};
+use harness::render::show_entry;
 use harness::{Console, Dump, Qemu, QemuOptions, Shown};
 use indicatif::{ProgressBar, ProgressStyle};
-use raster::palette::{to_rgb8, ENTRIES};
-use raster::show::{Entry, FRAMES_PER_SECOND};
-use raster::SCREEN;
+use raster::{MethodId, SCREEN};
+use scenes::palette::{to_rgb8, ENTRIES};
+use scenes::show::{Entry, FRAMES_PER_SECOND};
 use tempfile::NamedTempFile;
 
 use crate::opt::RecordOpt;
@@ -30,42 +30,60 @@ fn delay(step: u32) -> u16 {
 pub fn record(opt: &RecordOpt) -> Result<()> {
     // Everything that can be checked is checked before spending a boot.
     let entry = show_entry(&opt.scene)?;
-    if let Some(method) = &opt.method {
-        method_named(method)?;
-    }
-    let partial = partial_file_for(&opt.out)?;
+    let frames = Frames { start: opt.start, step: opt.step, count: opt.frames };
+    let recording = Recording::new(entry, frames, opt.method, !opt.no_verify, &opt.out)?;
     let mut qemu = Qemu::boot(QemuOptions::default())?;
-    let take = Take {
-        entry,
-        frames: frame_numbers(entry, opt.start, opt.step, opt.frames).collect(),
-        step: opt.step,
-        method: opt.method.as_deref(),
-        verify: !opt.no_verify,
-    };
-    let shown = take.film(&mut qemu.console, partial, &opt.out)?;
+    let shown = recording.film(&mut qemu.console)?;
     print!("{}", summary(&shown));
     qemu.quit()?;
     println!("{}", opt.out.display());
     Ok(())
 }
 
-/// Frames of one show entry to film.
-pub struct Take<'a> {
-    pub entry: &'static Entry,
-    /// Frame numbers in the order filmed, each `step` after the last.
-    pub frames: Vec<u32>,
+/// Which frames of an entry to film: `count` of them from `start`, every
+/// `step`-th, wrapping around the entry's frames.
+#[derive(Clone, Copy, Debug)]
+pub struct Frames {
+    pub start: u32,
     pub step: u32,
-    /// The method for every frame; `None`, the entry's own.
-    pub method: Option<&'a str>,
-    /// Check every dump against the host render and the show's palette.
-    pub verify: bool,
+    pub count: u32,
 }
 
-impl Take<'_> {
-    /// Films the frames through `console` (`SHOW`, `DUMP`) into `partial`
-    /// (from [`partial_file_for`]), renamed to `out` once complete, with a
-    /// progress bar; returns the kernel's replies.
-    pub fn film(&self, console: &mut Console, partial: NamedTempFile, out: &Path) -> Result<Vec<Shown>> {
+/// Frames of one show entry to film into an animated GIF.
+pub struct Recording<'a> {
+    entry: &'static Entry,
+    /// Frame numbers in the order filmed, each `step` after the last.
+    frames: Vec<u32>,
+    step: u32,
+    /// The method for every frame; `None`, the entry's own.
+    method: Option<MethodId>,
+    /// Check every dump against the host render and the show's palette.
+    verify: bool,
+    /// Where the GIF goes once complete, and where it is written until then.
+    out: &'a Path,
+    partial: NamedTempFile,
+}
+
+impl<'a> Recording<'a> {
+    /// A recording of `frames` of `entry` into `out`. Checks `out` now, so
+    /// a bad path fails before QEMU boots.
+    pub fn new(
+        entry: &'static Entry,
+        frames: Frames,
+        method: Option<MethodId>,
+        verify: bool,
+        out: &'a Path,
+    ) -> Result<Self> {
+        let partial = partial_file_for(out)?;
+        let numbers = frame_numbers(entry, frames.start, frames.step, frames.count).collect();
+        Ok(Self { entry, frames: numbers, step: frames.step, method, verify, out, partial })
+    }
+
+    /// Films the frames through `console` (`SHOW`, `DUMP`) into the
+    /// partial file, renamed to `out` once complete, with a progress bar;
+    /// returns the kernel's replies.
+    pub fn film(self, console: &mut Console) -> Result<Vec<Shown>> {
+        let Self { out, partial, .. } = self;
         let Some((&first, rest)) = self.frames.split_first() else { bail!("no frames to record") };
         let bar = ProgressBar::new(self.frames.len() as u64).with_style(
             ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} frames {msg}")
@@ -97,7 +115,7 @@ impl Take<'_> {
 /// renamed to `out` once complete (the rename stays on one file system),
 /// deleted if dropped before, so a failure leaves nothing half-written.
 /// Creating it proves `out`'s directory writable before QEMU boots.
-pub fn partial_file_for(out: &Path) -> Result<NamedTempFile> {
+fn partial_file_for(out: &Path) -> Result<NamedTempFile> {
     ensure!(
         out.extension().is_some_and(|ext| ext == "gif"),
         "--out {}: the recording is an animated GIF; name a FILE.gif",
@@ -117,7 +135,7 @@ pub fn partial_file_for(out: &Path) -> Result<NamedTempFile> {
 
 /// The `count` frame numbers recorded: from `start`, every `step`-th,
 /// wrapping around the entry's frames.
-pub fn frame_numbers(entry: &Entry, start: u32, step: u32, count: u32) -> impl Iterator<Item = u32> {
+fn frame_numbers(entry: &Entry, start: u32, step: u32, count: u32) -> impl Iterator<Item = u32> {
     let frames = u64::from(entry.frames);
     (0..u64::from(count)).map(move |i| ((u64::from(start) + i * u64::from(step)) % frames) as u32)
 }
@@ -129,7 +147,7 @@ fn shoot(
     console: &mut Console,
     entry: &Entry,
     frame: u32,
-    method: Option<&str>,
+    method: Option<MethodId>,
     verify: bool,
 ) -> Result<(Shown, Dump)> {
     if verify {
@@ -143,10 +161,10 @@ fn shoot(
 /// order first met: frames, the median and the largest rdtsc cycles of a
 /// frame's draw (TCG cycles), and the median allocations per frame.
 pub fn summary(shown: &[Shown]) -> String {
-    let mut methods: Vec<&str> = Vec::new();
+    let mut methods: Vec<MethodId> = Vec::new();
     for reply in shown {
-        if !methods.contains(&reply.method.as_str()) {
-            methods.push(&reply.method);
+        if !methods.contains(&reply.method) {
+            methods.push(reply.method);
         }
     }
     let mut text = String::new();
@@ -208,8 +226,8 @@ impl<W: Write> Gif<W> {
 mod tests {
     use super::*;
     use clap::Parser;
-    use raster::palette::VGA_DEFAULT;
-    use raster::show::{self, PALETTE};
+    use scenes::palette::VGA_DEFAULT;
+    use scenes::show::{self, PALETTE};
 
     use crate::opt::{Action, Cli};
 
@@ -242,28 +260,29 @@ mod tests {
 
     #[test]
     fn bad_names_and_outputs_are_refused_before_any_boot() {
-        let opt = |scene: &str, method: Option<&str>, out: &str| RecordOpt {
+        let opt = |scene: &str, out: &str| RecordOpt {
             scene: scene.into(),
             frames: 1,
             out: out.into(),
-            method: method.map(Into::into),
+            method: None,
             start: 0,
             step: 1,
             no_verify: false,
         };
         let error = |opt: RecordOpt| format!("{:#}", record(&opt).unwrap_err());
-        let unknown_scene = error(opt("nope", None, "/tmp/x.gif"));
+        let unknown_scene = error(opt("nope", "/tmp/x.gif"));
         assert!(unknown_scene.starts_with("unknown show entry `nope`; valid entries: abrash38-1"), "{unknown_scene}");
-        let unknown_method = error(opt("race", Some("nope"), "/tmp/x.gif"));
-        assert!(unknown_method.starts_with("unknown method `nope`; valid methods: abrash_float"), "{unknown_method}");
-        let not_gif = error(opt("race", None, "/tmp/x.png"));
+        let unknown_method = parse(&["--scene", "race", "--frames", "1", "--out", "x.gif", "--method", "nope"]);
+        let unknown_method = unknown_method.unwrap_err().to_string();
+        assert!(unknown_method.contains("unknown method; the methods are abrash_float, "), "{unknown_method}");
+        let not_gif = error(opt("race", "/tmp/x.png"));
         assert!(not_gif.contains("the recording is an animated GIF"), "{not_gif}");
         let dir = tempfile::tempdir().unwrap();
         let directory = dir.path().join("d.gif");
         fs::create_dir(&directory).unwrap();
-        let directory = error(opt("race", None, directory.to_str().unwrap()));
+        let directory = error(opt("race", directory.to_str().unwrap()));
         assert!(directory.ends_with("d.gif is a directory; name a FILE.gif"), "{directory}");
-        let unwritable = error(opt("race", None, "/proc/polylab/x.gif"));
+        let unwritable = error(opt("race", "/proc/polylab/x.gif"));
         assert!(unwritable.starts_with("cannot create the directory /proc/polylab"), "{unwritable}");
     }
 
@@ -288,13 +307,18 @@ mod tests {
 
     #[test]
     fn the_summary_gives_each_method_its_median_and_largest_cycles() {
-        let reply = |method: &str, cycles: u64, allocs: u64| Shown {
-            method: method.into(),
+        let reply = |method: MethodId, cycles: u64, allocs: u64| Shown {
+            entry: String::from("race"),
+            frame: 0,
+            method,
             cycles,
             allocs,
-            ..Shown::default()
+            polygons: 1,
+            refused: 0,
+            strays: 0,
         };
-        let shown = [reply("wgt", 30, 2), reply("exact", 5, 0), reply("wgt", 10, 2), reply("wgt", 20, 4)];
+        let (wgt, exact) = (MethodId::Wgt, MethodId::Exact);
+        let shown = [reply(wgt, 30, 2), reply(exact, 5, 0), reply(wgt, 10, 2), reply(wgt, 20, 4)];
         assert_eq!(
             summary(&shown),
             "wgt: 3 frames, draw cycles median 20 max 30 (rdtsc under TCG), allocations per frame median 2\n\

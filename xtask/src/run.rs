@@ -6,10 +6,10 @@ use anyhow::Result;
 use harness::checks::show_matches_host_render;
 use harness::workspace::target_dir;
 use harness::{build_image, Display, Qemu, QemuOptions};
-use raster::show::ENTRIES_IN_ORDER;
+use scenes::show::ENTRIES_IN_ORDER;
 
 use crate::opt::RunOpt;
-use crate::record::{frame_numbers, partial_file_for, summary, Take};
+use crate::record::{summary, Frames, Recording};
 
 /// Show frames from one recorded frame to the next when running headless:
 /// a loop of 256 frames becomes a GIF of 64.
@@ -47,14 +47,8 @@ fn headless(out: &Path) -> Result<()> {
     for entry in ENTRIES_IN_ORDER {
         if entry.is_animated() {
             let path = out.join(format!("{}.gif", entry.name));
-            let take = Take {
-                entry,
-                frames: frame_numbers(entry, 0, HEADLESS_STEP, entry.frames.div_ceil(HEADLESS_STEP)).collect(),
-                step: HEADLESS_STEP,
-                method: None,
-                verify: true,
-            };
-            let shown = take.film(&mut qemu.console, partial_file_for(&path)?, &path)?;
+            let frames = Frames { start: 0, step: HEADLESS_STEP, count: entry.frames.div_ceil(HEADLESS_STEP) };
+            let shown = Recording::new(entry, frames, None, true, &path)?.film(&mut qemu.console)?;
             println!("{}", path.display());
             print!("{}", summary(&shown));
         } else {

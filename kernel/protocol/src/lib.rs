@@ -11,6 +11,8 @@
 
 use core::fmt;
 
+use raster::MethodId;
+
 /// Longest command line the kernel accepts, terminator excluded.
 pub const MAX_LINE: usize = 4096;
 /// Bytes in a mode-13h framebuffer.
@@ -73,16 +75,16 @@ pub enum Command<'a> {
     /// and `method NAME`.
     List,
     /// `DRAW SCENE [METHOD]`: draws a built-in scene; answers `OK`.
-    Draw { scene: &'a str, method: Option<&'a str> },
+    Draw { scene: &'a str, method: Option<MethodId> },
     /// `SHOW ENTRY FRAME [METHOD]`: draws frame FRAME of a show entry
-    /// (`raster::show`) exactly as the demo shows it, labels included, in
+    /// (`scenes::show`) exactly as the demo shows it, labels included, in
     /// the show's palette; answers `OK` with [`ShowReply`]'s fields.
-    Show { entry: &'a str, frame: u32, method: Option<&'a str> },
+    Show { entry: &'a str, frame: u32, method: Option<MethodId> },
     /// `CLEAR C`: fills the screen with colour C.
     Clear(u8),
     /// `POLY METHOD <poly line>`: fills one polygon written as a scene-file
     /// `poly` line without the keyword, e.g. `POLY exact color=4 0,0 9,0 0,9`.
-    Poly { method: &'a str, spec: &'a str },
+    Poly { method: MethodId, spec: &'a str },
     /// `DUMP`: answers a `DUMP` frame of [`DUMP_LEN`] bytes.
     Dump,
     /// `VGACHECK`: reads every mode-13h register and the DAC back; answers
@@ -101,12 +103,12 @@ pub enum Command<'a> {
 /// The `OK` text of `SHOW`: what was drawn and what it cost, as
 /// `entry=E frame=F method=M cycles=C allocs=A polygons=P refused=R strays=S`.
 /// The host renders the same frame with `method` and `cycles` to compare.
-#[derive(Clone, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ShowReply<'a> {
     pub entry: &'a str,
     /// The frame number drawn, already reduced modulo the entry's frames.
     pub frame: u32,
-    pub method: &'a str,
+    pub method: MethodId,
     /// rdtsc cycles of the polygon drawing (labels excluded).
     pub cycles: u64,
     /// Heap allocations made while drawing and labelling the frame.
@@ -139,7 +141,7 @@ impl<'a> ShowReply<'a> {
         let reply = Self {
             entry: next("entry")?,
             frame: next("frame")?.parse().ok()?,
-            method: next("method")?,
+            method: next("method")?.parse().ok()?,
             cycles: next("cycles")?.parse().ok()?,
             allocs: next("allocs")?.parse().ok()?,
             polygons: next("polygons")?.parse().ok()?,
@@ -159,6 +161,8 @@ pub enum CommandError<'a> {
     Unknown(&'a str),
     MissingArgument(&'static str),
     BadArgument(&'a str),
+    /// A method name that is none of [`MethodId::ALL`]'s.
+    UnknownMethod(&'a str),
     ExtraArgument(&'a str),
 }
 
@@ -171,6 +175,7 @@ impl fmt::Display for CommandError<'_> {
             CommandError::Unknown(word) => write!(f, "unknown command `{word}`"),
             CommandError::MissingArgument(what) => write!(f, "missing argument: {what}"),
             CommandError::BadArgument(word) => write!(f, "bad argument `{word}`"),
+            CommandError::UnknownMethod(word) => write!(f, "`{word}`: {}", raster::UnknownMethod),
             CommandError::ExtraArgument(word) => write!(f, "unexpected argument `{word}`"),
         }
     }
@@ -194,13 +199,13 @@ impl<'a> Command<'a> {
             "LIST" => Command::List,
             "DRAW" => Command::Draw {
                 scene: words.next().ok_or(CommandError::MissingArgument("scene"))?,
-                method: words.next(),
+                method: words.next().map(parse_method).transpose()?,
             },
             "SHOW" => {
                 let entry = words.next().ok_or(CommandError::MissingArgument("entry"))?;
                 let frame = words.next().ok_or(CommandError::MissingArgument("frame"))?;
                 let frame = frame.parse().map_err(|_| CommandError::BadArgument(frame))?;
-                Command::Show { entry, frame, method: words.next() }
+                Command::Show { entry, frame, method: words.next().map(parse_method).transpose()? }
             }
             "CLEAR" => Command::Clear(parse_u8(words.next().ok_or(CommandError::MissingArgument("colour"))?)?),
             "POLY" => {
@@ -211,7 +216,7 @@ impl<'a> Command<'a> {
                 if spec.is_empty() {
                     return Err(CommandError::MissingArgument("polygon"));
                 }
-                return Ok(Command::Poly { method, spec });
+                return Ok(Command::Poly { method: parse_method(method)?, spec });
             }
             "DUMP" => Command::Dump,
             "BENCH" => {
@@ -244,6 +249,10 @@ impl<'a> Command<'a> {
 
 fn parse_u8(word: &str) -> Result<u8, CommandError<'_>> {
     word.parse().map_err(|_| CommandError::BadArgument(word))
+}
+
+fn parse_method(word: &str) -> Result<MethodId, CommandError<'_>> {
+    word.parse().map_err(|_| CommandError::UnknownMethod(word))
 }
 
 impl fmt::Display for Command<'_> {
@@ -282,7 +291,7 @@ pub enum FrameKind {
     /// Answer to `DUMP`: [`DUMP_LEN`] bytes.
     Dump,
     /// Answer to `BENCH`: [`BENCH_UNIT_LINE`], then a `METHOD CYCLES` line
-    /// per method, in `raster::methods::ALL` order, each ending in `\n`.
+    /// per method, in [`MethodId::ALL`] order, each ending in `\n`.
     Bench,
     /// Unrequested information, e.g. a VGA register mismatch at boot.
     Log,
@@ -369,12 +378,12 @@ mod tests {
         let commands = [
             Command::Ping,
             Command::List,
-            Command::Draw { scene: "abrash38-1", method: Some("abrash_float") },
+            Command::Draw { scene: "abrash38-1", method: Some(MethodId::AbrashFloat) },
             Command::Draw { scene: "abrash38-2", method: None },
             Command::Clear(7),
             Command::Show { entry: "race", frame: 31, method: None },
-            Command::Show { entry: "lamothe-rotate", frame: 0, method: Some("exact") },
-            Command::Poly { method: "exact", spec: "color=4 0,0 9.5,0 0,9" },
+            Command::Show { entry: "lamothe-rotate", frame: 0, method: Some(MethodId::Exact) },
+            Command::Poly { method: MethodId::Exact, spec: "color=4 0,0 9.5,0 0,9" },
             Command::Dump,
             Command::Bench { scene: "abrash38-3", repeats: 1 },
             Command::Bench { scene: "abrash38-1", repeats: BENCH_MAX_REPEATS },
@@ -408,6 +417,9 @@ mod tests {
         assert_eq!(Command::parse(b"SHOW race"), Err(CommandError::MissingArgument("frame")));
         assert_eq!(Command::parse(b"SHOW race -1"), Err(CommandError::BadArgument("-1")));
         assert_eq!(Command::parse(b"SHOW race 1 exact 2"), Err(CommandError::ExtraArgument("2")));
+        assert_eq!(Command::parse(b"SHOW race 1 exakt"), Err(CommandError::UnknownMethod("exakt")));
+        assert_eq!(Command::parse(b"DRAW abrash38-1 abrash"), Err(CommandError::UnknownMethod("abrash")));
+        assert_eq!(Command::parse(b"POLY fast color=1 0,0 1,0 0,1"), Err(CommandError::UnknownMethod("fast")));
         assert_eq!(Command::parse(b"PI\xffNG"), Err(CommandError::NotAscii));
         assert_eq!(Command::parse(&[b'A'; MAX_LINE + 1]), Err(CommandError::TooLong));
     }
@@ -417,7 +429,7 @@ mod tests {
         let reply = ShowReply {
             entry: "race",
             frame: 3,
-            method: "wgt",
+            method: MethodId::Wgt,
             cycles: 12345,
             allocs: 0,
             polygons: 9,
@@ -429,6 +441,14 @@ mod tests {
         assert_eq!(ShowReply::parse("entry=race frame=3"), None);
         assert_eq!(ShowReply::parse(&text.replace("cycles=12345", "cycles=x")), None);
         assert_eq!(ShowReply::parse(&std::format!("{text} extra=1")), None);
+        assert_eq!(ShowReply::parse(&text.replace("method=wgt", "method=wgt2")), None);
+    }
+
+    #[test]
+    fn an_unknown_method_is_answered_with_the_list_of_methods() {
+        let error = Command::parse(b"DRAW abrash38-1 exakt").unwrap_err().to_string();
+        assert!(error.starts_with("`exakt`: unknown method; the methods are abrash_float,"), "{error}");
+        assert!(error.ends_with(", exact"), "{error}");
     }
 
     #[test]

@@ -1,8 +1,9 @@
-//! Polygon classes (DESIGN.md, "Model no more than a scene needs") and the
-//! automatic fill that sends each class to the cheapest exact path.
+//! Polygon classes ("model no more than a scene needs": `docs/conventions.md`).
+//! The exact method's automatic fill ([`fill_auto`](crate::methods::exact::fill_auto))
+//! asks [`Shape`] (the linear-time part of [`classify`]) which path to take.
 //!
 //! Contours whose vertices all lie on one line enclose nothing and are left
-//! out of both: walking such a contour, a scan line is crossed as often
+//! out of every class: walking such a contour, a scan line is crossed as often
 //! downward as upward and always at the same point, so it adds nothing to
 //! any pixel's crossing count parity or winding sum.
 
@@ -11,9 +12,7 @@ use core::cmp::Ordering;
 use alloc::vec::Vec;
 
 use crate::geometry::{Point, Polygon};
-use crate::method::{Class, Refusal};
-use crate::methods::exact::{fill_active_edges, fill_monotone, fill_triangle};
-use crate::sink::SpanSink;
+use crate::method::Class;
 
 /// The class of `polygon`: [`Class::Degenerate`] when no contour encloses
 /// anything (fewer than three distinct vertices, or all on one line);
@@ -25,7 +24,8 @@ use crate::sink::SpanSink;
 /// including every polygon with several enclosing contours.
 ///
 /// The simplicity test compares every pair of edges: quadratic in the
-/// vertex count, which is why [`fill_auto`] never asks for it.
+/// vertex count, which is why the exact method's automatic fill never asks
+/// for it.
 pub fn classify(polygon: &Polygon) -> Class {
     match Shape::of(polygon) {
         Shape::Empty => Class::Degenerate,
@@ -36,49 +36,9 @@ pub fn classify(polygon: &Polygon) -> Class {
     }
 }
 
-/// Fills `polygon` exactly (DESIGN.md rule) by the cheapest path correct for
-/// its class: degenerate polygons (and targets without pixels) draw
-/// nothing, triangles and monotone contours take the two-chain path,
-/// everything else the active edge table. Simple and complex polygons share
-/// that path, so telling them apart would cost without saving anything.
-///
-/// The common case, one contour, skips `Shape::of`'s collinearity test,
-/// which there only tells drawing nothing from filling: a contour of three
-/// vertices goes to the triangle fill, one monotone in y to the monotone
-/// fill, any other to the active edge table, and each draws nothing for a
-/// collinear contour. All its crossings on a row are at one column, so no
-/// pixel lies between them (the edge table drops edges right of the target
-/// whole, so on a row it keeps all of them or the column is past the
-/// target).
-pub fn fill_auto(polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
-    let size = sink.size();
-    if size.width <= 0 || size.height <= 0 {
-        return Ok(());
-    }
-    if let [contour] = polygon.contours.as_slice() {
-        if let &[a, b, c] = contour.as_slice() {
-            fill_triangle([a, b, c], polygon.color, size, sink);
-            return Ok(());
-        }
-        if is_monotone(contour) {
-            fill_monotone(contour, polygon.color, size, sink);
-            return Ok(());
-        }
-        return fill_active_edges(polygon, size, sink);
-    }
-    match Shape::of(polygon) {
-        Shape::Empty => Ok(()),
-        Shape::Monotone(contour) => {
-            fill_monotone(contour, polygon.color, size, sink);
-            Ok(())
-        }
-        Shape::Contour(_) | Shape::Contours => fill_active_edges(polygon, size, sink),
-    }
-}
-
 /// What the fill needs to know of a polygon: the linear-time part of
 /// [`classify`].
-enum Shape<'a> {
+pub(crate) enum Shape<'a> {
     /// No contour encloses anything.
     Empty,
     /// One enclosing contour, monotone in y.
@@ -90,7 +50,7 @@ enum Shape<'a> {
 }
 
 impl<'a> Shape<'a> {
-    fn of(polygon: &'a Polygon) -> Self {
+    pub(crate) fn of(polygon: &'a Polygon) -> Self {
         let mut enclosing = polygon.contours.iter().filter(|contour| !is_collinear(contour));
         match (enclosing.next(), enclosing.next()) {
             (None, _) => Shape::Empty,
@@ -117,7 +77,7 @@ fn is_collinear(contour: &[Point]) -> bool {
 /// once and skipping horizontal edges (Abrash ch. 41's monotone-vertical
 /// test). A closed contour that is not horizontal everywhere reverses at
 /// least twice, at its top and its bottom.
-fn is_monotone(contour: &[Point]) -> bool {
+pub(crate) fn is_monotone(contour: &[Point]) -> bool {
     let (mut first, mut last, mut reversals) = (Ordering::Equal, Ordering::Equal, 0);
     let following = contour.iter().skip(1).chain(contour.first());
     for (a, b) in contour.iter().zip(following) {

@@ -11,11 +11,13 @@
 //! [`Point`]); the classic ports round them to whole pixels first, as their
 //! originals only took integers.
 //!
-//! [`show`] is the kernel's demo as data: every frame of every entry (the
-//! seeds' pages, animations with shading, textures and depth through one
-//! attribute interpolator, the method race), drawn the same way on both
-//! sides and labelled with an 8x8 font (`font8x8`, the crate's one
-//! dependency).
+//! Every method is named by a [`MethodId`]: names from the outside (the
+//! command line, the serial line, scene files) are parsed into one once, and
+//! an unknown name is an error that lists the known ones.
+//!
+//! The crate has no dependencies and no `unsafe`: the very code that fills
+//! video memory on bare metal runs on the host and in the lab. What is drawn
+//! (the book pages, scene files, the show) lives in the `scenes` crate.
 #![no_std]
 #![forbid(unsafe_code)]
 
@@ -26,17 +28,13 @@ pub mod coverage;
 pub mod geometry;
 pub mod method;
 pub mod methods;
-pub mod palette;
 pub mod reference;
-pub mod scene;
-pub mod scene_file;
-pub mod scenes;
-pub mod show;
 pub mod sink;
 
-pub use classify::{classify, fill_auto};
+pub use classify::classify;
 pub use coverage::{CoverageReport, CoverageSink};
 pub use geometry::{FillRule, PixelPoint, Point, Polygon, SUBPIXEL_BITS, SUBPIXEL_ONE};
 pub use method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
-pub use scene::{Op, Scene};
+pub use methods::exact::fill_auto;
+pub use methods::{MethodId, UnknownMethod};
 pub use sink::{Framebuffer, Size, SpanSink, SCREEN};

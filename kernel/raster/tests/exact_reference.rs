@@ -7,8 +7,8 @@ use exact_support::{any_polygon, polygon_of, prop_assert_matches_reference, Kind
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
-use raster::methods::{self, exact::Exact};
-use raster::{classify, fill_auto, scenes, Class, Method, Op, Point, Polygon, SCREEN};
+use raster::methods::exact::Exact;
+use raster::{classify, fill_auto, Class, Method, MethodId, Point, Polygon};
 
 fn exact(polygon: &Polygon, sink: &mut dyn raster::SpanSink) -> Result<(), raster::Refusal> {
     Exact.fill(polygon, sink)
@@ -71,25 +71,7 @@ fn generated_polygons_fall_in_every_class() {
 
 #[test]
 fn exact_is_registered_as_ours() {
-    let registered = methods::by_name("exact").expect("exact is in methods::ALL");
+    let registered = "exact".parse::<MethodId>().expect("exact is a method").method();
     assert_eq!(registered.info().seed, "ours");
     assert_eq!(registered.info().handles, Class::Complex);
-}
-
-/// Every polygon of the built-in scenes, on the real screen. The Listing
-/// 38.3 pages repeat the earlier pages' polygons, so each is drawn once.
-#[test]
-fn exact_matches_reference_on_the_builtin_scenes() {
-    let mut polygons: Vec<Polygon> = Vec::new();
-    for op in scenes::NAMES.iter().flat_map(|name| scenes::by_name(name).unwrap().ops) {
-        match op {
-            Op::Fill(polygon) if !polygons.contains(&polygon) => polygons.push(polygon),
-            _ => {}
-        }
-    }
-    for polygon in &polygons {
-        let (result, report, picture) = exact_support::against_reference(exact, polygon, SCREEN);
-        assert_eq!(result, Ok(()));
-        assert_eq!(report, Default::default(), "{polygon:?}\n{picture}");
-    }
 }

@@ -11,8 +11,8 @@ use std::ops::Range;
 
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64Mcg;
-use raster::scene::Op;
 use raster::{FillRule, Point, Polygon, SCREEN};
+use scenes::{builtin, Op};
 
 /// The corpus seed. Changing it changes every family.
 pub const SEED: u64 = 0x1AB_5EED;
@@ -290,9 +290,8 @@ fn random_family(
 
 fn demo_scenes() -> Family {
     let mut polygons: Vec<Polygon> = Vec::new();
-    for name in raster::scenes::NAMES {
-        let scene = raster::scenes::by_name(name).expect("every listed scene exists");
-        for op in scene.ops {
+    for page in &builtin::ALL {
+        for op in page.scene().ops {
             // Pages are cumulative: keep each polygon once.
             if let Op::Fill(p) = op {
                 if !polygons.contains(&p) {

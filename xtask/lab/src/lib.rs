@@ -99,31 +99,44 @@ fn write(path: &Path, contents: &str) -> Result<()> {
     fs::write(path, contents).with_context(|| format!("failed to write {}", path.display()))
 }
 
-/// Reads results.json back and fails if `exact` (once it exists) has any
-/// wrong pixel, overdraw, gap or failure on any family.
+/// Reads results.json back and fails unless `exact` has a row for every
+/// family, and every row says, in numbers, that it has no wrong pixel, no
+/// overdraw, no refusal and no failure (and no gap where the family tiles:
+/// `gaps` is `null` only on families that do not). A missing row or field
+/// fails: a gate that passes on what it cannot see is no gate.
 pub fn check(results_json: &Path) -> Result<()> {
     let text = fs::read_to_string(results_json).with_context(|| format!("{} is missing", results_json.display()))?;
     let results: serde_json::Value =
         serde_json::from_str(&text).with_context(|| format!("{} is not valid JSON", results_json.display()))?;
     let rows = results["rows"].as_array().context("results.json has no rows")?;
-    let exact: Vec<&serde_json::Value> = rows.iter().filter(|r| r["name"] == EXACT).collect();
-    if exact.is_empty() {
-        eprintln!("lab: no `{EXACT}` method yet; nothing to hold to zero");
-        return Ok(());
-    }
+    let families = results["families"].as_array().context("results.json has no families")?;
     let mut faults = Vec::new();
-    for row in exact {
-        for field in ["wrong_pixels", "overdraw", "gaps", "failures"] {
-            let value = row[field].as_u64().unwrap_or(0);
-            if value > 0 {
-                faults.push(format!("{}: {field} = {value}", row["family"].as_str().unwrap_or("?")));
+    for family in families {
+        let name = family["name"].as_str().context("results.json has a family without a name")?;
+        let mut exact = rows.iter().filter(|row| row["name"] == EXACT && row["family"] == name);
+        let Some(row) = exact.next() else {
+            faults.push(format!("{name}: no `{EXACT}` row"));
+            continue;
+        };
+        for field in ["wrong_pixels", "overdraw", "refusals", "failures", "gaps"] {
+            match (&row[field], row[field].as_u64()) {
+                (_, Some(0)) => {}
+                (serde_json::Value::Null, None) if field == "gaps" && row.get(field).is_some() => {}
+                (_, Some(value)) => faults.push(format!("{name}: {field} = {value}")),
+                (value, None) => faults.push(format!("{name}: {field} is {value}, not a count")),
             }
         }
     }
-    if !faults.is_empty() {
-        bail!("`{EXACT}` is not exact:\n  {}", faults.join("\n  "));
+    if families.is_empty() {
+        faults.push(String::from("no families"));
     }
-    eprintln!("lab: `{EXACT}` has no wrong pixel, overdraw, gap or failure on any family");
+    if !faults.is_empty() {
+        bail!("`{EXACT}` is not proven exact by {}:\n  {}", results_json.display(), faults.join("\n  "));
+    }
+    eprintln!(
+        "lab: `{EXACT}` has no wrong pixel, overdraw, gap, refusal or failure on any of {} families",
+        families.len()
+    );
     Ok(())
 }
 
@@ -144,23 +157,45 @@ mod tests {
         assert!(check(&dir.path().join("results.json")).is_err());
     }
 
+    /// results.json with one family `f` and one `exact` row whose fields
+    /// are `fields` (JSON object members).
+    fn exact_row(fields: &str) -> String {
+        format!(r#"{{"families": [{{"name": "f"}}], "rows": [{{"name": "exact", "family": "f", {fields}}}]}}"#)
+    }
+
+    const CLEAN: &str = r#""wrong_pixels": 0, "overdraw": 0, "refusals": 0, "failures": 0, "gaps": null"#;
+
     #[test]
-    fn exact_must_have_nothing_wrong() {
-        let row = |wrong: u64| {
-            format!(
-                r#"{{"rows": [{{"name": "exact", "family": "f", "wrong_pixels": {wrong}, "overdraw": 0, "gaps": null, "failures": 0}}]}}"#
-            )
-        };
-        let (_dir, path) = results_file(&row(0));
-        assert!(check(&path).is_ok());
-        let (_dir, path) = results_file(&row(3));
-        let error = check(&path).unwrap_err().to_string();
-        assert!(error.contains("f: wrong_pixels = 3"), "{error}");
+    fn a_clean_exact_row_passes() {
+        let (_dir, path) = results_file(&exact_row(CLEAN));
+        check(&path).unwrap();
+        let (_dir, path) = results_file(&exact_row(&CLEAN.replace("null", "0")));
+        check(&path).unwrap();
     }
 
     #[test]
-    fn without_exact_only_the_file_is_checked() {
-        let (_dir, path) = results_file(r#"{"rows": [{"name": "wgt", "wrong_pixels": 9}]}"#);
-        assert!(check(&path).is_ok());
+    fn any_fault_of_exact_fails_naming_the_family_and_field() {
+        for (field, bad) in [("wrong_pixels", 3), ("overdraw", 1), ("refusals", 2), ("failures", 1), ("gaps", 4)] {
+            let fields = CLEAN.replace(&format!(r#""{field}": 0"#,), &format!(r#""{field}": {bad}"#));
+            let fields = if field == "gaps" { CLEAN.replace("null", &bad.to_string()) } else { fields };
+            let (_dir, path) = results_file(&exact_row(&fields));
+            let error = check(&path).unwrap_err().to_string();
+            assert!(error.contains(&format!("f: {field} = {bad}")), "{error}");
+        }
+    }
+
+    #[test]
+    fn a_missing_field_or_row_fails() {
+        let (_dir, path) = results_file(&exact_row(&CLEAN.replace(r#""refusals": 0, "#, "")));
+        let error = check(&path).unwrap_err().to_string();
+        assert!(error.contains("f: refusals is null, not a count"), "{error}");
+        let (_dir, path) = results_file(&exact_row(&CLEAN.replace(r#", "gaps": null"#, "")));
+        let error = check(&path).unwrap_err().to_string();
+        assert!(error.contains("f: gaps is null, not a count"), "{error}");
+        let (_dir, path) = results_file(r#"{"families": [{"name": "f"}], "rows": [{"name": "wgt", "family": "f"}]}"#);
+        let error = check(&path).unwrap_err().to_string();
+        assert!(error.contains("f: no `exact` row"), "{error}");
+        let (_dir, path) = results_file(r#"{"families": [], "rows": []}"#);
+        assert!(check(&path).is_err());
     }
 }

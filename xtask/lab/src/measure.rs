@@ -137,7 +137,7 @@ pub struct Judged {
 }
 
 /// The reference's fill of one polygon at one sample point.
-struct Exact {
+struct ReferenceFill {
     sample: SampleOffset,
     spans: Vec<Span>,
     /// The spans in normal form, to spot a fill that matches them exactly.
@@ -146,7 +146,7 @@ struct Exact {
     coverage: OnceCell<CoverageSink>,
 }
 
-impl Exact {
+impl ReferenceFill {
     fn of(polygon: &Polygon, sample: SampleOffset) -> Self {
         let mut recorder = Recorder::default();
         reference::fill(polygon, sample, &mut recorder);
@@ -275,7 +275,7 @@ impl<'a> Plan<'a> {
             }
             for index in canvas.clone() {
                 let polygon = &self.family.polygons[index];
-                let exact: Vec<Exact> = self.samples.iter().map(|&s| Exact::of(polygon, s)).collect();
+                let exact: Vec<ReferenceFill> = self.samples.iter().map(|&s| ReferenceFill::of(polygon, s)).collect();
                 for (sink, e) in region.iter_mut().zip(&exact) {
                     spans::replay(&e.spans, 1, sink);
                 }
@@ -335,7 +335,12 @@ impl Judged {
 /// Draws `polygon` with `contender` and compares it with the reference
 /// under our convention (`ours`) and the contender's (`own`). Returns the
 /// spans it drew, for the tiling.
-fn judge_one(contender: &Contender, polygon: &Polygon, ours: &Exact, own: &Exact) -> (Outcome, Vec<Span>) {
+fn judge_one(
+    contender: &Contender,
+    polygon: &Polygon,
+    ours: &ReferenceFill,
+    own: &ReferenceFill,
+) -> (Outcome, Vec<Span>) {
     let mut recorder = Recorder::default();
     let status = match panic::catch_unwind(AssertUnwindSafe(|| contender.draw(polygon, &mut recorder))) {
         Ok(Ok(())) => Status::Drawn,

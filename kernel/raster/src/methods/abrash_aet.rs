@@ -227,10 +227,7 @@ fn x_sort_aet(aet: &mut [EdgeState]) {
 mod tests {
     use super::*;
     use crate::geometry::Point;
-    use crate::methods::abrash_int::AbrashInt;
     use crate::methods::test_support::{assert_clipping_changes_no_pixel, empty, fill, full, SMALL};
-    use crate::scenes;
-    use crate::sink::{Framebuffer, SCREEN};
 
     /// A polygon of whole-pixel `contours`.
     fn polygon(contours: &[&[(i32, i32)]]) -> Polygon {
@@ -275,16 +272,6 @@ mod tests {
         // out), the right lobe x 7 only (its right side is the edge at 8).
         let picture = draw(&[&[(0, 0), (8, 6), (8, 0), (0, 6)]]);
         assert_eq!(picture, "........\n##.....#\n###...##\n########\n###...##\n##.....#\n");
-    }
-
-    #[test]
-    fn draws_listing_38_3_as_the_fast_convex_filler_does() {
-        // Ch. 40: the same pixel choice as ch. 38 and 39.
-        let scene = scenes::by_name("abrash38-3").unwrap();
-        let (mut aet, mut convex) = (Framebuffer::new(SCREEN), Framebuffer::new(SCREEN));
-        assert_eq!(scene.draw(&AbrashAet, &mut aet).refused, 0);
-        scene.draw(&AbrashInt, &mut convex);
-        assert!(aet == convex);
     }
 
     #[test]

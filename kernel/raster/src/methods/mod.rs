@@ -1,5 +1,8 @@
 //! Every fill method, one module each, named after its source.
 
+use core::fmt;
+use core::str::FromStr;
+
 use crate::method::Method;
 
 pub mod abrash_aet;
@@ -12,19 +15,115 @@ pub mod pendleton;
 pub(crate) mod test_support;
 pub mod wgt;
 
-/// All methods, in the order the demo, the protocol and the lab list them.
-pub static ALL: &[&dyn Method] = &[
-    &abrash_float::AbrashFloat,
-    &abrash_int::AbrashInt,
-    &abrash_aet::AbrashAet,
-    &pendleton::Pendleton,
-    &lamothe::Lamothe,
-    &lamothe::LamotheFixed,
-    &wgt::Wgt,
-    &exact::Exact,
-];
+/// Names one method of [`ALL`]: the typed value a method name becomes once
+/// it is parsed, at the edge (command line, serial line, scene file).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum MethodId {
+    AbrashFloat,
+    AbrashInt,
+    AbrashAet,
+    Pendleton,
+    Lamothe,
+    LamotheFixed,
+    Wgt,
+    Exact,
+}
 
-/// The method called `name`.
-pub fn by_name(name: &str) -> Option<&'static dyn Method> {
-    ALL.iter().copied().find(|m| m.info().name == name)
+impl MethodId {
+    /// Every method, in the order the demo, the protocol and the lab list
+    /// them (the digit keys of the demo count in this order from 1).
+    pub const ALL: [MethodId; 8] = [
+        MethodId::AbrashFloat,
+        MethodId::AbrashInt,
+        MethodId::AbrashAet,
+        MethodId::Pendleton,
+        MethodId::Lamothe,
+        MethodId::LamotheFixed,
+        MethodId::Wgt,
+        MethodId::Exact,
+    ];
+
+    /// The method itself.
+    pub const fn method(self) -> &'static dyn Method {
+        match self {
+            MethodId::AbrashFloat => &abrash_float::AbrashFloat,
+            MethodId::AbrashInt => &abrash_int::AbrashInt,
+            MethodId::AbrashAet => &abrash_aet::AbrashAet,
+            MethodId::Pendleton => &pendleton::Pendleton,
+            MethodId::Lamothe => &lamothe::Lamothe,
+            MethodId::LamotheFixed => &lamothe::LamotheFixed,
+            MethodId::Wgt => &wgt::Wgt,
+            MethodId::Exact => &exact::Exact,
+        }
+    }
+
+    /// Its name on the command line, in the protocol and in scene files.
+    pub fn name(self) -> &'static str {
+        self.method().info().name
+    }
+}
+
+impl fmt::Display for MethodId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for MethodId {
+    type Err = UnknownMethod;
+
+    fn from_str(name: &str) -> Result<Self, UnknownMethod> {
+        MethodId::ALL.into_iter().find(|id| id.name() == name).ok_or(UnknownMethod)
+    }
+}
+
+/// A name that is not a method's. Its message lists the names that are.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct UnknownMethod;
+
+impl fmt::Display for UnknownMethod {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("unknown method; the methods are")?;
+        for (i, id) in MethodId::ALL.iter().enumerate() {
+            f.write_str(if i == 0 { " " } else { ", " })?;
+            f.write_str(id.name())?;
+        }
+        Ok(())
+    }
+}
+
+impl core::error::Error for UnknownMethod {}
+
+/// All methods, in [`MethodId::ALL`]'s order.
+pub static ALL: &[&dyn Method] = &{
+    let mut all: [&dyn Method; MethodId::ALL.len()] = [&exact::Exact; MethodId::ALL.len()];
+    let mut i = 0;
+    while i < all.len() {
+        all[i] = MethodId::ALL[i].method();
+        i += 1;
+    }
+    all
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_name_parses_back_to_its_method() {
+        for (id, method) in MethodId::ALL.into_iter().zip(ALL) {
+            assert_eq!(id.name(), method.info().name);
+            assert_eq!(id.name().parse(), Ok(id));
+        }
+    }
+
+    #[test]
+    fn an_unknown_name_is_an_error_listing_every_method() {
+        assert_eq!("exakt".parse::<MethodId>(), Err(UnknownMethod));
+        assert_eq!(
+            alloc::format!("{UnknownMethod}"),
+            "unknown method; the methods are abrash_float, abrash_int, abrash_aet, pendleton, lamothe, \
+             lamothe_fixed, wgt, exact"
+        );
+    }
 }

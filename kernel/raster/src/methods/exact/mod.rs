@@ -27,15 +27,17 @@
 //! Stages, one file each: `edge` (scan lines and exact crossing columns),
 //! `monotone` (the triangle fill and the two-chain path for monotone
 //! polygons), `active_edges` (the edge-table path for the rest). The choice
-//! between them is [`fill_auto`](crate::classify::fill_auto)'s.
+//! between them is [`fill_auto`]'s, from the polygon's
+//! [`Shape`](crate::classify::Shape).
 
 mod active_edges;
 mod edge;
 mod monotone;
 
-pub(crate) use active_edges::fill_active_edges;
-pub(crate) use monotone::{fill_monotone, fill_triangle};
+use active_edges::fill_active_edges;
+use monotone::{fill_monotone, fill_triangle};
 
+use crate::classify::{is_monotone, Shape};
 use crate::geometry::{FillRule, Polygon};
 use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
 use crate::sink::SpanSink;
@@ -65,7 +67,47 @@ impl Method for Exact {
 
     /// The automatic path: the cheapest exact stage for the polygon's class.
     fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
-        crate::classify::fill_auto(polygon, sink)
+        fill_auto(polygon, sink)
+    }
+}
+
+/// Fills `polygon` exactly (DESIGN.md rule) by the cheapest path correct for
+/// its class: degenerate polygons (and targets without pixels) draw
+/// nothing, triangles and monotone contours take the two-chain path,
+/// everything else the active edge table. Simple and complex polygons share
+/// that path, so telling them apart would cost without saving anything.
+///
+/// The common case, one contour, skips `Shape::of`'s collinearity test,
+/// which there only tells drawing nothing from filling: a contour of three
+/// vertices goes to the triangle fill, one monotone in y to the monotone
+/// fill, any other to the active edge table, and each draws nothing for a
+/// collinear contour. All its crossings on a row are at one column, so no
+/// pixel lies between them (the edge table drops edges right of the target
+/// whole, so on a row it keeps all of them or the column is past the
+/// target).
+pub fn fill_auto(polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+    let size = sink.size();
+    if size.width <= 0 || size.height <= 0 {
+        return Ok(());
+    }
+    if let [contour] = polygon.contours.as_slice() {
+        if let &[a, b, c] = contour.as_slice() {
+            fill_triangle([a, b, c], polygon.color, size, sink);
+            return Ok(());
+        }
+        if is_monotone(contour) {
+            fill_monotone(contour, polygon.color, size, sink);
+            return Ok(());
+        }
+        return fill_active_edges(polygon, size, sink);
+    }
+    match Shape::of(polygon) {
+        Shape::Empty => Ok(()),
+        Shape::Monotone(contour) => {
+            fill_monotone(contour, polygon.color, size, sink);
+            Ok(())
+        }
+        Shape::Contour(_) | Shape::Contours => fill_active_edges(polygon, size, sink),
     }
 }
 

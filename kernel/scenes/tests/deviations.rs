@@ -34,7 +34,8 @@ use raster::methods::pendleton::Pendleton;
 use raster::methods::wgt::Wgt;
 use raster::methods::ALL;
 use raster::reference::{self, SampleOffset};
-use raster::{scenes, CoverageSink, Method, Op, Polygon, Size, SpanSink, SCREEN, SUBPIXEL_ONE};
+use raster::{CoverageSink, Method, Polygon, Size, SpanSink, SCREEN, SUBPIXEL_ONE};
+use scenes::{builtin, Op};
 
 /// How one polygon, or a set of them, deviates from the reference.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
@@ -131,7 +132,7 @@ fn kind(polygon: &Polygon) -> Kind {
 /// how many of them each page has.
 fn listing_38_3() -> (Vec<Polygon>, [usize; 3]) {
     let polygons = |name: &str| -> Vec<Polygon> {
-        let scene = scenes::by_name(name).expect("built-in scene");
+        let scene = builtin::scene(name).expect("built-in scene");
         scene
             .ops
             .into_iter()

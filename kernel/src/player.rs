@@ -1,12 +1,13 @@
-//! The show (`raster::show`) on the real screen, one frame at a time.
+//! The show player: frames of the show (`scenes::show`) on the real
+//! screen, one at a time.
 //! [`play`] is the one way a frame gets there, for the demo and for
 //! `SHOW` alike, so what the host checks is what the demo plays.
 
 use core::hint::spin_loop;
 
 use protocol::ShowReply;
-use raster::show::{Entry, Stage, FRAMES_PER_SECOND, PALETTE};
-use raster::Method;
+use raster::MethodId;
+use scenes::show::{Entry, Stage, FRAMES_PER_SECOND, PALETTE};
 
 use crate::pit::{Stopwatch, TICKS_PER_SECOND};
 use crate::video::Screen;
@@ -26,14 +27,14 @@ pub fn play(
     stage: &mut Stage,
     entry: &'static Entry,
     frame: u32,
-    method: &'static dyn Method,
+    method: MethodId,
     pacer: Option<&mut Pacer>,
 ) -> ShowReply<'static> {
     let allocations = heap::allocations();
     let strays = stage.stray_spans();
-    let (report, cycles) = bench::timed(|| stage.draw(entry, frame, method));
+    let (report, cycles) = bench::timed(|| stage.draw(entry, frame, method.method()));
     let strays = stage.stray_spans().wrapping_sub(strays);
-    stage.label(entry, frame, method, cycles);
+    stage.label(entry, frame, method.method(), cycles);
     let allocs = heap::allocations().wrapping_sub(allocations);
     if let Some(pacer) = pacer {
         pacer.wait();
@@ -44,7 +45,7 @@ pub fn play(
     ShowReply {
         entry: entry.name,
         frame: entry.wrap(frame),
-        method: method.info().name,
+        method,
         cycles,
         allocs,
         polygons: report.polygons,

@@ -1,5 +1,5 @@
 //! The method race: one slowly turning scene, drawn by each method of
-//! [`methods::ALL`] in turn for [`FRAMES_PER_METHOD`] frames, with the
+//! [`MethodId::ALL`] in turn for [`FRAMES_PER_METHOD`] frames, with the
 //! cycles each draw took in the label.
 //!
 //! The scene is one every method fills: single-contour convex polygons,
@@ -14,17 +14,16 @@
 use super::lamothe::regular;
 use super::trig::{angle_at, offset, polar, TURN};
 use super::{Ramp, Scratch, FRAMES_PER_SECOND};
-use crate::geometry::Point;
-use crate::method::Method;
-use crate::methods;
 use crate::scene::DrawReport;
-use crate::sink::Framebuffer;
-use crate::SUBPIXEL_ONE;
+use raster::geometry::Point;
+use raster::sink::Framebuffer;
+use raster::SUBPIXEL_ONE;
+use raster::{Method, MethodId};
 
 /// How long each method is on: 2 seconds.
 const FRAMES_PER_METHOD: u32 = 2 * FRAMES_PER_SECOND;
 /// Every method once.
-pub(super) const FRAMES: u32 = FRAMES_PER_METHOD * methods::ALL.len() as u32;
+pub(super) const FRAMES: u32 = FRAMES_PER_METHOD * MethodId::ALL.len() as u32;
 
 /// Triangles in the wheel: one per hue of the palette's first ring
 /// (entries 32-55).
@@ -42,8 +41,8 @@ const SQUARE_ROWS: [i32; 5] = [30, 65, 100, 135, 170];
 const SQUARE_RADIUS: i32 = 16;
 
 /// The method whose turn it is at `frame` (modulo [`FRAMES`]).
-pub(super) fn method_at(frame: u32) -> &'static dyn Method {
-    methods::ALL[(frame / FRAMES_PER_METHOD) as usize % methods::ALL.len()]
+pub(super) fn method_at(frame: u32) -> MethodId {
+    MethodId::ALL[(frame / FRAMES_PER_METHOD) as usize % MethodId::ALL.len()]
 }
 
 /// Draws frame `frame` of the race scene with `method`.
@@ -85,19 +84,17 @@ mod tests {
 
     #[test]
     fn the_methods_take_turns() {
-        let order: Vec<&str> =
-            (0..FRAMES).step_by(FRAMES_PER_METHOD as usize).map(|f| method_at(f).info().name).collect();
-        let all: Vec<&str> = methods::ALL.iter().map(|m| m.info().name).collect();
-        assert_eq!(order, all);
-        assert_eq!(method_at(FRAMES_PER_METHOD - 1).info().name, all[0]);
-        assert_eq!(method_at(FRAMES).info().name, all[0]);
+        let order: Vec<MethodId> = (0..FRAMES).step_by(FRAMES_PER_METHOD as usize).map(method_at).collect();
+        assert_eq!(order, MethodId::ALL);
+        assert_eq!(method_at(FRAMES_PER_METHOD - 1), MethodId::ALL[0]);
+        assert_eq!(method_at(FRAMES), MethodId::ALL[0]);
     }
 
     #[test]
     fn the_exact_wheel_has_no_gaps() {
         // Every pixel whose centre is well inside the rim is drawn.
         for f in (0..FRAMES).step_by(10) {
-            let (target, _) = frame(f, &methods::exact::Exact);
+            let (target, _) = frame(f, &raster::methods::exact::Exact);
             let r = WHEEL_RADIUS - 2;
             for y in -r..=r {
                 for x in -r..=r {
@@ -112,8 +109,8 @@ mod tests {
 
     #[test]
     fn methods_differ_on_the_same_frame() {
-        let exact = frame(100, &methods::exact::Exact).0;
-        let lamothe = frame(100, &methods::lamothe::Lamothe).0;
+        let exact = frame(100, &raster::methods::exact::Exact).0;
+        let lamothe = frame(100, &raster::methods::lamothe::Lamothe).0;
         assert_ne!(exact, lamothe);
     }
 }

@@ -16,7 +16,8 @@ use alloc::string::String;
 use alloc::vec::Vec;
 use core::fmt;
 
-use crate::geometry::{FillRule, Point, Polygon, SUBPIXEL_BITS};
+use raster::{FillRule, MethodId, Point, Polygon, SUBPIXEL_BITS};
+
 use crate::scene::{Op, Scene};
 
 /// What is wrong with one line.
@@ -72,7 +73,7 @@ pub fn parse(name: &str, text: &str) -> Result<Scene, SceneFileError> {
             ops.push(op);
         }
     }
-    Ok(Scene { name: String::from(name), ops, method: None })
+    Ok(Scene { name: String::from(name), ops, method: MethodId::Exact })
 }
 
 /// Parses one line: `Ok(None)` for blank lines and comments.
@@ -89,12 +90,18 @@ pub fn parse_line(line: &str) -> Result<Option<Op>, LineError> {
                 None => Ok(Some(Op::Clear(color))),
             }
         }
-        "poly" => parse_poly(words).map(|p| Some(Op::Fill(p))),
+        "poly" => parse_poly_words(words).map(|p| Some(Op::Fill(p))),
         other => Err(LineError::UnknownKeyword(String::from(other))),
     }
 }
 
-fn parse_poly<'a>(words: impl Iterator<Item = &'a str>) -> Result<Polygon, LineError> {
+/// Parses a `poly` line without its keyword (the protocol's `POLY`
+/// command carries one): `color=C [rule=R] x,y ...`.
+pub fn parse_poly(spec: &str) -> Result<Polygon, LineError> {
+    parse_poly_words(spec.split_ascii_whitespace())
+}
+
+fn parse_poly_words<'a>(words: impl Iterator<Item = &'a str>) -> Result<Polygon, LineError> {
     let mut color = None;
     let mut rule = FillRule::EvenOdd;
     let mut contours: Vec<Vec<Point>> = alloc::vec![Vec::new()];

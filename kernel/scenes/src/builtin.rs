@@ -1,42 +1,86 @@
-//! The built-in scenes: the sample programs of the seeds, as data.
+//! The built-in scenes: the sample programs of the seeds, as data, each
+//! with the method its source draws it with. This table is the only place
+//! that pairs a page with its method; the show's still entries are made
+//! from it.
 
 use alloc::string::ToString;
 use alloc::vec::Vec;
 
-use crate::geometry::Polygon;
+use raster::{MethodId, Polygon};
+
 use crate::scene::{Op, Scene};
 
-/// Names of the built-in scenes, in demo order.
-pub const NAMES: &[&str] = &[
-    "abrash38-1",
-    "abrash38-2",
-    "abrash38-3",
-    "abrash40-1",
-    "abrash40-2",
-    "abrash40-3",
-    "abrash40-4",
-    "lamothe-triangle",
-    "wgt-triangle",
+/// One built-in scene: a page of a seed's sample program.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Builtin {
+    pub name: &'static str,
+    /// The method of the scene's source.
+    pub method: MethodId,
+    page: Page,
+}
+
+/// Which program, and how far into it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Page {
+    /// Listing 38.3 up to its n-th keypress.
+    Listing38_3(u32),
+    /// Listing 40.4 up to its n-th keypress.
+    Listing40_4(u32),
+    LamotheTriangle,
+    WgtTriangle,
+}
+
+impl Builtin {
+    const fn new(name: &'static str, method: MethodId, page: Page) -> Self {
+        Self { name, method, page }
+    }
+
+    /// The scene's operations, built afresh.
+    pub fn scene(&self) -> Scene {
+        let ops = match self.page {
+            Page::Listing38_3(page) => listing_38_3(page),
+            Page::Listing40_4(page) => listing_40_4(page),
+            Page::LamotheTriangle => lamothe_triangle(),
+            Page::WgtTriangle => wgt_triangle(),
+        };
+        Scene { name: self.name.to_string(), ops, method: self.method }
+    }
+}
+
+pub const ABRASH38_1: Builtin = Builtin::new("abrash38-1", MethodId::AbrashFloat, Page::Listing38_3(1));
+pub const ABRASH38_2: Builtin = Builtin::new("abrash38-2", MethodId::AbrashFloat, Page::Listing38_3(2));
+pub const ABRASH38_3: Builtin = Builtin::new("abrash38-3", MethodId::AbrashFloat, Page::Listing38_3(3));
+pub const ABRASH40_1: Builtin = Builtin::new("abrash40-1", MethodId::AbrashAet, Page::Listing40_4(1));
+pub const ABRASH40_2: Builtin = Builtin::new("abrash40-2", MethodId::AbrashAet, Page::Listing40_4(2));
+pub const ABRASH40_3: Builtin = Builtin::new("abrash40-3", MethodId::AbrashAet, Page::Listing40_4(3));
+pub const ABRASH40_4: Builtin = Builtin::new("abrash40-4", MethodId::AbrashAet, Page::Listing40_4(4));
+pub const LAMOTHE_TRIANGLE: Builtin = Builtin::new("lamothe-triangle", MethodId::Lamothe, Page::LamotheTriangle);
+pub const WGT_TRIANGLE: Builtin = Builtin::new("wgt-triangle", MethodId::Wgt, Page::WgtTriangle);
+
+/// Every built-in scene, in demo order.
+pub const ALL: [Builtin; 9] = [
+    ABRASH38_1,
+    ABRASH38_2,
+    ABRASH38_3,
+    ABRASH40_1,
+    ABRASH40_2,
+    ABRASH40_3,
+    ABRASH40_4,
+    LAMOTHE_TRIANGLE,
+    WGT_TRIANGLE,
 ];
 
 /// The built-in scene called `name`.
-pub fn by_name(name: &str) -> Option<Scene> {
-    let (ops, method) = match name {
-        "abrash38-1" => (listing_38_3(1), "abrash_float"),
-        "abrash38-2" => (listing_38_3(2), "abrash_float"),
-        "abrash38-3" => (listing_38_3(3), "abrash_float"),
-        "abrash40-1" => (listing_40_4(1), "abrash_aet"),
-        "abrash40-2" => (listing_40_4(2), "abrash_aet"),
-        "abrash40-3" => (listing_40_4(3), "abrash_aet"),
-        "abrash40-4" => (listing_40_4(4), "abrash_aet"),
-        "lamothe-triangle" => (lamothe_triangle(), "lamothe"),
-        "wgt-triangle" => (wgt_triangle(), "wgt"),
-        _ => return None,
-    };
-    Some(Scene { name: name.to_string(), ops, method: Some(method) })
+pub fn named(name: &str) -> Option<&'static Builtin> {
+    ALL.iter().find(|builtin| builtin.name == name)
 }
 
-/// Listing 40.4 up to its `page`-th keypress (ABRASH_FACTS.md §4): the
+/// The built-in scene called `name`, built.
+pub fn scene(name: &str) -> Option<Scene> {
+    named(name).map(Builtin::scene)
+}
+
+/// Listing 40.4 up to its `page`-th keypress (the book's chapter 40; `docs/methods.md`): the
 /// odd/even examples, the rectangle whose hole is cut by a bridge edge
 /// traversed in and back out, and the V shapes that tile without overlap.
 /// The screen starts black after the mode set and is never cleared.
@@ -79,7 +123,7 @@ fn listing_40_4(page: u32) -> Vec<Op> {
 }
 
 /// LaMothe's example call `Draw_Triangle_2D(100,100, 200,150, 40,200, 30,
-/// ...)` (seed 002_6f1d312f285a1c70.txt), on the black screen of a mode set.
+/// ...)` (his "Solid Filled Polygons" article; `docs/methods.md`), on the black screen of a mode set.
 /// He drew it on a 640x480 screen, where row 200 is in the middle; mode 13h's
 /// rows are 0..=199, so here the bottom vertex lies on the clip edge: his
 /// y clip (`if (y3>max_clip_y) y3=max_clip_y`) drops the one-pixel line of
@@ -90,13 +134,13 @@ fn lamothe_triangle() -> Vec<Op> {
 }
 
 /// The WGT tutorial's test triangle, (160,30), (50,150), (270,180)
-/// (seed 003_2ba7acb817ee5f46.txt). The tutorial leaves the colour to its
+/// (Egerter's WGT tutorial 1; `docs/methods.md`). The tutorial leaves the colour to its
 /// `line` routine; white (15) on black is our choice.
 fn wgt_triangle() -> Vec<Op> {
     Vec::from([Op::Clear(0), Op::Fill(Polygon::from_pixels(&[(160, 30), (50, 150), (270, 180)], (0, 0), 15))])
 }
 
-/// Listing 38.3 up to its `page`-th keypress (ABRASH_FACTS.md §1). The book
+/// Listing 38.3 up to its `page`-th keypress (the book's chapter 38; `docs/methods.md`). The book
 /// never clears between stages, so each page holds the ones before it.
 fn listing_38_3(page: u32) -> Vec<Op> {
     const SCREEN_RECTANGLE: &[(i32, i32)] = &[(0, 0), (320, 0), (320, 200), (0, 200)];
@@ -173,36 +217,42 @@ fn listing_38_3(page: u32) -> Vec<Op> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Point;
+    use raster::{Framebuffer, Point, SCREEN};
 
     #[test]
     fn every_name_resolves() {
-        for name in NAMES {
-            assert_eq!(by_name(name).unwrap().name, *name);
+        for builtin in &ALL {
+            assert_eq!(named(builtin.name), Some(builtin));
+            assert_eq!(builtin.scene().name, builtin.name);
         }
-        assert!(by_name("nope").is_none());
+        assert!(named("nope").is_none());
+    }
+
+    /// The ops of each scene in `ALL[range]`, counted.
+    fn op_counts(range: core::ops::Range<usize>) -> Vec<usize> {
+        ALL[range].iter().map(|builtin| builtin.scene().ops.len()).collect()
     }
 
     #[test]
     fn pages_are_cumulative() {
-        let counts: Vec<usize> = NAMES[..3].iter().map(|n| by_name(n).unwrap().ops.len()).collect();
+        let counts = op_counts(0..3);
         // 2 shapes; 5x10 pairs of triangles and 4x(15+15) more; 16 hexagons.
         assert_eq!(counts, [2, 2 + 100 + 120, 2 + 100 + 120 + 16]);
     }
 
     #[test]
     fn listing_40_4_pages_add_their_polygons_to_a_black_screen() {
-        let counts: Vec<usize> = NAMES[3..7].iter().map(|n| by_name(n).unwrap().ops.len()).collect();
+        let counts = op_counts(3..7);
         // A clear, then polygons 1-3 one page at a time, then 5x8 V shapes.
         assert_eq!(counts, [2, 3, 4, 4 + 40]);
-        let Some(Op::Fill(last)) = by_name("abrash40-4").unwrap().ops.last().cloned() else { panic!("no V") };
+        let Some(Op::Fill(last)) = ABRASH40_4.scene().ops.last().cloned() else { panic!("no V") };
         assert_eq!(last.color, 16 + 8 * 4 + 7);
         assert_eq!(last.contours[0][0], Point::from_pixels(40 + 240, 30 + 140));
     }
 
     #[test]
     fn scenes_name_the_method_of_their_source() {
-        let methods: Vec<&str> = NAMES.iter().map(|n| by_name(n).unwrap().method().info().name).collect();
+        let methods: Vec<&str> = ALL.iter().map(|builtin| builtin.scene().method.name()).collect();
         assert_eq!(methods[..3], ["abrash_float"; 3]);
         assert_eq!(methods[3..7], ["abrash_aet"; 4]);
         assert_eq!(methods[7..], ["lamothe", "wgt"]);
@@ -210,10 +260,9 @@ mod tests {
 
     #[test]
     fn lamothe_triangle_reaches_the_bottom_row() {
-        use crate::sink::{Framebuffer, SCREEN};
-        let scene = by_name("lamothe-triangle").unwrap();
+        let scene = LAMOTHE_TRIANGLE.scene();
         let mut target = Framebuffer::new(SCREEN);
-        let report = scene.draw(scene.method(), &mut target);
+        let report = scene.draw(scene.method.method(), &mut target);
         assert_eq!((report.polygons, report.refused, target.stray_spans()), (1, 0, 0));
         let rows: Vec<usize> = target
             .pixels()
@@ -228,7 +277,7 @@ mod tests {
 
     #[test]
     fn last_hexagon_matches_the_book() {
-        let scene = by_name("abrash38-3").unwrap();
+        let scene = ABRASH38_3.scene();
         let Some(Op::Fill(last)) = scene.ops.last() else { panic!("no hexagon") };
         let expected: Vec<Point> = [(45, -20), (0, -45), (-45, -20), (-45, 20), (0, 45), (45, 20)]
             .iter()

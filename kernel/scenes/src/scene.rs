@@ -3,10 +3,8 @@
 use alloc::string::String;
 use alloc::vec::Vec;
 
-use crate::geometry::Polygon;
-use crate::method::{Method, Refusal};
-use crate::methods;
-use crate::sink::{self, SpanSink};
+use raster::sink::{self, SpanSink};
+use raster::{Method, MethodId, Polygon, Refusal};
 
 /// One drawing step.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -19,14 +17,14 @@ pub enum Op {
 
 /// A named list of operations. Nothing is cleared implicitly: like the
 /// book's programs, each operation draws over what the previous ones left.
-#[derive(Clone, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Scene {
     pub name: String,
     pub ops: Vec<Op>,
-    /// The method the scene's source draws it with (Listing 38.3 uses
-    /// Listing 38.1, Listing 40.4 the edge-table filler); `None` for scene
-    /// files, which [`Scene::method`] draws with `exact`.
-    pub method: Option<&'static str>,
+    /// The method the scene is drawn with when none is named: its source's
+    /// (Listing 38.3 uses Listing 38.1, Listing 40.4 the edge-table filler),
+    /// `exact` for scene files.
+    pub method: MethodId,
 }
 
 /// What drawing a scene did.
@@ -50,11 +48,6 @@ impl DrawReport {
 }
 
 impl Scene {
-    /// The method to draw this scene with when none is named.
-    pub fn method(&self) -> &'static dyn Method {
-        self.method.and_then(methods::by_name).unwrap_or(&methods::exact::Exact)
-    }
-
     /// Draws every operation with `method`. A refused polygon is counted and
     /// skipped; the rest of the scene is still drawn.
     pub fn draw(&self, method: &dyn Method, sink: &mut dyn SpanSink) -> DrawReport {

@@ -18,10 +18,10 @@
 
 use super::trig::{angle_at, offset, polar, rotate, TURN};
 use super::Scratch;
-use crate::geometry::Point;
-use crate::method::Method;
 use crate::scene::DrawReport;
-use crate::sink::Framebuffer;
+use raster::geometry::Point;
+use raster::method::Method;
+use raster::sink::Framebuffer;
 
 /// Frames in one full turn of the big square (7.3 s at 35 frames a second).
 pub(super) const FRAMES: u32 = 256;
@@ -66,7 +66,7 @@ pub(super) fn draw(frame: u32, method: &dyn Method, scratch: &mut Scratch, targe
     report.record(method.fill(scratch.polygon(triangle, TRIANGLE_COLOR), target));
 
     let small = square.map(|p| Point::new(p.x * SMALL_SQUARE_FIFTIETHS / 50, p.y * SMALL_SQUARE_FIFTIETHS / 50));
-    let radii = (ORBIT_RADII.0 * crate::SUBPIXEL_ONE, ORBIT_RADII.1 * crate::SUBPIXEL_ONE);
+    let radii = (ORBIT_RADII.0 * raster::SUBPIXEL_ONE, ORBIT_RADII.1 * raster::SUBPIXEL_ONE);
     for (k, color) in (0..).zip(ORBIT_COLORS) {
         let at = offset(CENTRE, polar(radii, angle(ORBIT_TURNS).wrapping_add(TURN / 8 + k * TURN / 4)));
         report.record(method.fill(scratch.polygon(turned(at, &small, angle(SPIN_TURNS)), color), target));
@@ -83,16 +83,16 @@ fn turned(centre: Point, vertices: &[Point], angle: u32) -> impl Iterator<Item =
 /// A regular polygon of `sides` vertices on the circle of `radius` pixels
 /// about `centre`, its first vertex at `angle`.
 pub(super) fn regular(centre: Point, radius: i32, sides: u32, angle: u32) -> impl Iterator<Item = Point> {
-    let radius = radius * crate::SUBPIXEL_ONE;
+    let radius = radius * raster::SUBPIXEL_ONE;
     (0..sides).map(move |k| offset(centre, polar((radius, radius), angle.wrapping_add(k * TURN / sides))))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::methods;
-    use crate::sink::SCREEN;
     use alloc::vec::Vec;
+    use raster::methods;
+    use raster::sink::SCREEN;
 
     fn frame(frame: u32, method: &dyn Method) -> (Framebuffer, DrawReport) {
         super::super::drawn_alone(draw, frame, method)

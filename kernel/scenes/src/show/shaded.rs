@@ -21,10 +21,10 @@
 use super::interp::{Painter, Vertex};
 use super::trig::{angle_at, div_round, offset, rotate, sin_cos, unscale, TURN};
 use super::{Ramp, Scratch};
-use crate::geometry::{Point, SUBPIXEL_BITS};
-use crate::method::Method;
 use crate::scene::DrawReport;
-use crate::sink::{Framebuffer, SpanSink};
+use raster::geometry::{Point, SUBPIXEL_BITS};
+use raster::method::Method;
+use raster::sink::{Framebuffer, SpanSink};
 
 pub(super) const GOURAUD_FRAMES: u32 = 120;
 pub(super) const TEXTURE_FRAMES: u32 = 120;
@@ -238,11 +238,11 @@ mod tests {
     use alloc::vec::Vec;
 
     use super::*;
-    use crate::coverage::CoverageSink;
-    use crate::geometry::Polygon;
-    use crate::methods::exact::Exact;
     use crate::show::{entry, Entry, Stage, RAMP_BASE, RAMP_LEVELS};
-    use crate::sink::SCREEN;
+    use raster::coverage::CoverageSink;
+    use raster::geometry::Polygon;
+    use raster::methods::exact::Exact;
+    use raster::sink::SCREEN;
 
     /// The three entries drawn here.
     fn entries() -> [&'static Entry; 3] {

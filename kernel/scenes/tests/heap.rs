@@ -9,8 +9,8 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use raster::show::{Stage, ENTRIES_IN_ORDER};
 use raster::{methods, Framebuffer, Heap, Method, Point, Polygon, SCREEN};
+use scenes::show::{Stage, ENTRIES_IN_ORDER};
 
 /// The system allocator, counting allocations.
 struct Counting;

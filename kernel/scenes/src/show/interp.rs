@@ -25,10 +25,10 @@
 
 use super::trig::div_round;
 use super::Scratch;
-use crate::geometry::{Point, SUBPIXEL_BITS, SUBPIXEL_ONE};
-use crate::method::{Method, Refusal};
 use crate::scene::DrawReport;
-use crate::sink::{Framebuffer, Size, SpanSink};
+use raster::geometry::{Point, SUBPIXEL_BITS, SUBPIXEL_ONE};
+use raster::method::{Method, Refusal};
+use raster::sink::{Framebuffer, Size, SpanSink};
 
 /// Bound on vertex coordinates (in subpixels, so 2048 px) and on
 /// attribute values: both lie in `-LIMIT..=LIMIT`.
@@ -208,10 +208,10 @@ mod tests {
     use alloc::vec::Vec;
 
     use super::*;
-    use crate::geometry::Polygon;
-    use crate::method::MethodInfo;
-    use crate::methods::{self, exact::Exact};
-    use crate::sink::SCREEN;
+    use raster::geometry::Polygon;
+    use raster::method::MethodInfo;
+    use raster::methods::{self, exact::Exact};
+    use raster::sink::SCREEN;
 
     fn px(x: i32, y: i32) -> Point {
         Point::from_pixels(x, y)

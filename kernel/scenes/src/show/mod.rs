@@ -2,7 +2,7 @@
 //! and what the host renders to check it byte for byte.
 //!
 //! An [`Entry`] is one scene of the show: a still page of a seed (the
-//! `scenes` module's data) or an animation. Frame `f` of an entry is a pure
+//! [`builtin`] table's) or an animation. Frame `f` of an entry is a pure
 //! function of `(entry, f, method)`, drawn into a [`Stage`] whose memory is
 //! allocated once, so the kernel draws frame after frame without touching
 //! the heap. Labels (scene, method, measured cycles) are drawn afterwards
@@ -19,13 +19,12 @@ mod trig;
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::geometry::{Point, Polygon};
-use crate::method::Method;
-use crate::methods;
+use crate::builtin::{self, Builtin};
 use crate::palette::{ENTRIES, VGA_DEFAULT};
 use crate::scene::{DrawReport, Scene};
-use crate::scenes;
-use crate::sink::{self, Framebuffer, SCREEN};
+use raster::geometry::{Point, Polygon};
+use raster::sink::{self, Framebuffer, SCREEN};
+use raster::{Method, MethodId};
 
 /// Frames per second the show is paced at: every second retrace of mode
 /// 13h's 70 Hz refresh.
@@ -36,8 +35,8 @@ pub const STILL_FRAMES: u32 = 3 * FRAMES_PER_SECOND;
 /// What an entry draws.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Kind {
-    /// A built-in scene of `scenes`, the same on every frame.
-    Still,
+    /// A built-in scene, the same on every frame.
+    Still(Builtin),
     /// LaMothe's rotation test: a convex n-gon and quads turning 360 degrees.
     LamotheRotate,
     /// The WGT triangle, Gouraud shaded through a palette ramp.
@@ -57,13 +56,18 @@ pub struct Entry {
     /// Distinct frames; frame numbers wrap around modulo this. 1 for stills.
     pub frames: u32,
     /// The method of the scene's source.
-    pub method: &'static str,
+    pub method: MethodId,
     kind: Kind,
 }
 
 impl Entry {
-    const fn still(name: &'static str, method: &'static str) -> Self {
-        Self { name, frames: 1, method, kind: Kind::Still }
+    /// A still page: the built-in scene, with its name and its method.
+    const fn still(builtin: Builtin) -> Self {
+        Self { name: builtin.name, frames: 1, method: builtin.method, kind: Kind::Still(builtin) }
+    }
+
+    const fn animation(name: &'static str, frames: u32, method: MethodId, kind: Kind) -> Self {
+        Self { name, frames, method, kind }
     }
 
     /// Whether frames differ from each other.
@@ -88,30 +92,30 @@ impl Entry {
 
     /// The method that draws frame `frame` when the viewer picked none: the
     /// source's method, or for the race the method whose turn it is.
-    pub fn method_at(&self, frame: u32) -> &'static dyn Method {
+    pub fn method_at(&self, frame: u32) -> MethodId {
         match self.kind {
             Kind::Race => race::method_at(self.wrap(frame)),
-            _ => methods::by_name(self.method).unwrap_or(&methods::exact::Exact),
+            _ => self.method,
         }
     }
 }
 
 /// The show in demo order.
 pub const ENTRIES_IN_ORDER: &[Entry] = &[
-    Entry::still("abrash38-1", "abrash_float"),
-    Entry::still("abrash38-2", "abrash_float"),
-    Entry::still("abrash38-3", "abrash_float"),
-    Entry::still("abrash40-1", "abrash_aet"),
-    Entry::still("abrash40-2", "abrash_aet"),
-    Entry::still("abrash40-3", "abrash_aet"),
-    Entry::still("abrash40-4", "abrash_aet"),
-    Entry::still("lamothe-triangle", "lamothe"),
-    Entry { name: "lamothe-rotate", frames: lamothe::FRAMES, method: "lamothe", kind: Kind::LamotheRotate },
-    Entry::still("wgt-triangle", "wgt"),
-    Entry { name: "wgt-gouraud", frames: shaded::GOURAUD_FRAMES, method: "wgt", kind: Kind::WgtGouraud },
-    Entry { name: "wgt-texture", frames: shaded::TEXTURE_FRAMES, method: "wgt", kind: Kind::WgtTexture },
-    Entry { name: "pendleton-zbuffer", frames: shaded::DEPTH_FRAMES, method: "pendleton", kind: Kind::PendletonDepth },
-    Entry { name: "race", frames: race::FRAMES, method: "exact", kind: Kind::Race },
+    Entry::still(builtin::ABRASH38_1),
+    Entry::still(builtin::ABRASH38_2),
+    Entry::still(builtin::ABRASH38_3),
+    Entry::still(builtin::ABRASH40_1),
+    Entry::still(builtin::ABRASH40_2),
+    Entry::still(builtin::ABRASH40_3),
+    Entry::still(builtin::ABRASH40_4),
+    Entry::still(builtin::LAMOTHE_TRIANGLE),
+    Entry::animation("lamothe-rotate", lamothe::FRAMES, MethodId::Lamothe, Kind::LamotheRotate),
+    Entry::still(builtin::WGT_TRIANGLE),
+    Entry::animation("wgt-gouraud", shaded::GOURAUD_FRAMES, MethodId::Wgt, Kind::WgtGouraud),
+    Entry::animation("wgt-texture", shaded::TEXTURE_FRAMES, MethodId::Wgt, Kind::WgtTexture),
+    Entry::animation("pendleton-zbuffer", shaded::DEPTH_FRAMES, MethodId::Pendleton, Kind::PendletonDepth),
+    Entry::animation("race", race::FRAMES, MethodId::Exact, Kind::Race),
 ];
 
 /// The entry called `name`.
@@ -204,7 +208,7 @@ impl Scratch {
         contour.clear();
         contour.extend(points);
         self.polygon.color = color;
-        self.polygon.rule = crate::geometry::FillRule::EvenOdd;
+        self.polygon.rule = raster::geometry::FillRule::EvenOdd;
         &self.polygon
     }
 }
@@ -238,14 +242,12 @@ impl Stage {
         let frame = entry.wrap(frame);
         sink::clear(&mut self.target, 0);
         match entry.kind {
-            Kind::Still => {
-                if self.still.as_ref().is_none_or(|scene| scene.name != entry.name) {
-                    self.still = scenes::by_name(entry.name);
-                }
-                match &self.still {
-                    Some(scene) => scene.draw(method, &mut self.target),
-                    None => DrawReport::default(),
-                }
+            Kind::Still(builtin) => {
+                let still = match &mut self.still {
+                    Some(scene) if scene.name == builtin.name => scene,
+                    still => still.insert(builtin.scene()),
+                };
+                still.draw(method, &mut self.target)
             }
             Kind::LamotheRotate => lamothe::draw(frame, method, &mut self.scratch, &mut self.target),
             Kind::WgtGouraud => shaded::gouraud(frame, method, &mut self.scratch, &mut self.target),
@@ -290,7 +292,7 @@ mod tests {
     use alloc::vec::Vec;
 
     use super::*;
-    use crate::methods::exact::Exact;
+    use raster::methods::exact::Exact;
 
     fn animations() -> impl Iterator<Item = &'static Entry> {
         ENTRIES_IN_ORDER.iter().filter(|entry| entry.is_animated())
@@ -323,7 +325,7 @@ mod tests {
     fn every_method_draws_every_animation_whole_and_inside_the_screen() {
         let mut stage = Stage::new();
         for entry in animations() {
-            for &method in methods::ALL {
+            for &method in raster::methods::ALL {
                 let name = method.info().name;
                 let (_, first) = frame_of(&mut stage, entry, 0, method);
                 for frame in (0..entry.frames).step_by(13) {
@@ -342,13 +344,13 @@ mod tests {
     #[test]
     fn the_race_gives_every_method_a_turn_and_stills_keep_their_source_s() {
         let race = entry("race").unwrap();
-        let turns: Vec<&str> = (0..race.frames).map(|f| race.method_at(f).info().name).collect();
-        for method in methods::ALL {
-            assert!(turns.contains(&method.info().name), "{} never races", method.info().name);
+        let turns: Vec<MethodId> = (0..race.frames).map(|f| race.method_at(f)).collect();
+        for method in MethodId::ALL {
+            assert!(turns.contains(&method), "{method} never races");
         }
         for still in ENTRIES_IN_ORDER.iter().filter(|e| !e.is_animated()) {
-            assert_eq!(still.method_at(7).info().name, still.method, "{}", still.name);
-            assert!(scenes::by_name(still.name).is_some(), "{} is not a scene", still.name);
+            let builtin = builtin::named(still.name).expect("a still is a built-in scene");
+            assert_eq!(still.method_at(7), builtin.method, "{}", still.name);
         }
     }
 

@@ -13,16 +13,16 @@ use core::fmt::{self, Write};
 use font8x8::legacy::BASIC_LEGACY;
 
 use super::Entry;
-use crate::sink::{Framebuffer, SpanSink};
+use raster::sink::{Framebuffer, SpanSink};
 
 /// A glyph's width and height in pixels.
 const GLYPH: i32 = 8;
 /// Characters that fit in a line.
-const COLUMNS: usize = (crate::SCREEN.width / GLYPH) as usize;
+const COLUMNS: usize = (raster::SCREEN.width / GLYPH) as usize;
 /// Where the glyphs' top rows are: one pixel in from the screen's top and
 /// bottom edges, leaving a row for the outline.
 const TOP_ROW: i32 = 1;
-const BOTTOM_ROW: i32 = crate::SCREEN.height - 1 - GLYPH;
+const BOTTOM_ROW: i32 = raster::SCREEN.height - 1 - GLYPH;
 /// Left edge of left-aligned text, and right margin of right-aligned text.
 const MARGIN: i32 = 1;
 const TOP_COLOR: u8 = 15;
@@ -52,7 +52,7 @@ fn draw_line(target: &mut Framebuffer, y: i32, left: &str, right: &Line, color: 
     let room = if right.len == 0 { COLUMNS } else { COLUMNS.saturating_sub(right.len + 1) };
     line.len = line.len.min(room);
     draw_text(target, MARGIN, y, line.text(), color);
-    let right_x = crate::SCREEN.width - MARGIN - GLYPH * right.len as i32;
+    let right_x = raster::SCREEN.width - MARGIN - GLYPH * right.len as i32;
     draw_text(target, right_x, y, right.text(), color);
 }
 
@@ -120,7 +120,8 @@ fn put(target: &mut Framebuffer, x_start: i32, y: i32, x_end: i32, color: u8) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sink::{self, SCREEN};
+    use crate::show::ENTRIES_IN_ORDER;
+    use raster::sink::{self, SCREEN};
 
     const BACKGROUND: u8 = 3;
 
@@ -174,10 +175,9 @@ mod tests {
 
     #[test]
     fn long_text_is_cut_not_a_panic() {
-        const LONG: Entry = Entry::still(
-            "a name far longer than the forty characters of a line of mode 13h text, with a \u{e9} in it",
-            "exact",
-        );
+        const NAME: &str =
+            "a name far longer than the forty characters of a line of mode 13h text, with a \u{e9} in it";
+        const LONG: Entry = Entry { name: NAME, ..ENTRIES_IN_ORDER[0] };
         let animated = Entry { frames: u32::MAX, ..LONG };
         for entry in [&LONG, &animated] {
             for frame in [0, u32::MAX] {
