@@ -11,6 +11,11 @@ use crate::workspace;
 pub const PINNED_TOOLCHAIN: &str = "nightly-2026-10-01";
 /// The kernel's target triple.
 pub const KERNEL_TARGET: &str = "x86_64-unknown-none";
+/// Workspace members that only build with the pinned nightly (`boot`'s
+/// bootloader build script uses `-Zbuild-std`; the kernel is bare metal):
+/// host-wide commands (`cargo test`, `cargo clippy`) exclude them, and the
+/// image is how they are tested.
+pub const NIGHTLY_ONLY: [&str; 2] = ["kernel", "boot"];
 
 /// Variables that a parent cargo (`cargo xtask`, `cargo test`) or rustup
 /// proxy sets: `RUSTC`, `RUSTDOC`, `CARGO` and the wrappers name the stable

@@ -5,6 +5,7 @@
 mod dump;
 mod kbench;
 mod lab;
+mod lint;
 mod opt;
 mod record;
 mod render;
@@ -30,6 +31,7 @@ fn main() -> Result<()> {
         Action::Record(opt) => record::record(&opt),
         Action::Test(opt) => test::test(&opt),
         Action::Lab(opt) => lab::lab(&opt),
+        Action::Lint => lint::lint(),
         Action::Kbench(opt) => kbench::kbench(&opt),
     }
 }

@@ -34,6 +34,9 @@ pub enum Action {
     Record(RecordOpt),
     /// Installs what is missing, builds the image once, and runs every test.
     Test(TestOpt),
+    /// Checks formatting and runs clippy (warnings are errors) over the host
+    /// crates and, with the pinned nightly, the kernel.
+    Lint,
     /// Measures every method for speed and accuracy (release build) and
     /// writes results.json, report.md and charts under --out.
     Lab(LabOpt),

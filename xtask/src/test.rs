@@ -4,6 +4,7 @@ use std::process::Command;
 
 use anyhow::Result;
 use harness::build_image;
+use harness::cargo::NIGHTLY_ONLY;
 use harness::image::IMAGE_ENV;
 use harness::prerequisites::{ensure_qemu, ensure_toolchain};
 use harness::process::run_streaming;
@@ -16,11 +17,6 @@ pub fn test(opt: &TestOpt) -> Result<()> {
     let image = build_image()?;
     run_streaming(test_command(&opt.cargo_args).env(IMAGE_ENV, image))
 }
-
-/// Workspace members that only build with the pinned nightly (`boot`'s
-/// bootloader build script uses `-Zbuild-std`; the kernel is bare metal):
-/// the image built above is how they are tested.
-const NIGHTLY_ONLY: [&str; 2] = ["kernel", "boot"];
 
 /// `cargo test` over every host crate of the workspace, run by the cargo
 /// (the stable toolchain) that runs the xtask.

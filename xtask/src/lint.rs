@@ -1,0 +1,80 @@
+//! `cargo xtask lint`: formatting and clippy, as CI runs them. The host
+//! crates are linted with the toolchain that runs the xtask; the kernel,
+//! which only builds with the pinned nightly for bare metal, with that
+//! nightly. Warnings are errors. Installs rustfmt and clippy where missing
+//! (the minimal rustup profile has neither).
+
+use std::process::Command;
+
+use anyhow::{Context, Result};
+use harness::cargo::{host, pinned, NightlyBuild, KERNEL_TARGET, NIGHTLY_ONLY};
+use harness::prerequisites::ensure_toolchain;
+use harness::process::run_streaming;
+use harness::workspace;
+
+pub fn lint() -> Result<()> {
+    // Under `cargo xtask`, rustup names the running toolchain in
+    // RUSTUP_TOOLCHAIN, so this adds the components to that one.
+    run_streaming(Command::new("rustup").args(["component", "add", "rustfmt", "clippy"]))
+        .context("failed to install rustfmt and clippy")?;
+    for mut command in [fmt_check(), host_clippy()] {
+        run_streaming(&mut command)?;
+    }
+    ensure_toolchain()?;
+    run_streaming(pinned("rustup").args(["component", "add", "clippy"]))
+        .context("failed to install clippy for the pinned nightly")?;
+    run_streaming(&mut kernel_clippy())?;
+    eprintln!("xtask: formatted, and clippy finds nothing in the host crates or the kernel");
+    Ok(())
+}
+
+/// `cargo fmt --check` over the whole workspace, kernel included (rustfmt
+/// does not compile, so the host toolchain's will do).
+fn fmt_check() -> Command {
+    let mut command = host();
+    command.args(["fmt", "--all", "--check"]);
+    command
+}
+
+fn host_clippy() -> Command {
+    let mut command = host();
+    command.args(["clippy", "--workspace"]);
+    for package in NIGHTLY_ONLY {
+        command.args(["--exclude", package]);
+    }
+    command.args(["--all-targets", "--", "-D", "warnings"]);
+    command
+}
+
+/// Clippy on the kernel with the pinned nightly, for its bare-metal target,
+/// in the nightly's own target directory (as its build).
+fn kernel_clippy() -> Command {
+    let mut command = pinned("cargo");
+    command.args(["clippy", "--package", NightlyBuild::KERNEL.package, "--release", "--target", KERNEL_TARGET]);
+    command.arg("--target-dir").arg(workspace::nightly_target_dir());
+    command.args(["--", "-D", "warnings"]);
+    command
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use harness::process::command_line;
+
+    #[test]
+    fn host_clippy_covers_every_host_crate_and_denies_warnings() {
+        let line = command_line(&host_clippy());
+        assert!(
+            line.ends_with(" clippy --workspace --exclude kernel --exclude boot --all-targets -- -D warnings"),
+            "{line}"
+        );
+    }
+
+    #[test]
+    fn the_kernel_is_linted_with_the_pinned_nightly_for_bare_metal() {
+        let line = command_line(&kernel_clippy());
+        assert!(line.starts_with("cargo +nightly-2026-10-01 clippy --package kernel --release"), "{line}");
+        assert!(line.contains("--target x86_64-unknown-none"), "{line}");
+        assert!(line.ends_with(" -- -D warnings"), "{line}");
+    }
+}
