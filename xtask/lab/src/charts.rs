@@ -2,9 +2,12 @@
 //! code: speed against accuracy, the stability map, the rotation sweep and
 //! the scaling of cost with area and vertex count.
 
+use std::fs::File;
+use std::io::BufWriter;
 use std::path::Path;
+use std::sync::OnceLock;
 
-use anyhow::{Context, Result};
+use anyhow::{anyhow, Context, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -65,6 +68,7 @@ impl Chart {
 
 /// Draws every chart into `out` as `NAME.svg` and `NAME.png`.
 pub fn draw_all(results: &Results, out: &Path) -> Result<()> {
+    register_font()?;
     for chart in Chart::ALL {
         let svg = out.join(format!("{}.svg", chart.name()));
         let root = SVGBackend::new(&svg, chart.size()).into_drawing_area();
@@ -72,10 +76,39 @@ pub fn draw_all(results: &Results, out: &Path) -> Result<()> {
         root.present().with_context(|| format!("failed to write {}", svg.display()))?;
         drop(root);
         let png = out.join(format!("{}.png", chart.name()));
-        let root = BitMapBackend::new(&png, chart.size()).into_drawing_area();
+        let (width, height) = chart.size();
+        let mut rgb = vec![0; width as usize * height as usize * 3];
+        let root = BitMapBackend::with_buffer(&mut rgb, chart.size()).into_drawing_area();
         chart.draw(&root, results).with_context(|| format!("failed to draw {}", png.display()))?;
-        root.present().with_context(|| format!("failed to write {}", png.display()))?;
+        root.present().with_context(|| format!("failed to draw {}", png.display()))?;
+        drop(root);
+        write_png(&png, (width, height), &rgb).with_context(|| format!("failed to write {}", png.display()))?;
     }
+    Ok(())
+}
+
+/// Makes the embedded DejaVu Sans the charts' [`FONT`], once per process:
+/// the charts look the same on every machine and need no font installed.
+fn register_font() -> Result<()> {
+    static REGISTERED: OnceLock<bool> = OnceLock::new();
+    let registered = REGISTERED
+        .get_or_init(|| plotters::style::register_font(FONT, FontStyle::Normal, dejavu::sans::regular()).is_ok());
+    if *registered {
+        Ok(())
+    } else {
+        Err(anyhow!("the embedded DejaVu Sans font did not load"))
+    }
+}
+
+/// Writes 8-bit RGB pixels, row after row, as a PNG.
+fn write_png(path: &Path, (width, height): (u32, u32), rgb: &[u8]) -> Result<()> {
+    let file = File::create(path)?;
+    let mut encoder = png::Encoder::new(BufWriter::new(file), width, height);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header()?;
+    writer.write_image_data(rgb)?;
+    writer.finish()?;
     Ok(())
 }
 
