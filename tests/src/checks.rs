@@ -2,12 +2,12 @@
 
 use anyhow::{ensure, Context, Result};
 use raster::MethodId;
-use scenes::show;
+use scenes::{builtin, show};
 
 use crate::compare::{compare_images, compare_palettes};
 use crate::console::{Console, Dump, Shown};
 use crate::picture::Image;
-use crate::render::{builtin_scene, render, render_show, show_entry};
+use crate::render::{builtin_scene, render, render_show, show_entry, SceneSource};
 
 /// QEMU shows each mode-13h pixel as a 2x2 block of its 640x400 screen.
 pub const SCREEN_SCALE: u32 = 2;
@@ -16,10 +16,25 @@ pub const SCREEN_SCALE: u32 = 2;
 /// screen, and checks its dump against the host render byte for byte.
 /// Returns the dump for further checks.
 pub fn dump_matches_host_render(console: &mut Console, scene: &str, method: MethodId) -> Result<Dump> {
-    let expected = render(&builtin_scene(scene)?, method.method());
-    console.draw(scene, Some(method)).with_context(|| format!("kernel failed to draw {scene} with {method}"))?;
+    let page = builtin::named(scene).with_context(|| format!("{:#}", builtin_scene(scene).unwrap_err()))?;
+    source_matches_host_render(console, &SceneSource::Builtin(page), method)
+}
+
+/// Has the kernel draw `source` with `method` on a black screen (a
+/// built-in page with `DRAW`; a scene file operation by operation with
+/// `CLEAR` and `POLY`, each checked before any is sent) and checks its dump
+/// against the host render of the same scene byte for byte. Returns the
+/// dump for further checks.
+pub fn source_matches_host_render(console: &mut Console, source: &SceneSource, method: MethodId) -> Result<Dump> {
+    let name = source.name();
+    let expected = render(&source.scene(), method.method());
+    match source {
+        SceneSource::Builtin(page) => console.draw(page.name, Some(method)),
+        SceneSource::File(file) => console.draw_file(file, method),
+    }
+    .with_context(|| format!("kernel failed to draw {name} with {method}"))?;
     let dump = console.dump()?;
-    compare_images(&format!("{scene}.{method}.dump"), &expected, &dump.image())?;
+    compare_images(&format!("{name}.{method}.dump"), &expected, &dump.image())?;
     Ok(dump)
 }
 

@@ -9,6 +9,7 @@ use raster::{MethodId, SCREEN};
 use scenes::palette::ENTRIES;
 
 use crate::picture::Image;
+use crate::render::SceneFile;
 use crate::serial::{Frame, FrameReader};
 
 /// Longest wait for the READY frame: SeaBIOS, the bootloader's stages and
@@ -244,6 +245,19 @@ impl Console {
     pub fn draw(&mut self, scene: &str, method: Option<MethodId>) -> Result<()> {
         self.ok(&Command::Clear(0))?;
         self.ok(&Command::Draw { scene, method })?;
+        Ok(())
+    }
+
+    /// Clears the screen to black and draws a scene file with `method`,
+    /// one command per operation (`CLEAR`, `POLY`), every one of which must
+    /// be answered OK. The commands are all made before the first is sent:
+    /// a polygon too long for a command line fails with nothing drawn.
+    pub fn draw_file(&mut self, file: &SceneFile, method: MethodId) -> Result<()> {
+        let commands = file.commands(method)?;
+        self.ok(&Command::Clear(0))?;
+        for (line, command) in commands {
+            self.ok(&command).with_context(|| format!("{}:{line}", file.path.display()))?;
+        }
         Ok(())
     }
 

@@ -2,13 +2,15 @@
 //! looked up by name (errors list the valid names), drawn with the same
 //! `raster` code the kernel runs.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use anyhow::{anyhow, bail, Context, Result};
-use raster::{Framebuffer, Method, SCREEN};
+use anyhow::{anyhow, bail, ensure, Context, Result};
+use protocol::{Command, MAX_LINE};
+use raster::{Framebuffer, Method, MethodId, SCREEN};
+use scenes::builtin::{self, Builtin};
 use scenes::palette::VGA_DEFAULT;
 use scenes::show::{self, Entry, Stage, ENTRIES_IN_ORDER};
-use scenes::{builtin, file, Scene};
+use scenes::{file, Op, Scene};
 
 use crate::picture::Image;
 
@@ -30,22 +32,97 @@ pub fn builtin_scene(name: &str) -> Result<Scene> {
     builtin::scene(name).with_context(|| format!("unknown scene `{name}`; valid scenes: {}", builtin_names()))
 }
 
-/// A built-in scene by name or, failing that, a scene file by path.
-pub fn scene_named_or_file(name_or_path: &str) -> Result<Scene> {
-    if let Some(scene) = builtin::scene(name_or_path) {
-        return Ok(scene);
+/// A scene named on the command line: a built-in page, or a scene file.
+pub enum SceneSource {
+    Builtin(&'static Builtin),
+    File(SceneFile),
+}
+
+impl SceneSource {
+    /// The built-in scene called `name_or_path` or, failing that, the scene
+    /// file at that path, read and parsed whole: a bad file is an error
+    /// naming its line.
+    pub fn find(name_or_path: &str) -> Result<Self> {
+        if let Some(page) = builtin::named(name_or_path) {
+            return Ok(SceneSource::Builtin(page));
+        }
+        let path = Path::new(name_or_path);
+        if !path.is_file() {
+            bail!(
+                "`{name_or_path}` is neither a built-in scene nor a scene file; valid scenes: {}, or the path of a scene file",
+                builtin_names()
+            );
+        }
+        SceneFile::read(path).map(SceneSource::File)
     }
-    let path = Path::new(name_or_path);
-    if !path.is_file() {
-        bail!(
-            "`{name_or_path}` is neither a built-in scene nor a scene file; valid scenes: {}, or the path of a scene file",
-            builtin_names()
-        );
+
+    /// The scene, built or parsed.
+    pub fn scene(&self) -> Scene {
+        match self {
+            SceneSource::Builtin(page) => page.scene(),
+            SceneSource::File(file) => file.scene.clone(),
+        }
     }
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("failed to read scene file {}", path.display()))?;
-    let name = path.file_stem().map_or_else(|| name_or_path.to_string(), |s| s.to_string_lossy().into_owned());
-    file::parse(&name, &text).map_err(|error| anyhow!("{}: bad scene file: {error}", path.display()))
+
+    /// A name for files and messages: the page's, or the file's stem.
+    pub fn name(&self) -> &str {
+        match self {
+            SceneSource::Builtin(page) => page.name,
+            SceneSource::File(file) => &file.scene.name,
+        }
+    }
+}
+
+/// A scene file, read and parsed, with each operation's line kept so the
+/// kernel can be sent the same operations and a problem can name its line.
+pub struct SceneFile {
+    pub path: PathBuf,
+    pub scene: Scene,
+    /// Per operation: its line and what a protocol command carries for it
+    /// (the colour of a `clear`, the text after `poly`).
+    lines: Vec<(usize, String)>,
+}
+
+impl SceneFile {
+    /// Reads and parses the scene file at `path`; a bad file is an error
+    /// naming its line.
+    pub fn read(path: &Path) -> Result<Self> {
+        let text =
+            std::fs::read_to_string(path).with_context(|| format!("failed to read scene file {}", path.display()))?;
+        let name = path.file_stem().map_or_else(|| "scene".to_string(), |s| s.to_string_lossy().into_owned());
+        let bad = |error: file::SceneFileError| anyhow!("{}: bad scene file: {error}", path.display());
+        let parsed = file::parse_lines(&text).map_err(bad)?;
+        let lines = parsed.iter().map(|line| (line.number, line.spec.to_string())).collect();
+        let ops = parsed.into_iter().map(|line| line.op).collect();
+        Ok(Self { path: path.to_path_buf(), scene: Scene { name, ops, method: MethodId::Exact }, lines })
+    }
+
+    /// The protocol commands that draw the file with `method`, in order,
+    /// each with its line. Fails, naming the line, if a polygon does not
+    /// fit in one command line ([`MAX_LINE`] bytes): nothing is sent then,
+    /// so nothing is drawn half.
+    pub fn commands(&self, method: MethodId) -> Result<Vec<(usize, Command<'_>)>> {
+        let commands: Vec<(usize, Command<'_>)> = self
+            .scene
+            .ops
+            .iter()
+            .zip(&self.lines)
+            .map(|(op, (line, spec))| match op {
+                Op::Clear(color) => (*line, Command::Clear(*color)),
+                Op::Fill(_) => (*line, Command::Poly { method, spec }),
+            })
+            .collect();
+        for (line, command) in &commands {
+            let len = command.to_string().len();
+            ensure!(
+                len <= MAX_LINE,
+                "{}:{line}: this polygon makes a POLY command of {len} bytes; the kernel takes at most {MAX_LINE} \
+                 (split it into several `poly` lines, or use fewer digits)",
+                self.path.display()
+            );
+        }
+        Ok(commands)
+    }
 }
 
 /// `scene` drawn with `method` on a black 320x200 screen, as an indexed
@@ -81,7 +158,8 @@ mod tests {
         let error = format!("{:#}", show_entry("nope").unwrap_err());
         assert!(error.starts_with("unknown show entry `nope`; valid entries: abrash38-1, "), "{error}");
         assert!(error.ends_with(", race"), "{error}");
-        let error = format!("{:#}", scene_named_or_file("nope").unwrap_err());
+        let Err(error) = SceneSource::find("nope") else { panic!("`nope` is a scene") };
+        let error = format!("{error:#}");
         assert!(
             error.starts_with("`nope` is neither a built-in scene nor a scene file; valid scenes: abrash38-1,"),
             "{error}"
@@ -98,23 +176,57 @@ mod tests {
         assert!(indices.iter().any(|&i| i != 0), "the page is drawn");
     }
 
+    /// `text` written to a scene file of its own, found as a source.
+    fn from_file(tag: &str, text: &str) -> Result<SceneSource> {
+        let path = std::env::temp_dir().join(format!("harness-render-{}-{tag}.scene", std::process::id()));
+        std::fs::write(&path, text).unwrap();
+        let source = SceneSource::find(path.to_str().unwrap());
+        std::fs::remove_file(&path).unwrap();
+        source
+    }
+
     #[test]
     fn scene_file_errors_name_the_line() {
-        let path = std::env::temp_dir().join(format!("harness-render-{}.scene", std::process::id()));
-        std::fs::write(&path, "clear 1\n# fine\npoly color=300 0,0 1,0 0,1\n").unwrap();
-        let error = format!("{:#}", scene_named_or_file(path.to_str().unwrap()).unwrap_err());
-        std::fs::remove_file(&path).unwrap();
+        let Err(error) = from_file("bad", "clear 1\n# fine\npoly color=300 0,0 1,0 0,1\n") else { panic!("parsed") };
+        let error = format!("{error:#}");
         assert!(error.ends_with("bad scene file: line 3: bad colour `300` (expected 0-255)"), "{error}");
     }
 
     #[test]
     fn a_scene_file_renders_its_clear_colour() {
-        let path = std::env::temp_dir().join(format!("harness-render-{}-ok.scene", std::process::id()));
-        std::fs::write(&path, "clear 4\n").unwrap();
-        let scene = scene_named_or_file(path.to_str().unwrap()).unwrap();
-        std::fs::remove_file(&path).unwrap();
+        let scene = from_file("ok", "clear 4\n").unwrap().scene();
         let image = render(&scene, scene.method.method());
         assert_eq!(image.color(0), [168, 0, 0]);
         assert_eq!(image.pixel_count(), 64_000);
+    }
+
+    #[test]
+    fn a_scene_file_becomes_the_commands_that_draw_it_each_with_its_line() {
+        let text = "clear 2\n# a hole\npoly color=5 0,0 9,0 9,9 0,9 | 2,2 2,7 7,7 # square\n\npoly color=1 rule=nonzero 1,1 3.5,1 1,3\n";
+        let SceneSource::File(file) = from_file("cmds", text).unwrap() else { panic!("not a file") };
+        let lines: Vec<(usize, String)> = file
+            .commands(MethodId::Wgt)
+            .unwrap()
+            .into_iter()
+            .map(|(line, command)| (line, command.to_string()))
+            .collect();
+        assert_eq!(
+            lines,
+            [
+                (1, "CLEAR 2".to_string()),
+                (3, "POLY wgt color=5 0,0 9,0 9,9 0,9 | 2,2 2,7 7,7".to_string()),
+                (5, "POLY wgt color=1 rule=nonzero 1,1 3.5,1 1,3".to_string()),
+            ]
+        );
+    }
+
+    #[test]
+    fn a_polygon_too_long_for_one_command_is_refused_naming_its_line() {
+        let vertices: Vec<String> = (0..700).map(|i| format!("{}.5,{}", i % 320, i % 200)).collect();
+        let text = format!("clear 0\npoly color=1 0,0 1,0 0,1\npoly color=3 {}\n", vertices.join(" "));
+        let SceneSource::File(file) = from_file("long", &text).unwrap() else { panic!("not a file") };
+        let error = format!("{:#}", file.commands(MethodId::Exact).unwrap_err());
+        assert!(error.contains(".scene:3: this polygon makes a POLY command of "), "{error}");
+        assert!(error.contains("the kernel takes at most 4096"), "{error}");
     }
 }

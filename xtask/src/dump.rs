@@ -1,28 +1,60 @@
 //! `cargo xtask dump`: the kernel's picture of a scene and QEMU's.
 
 use anyhow::Result;
-use harness::checks::screen_matches_dump;
-use harness::render::builtin_scene;
+use harness::checks::{screen_matches_dump, source_matches_host_render};
+use harness::render::SceneSource;
 use harness::{Qemu, QemuOptions};
 
 use crate::opt::DumpOpt;
 
 pub fn dump(opt: &DumpOpt) -> Result<()> {
-    // Check the names before spending a boot on them.
-    let scene = builtin_scene(&opt.scene)?;
-    let method = opt.method.unwrap_or(scene.method);
+    // Check the scene (a whole scene file, every line) before spending a boot.
+    let source = SceneSource::find(&opt.scene)?;
+    let method = opt.method.unwrap_or(source.scene().method);
+    if let SceneSource::File(file) = &source {
+        file.commands(method)?;
+    }
     let mut qemu = Qemu::boot(QemuOptions::default())?;
-    qemu.console.draw(&opt.scene, Some(method))?;
-    let dump = qemu.console.dump()?;
+    let dump = source_matches_host_render(&mut qemu.console, &source, method)?;
+    eprintln!("xtask: the kernel's dump equals the host render of {} with {method}", source.name());
     let screen = qemu.screendump()?;
-    let dump_path = opt.out.join(format!("{}.png", opt.scene));
-    let screen_path = opt.out.join(format!("{}.screen.png", opt.scene));
+    let dump_path = opt.out.join(format!("{}.png", source.name()));
+    let screen_path = opt.out.join(format!("{}.screen.png", source.name()));
     dump.image().write_png(&dump_path)?;
     screen.write_png(&screen_path)?;
     println!("{}", dump_path.display());
     println!("{}", screen_path.display());
     qemu.quit()?;
-    screen_matches_dump(&opt.scene, &dump, &screen)?;
-    eprintln!("xtask: the two agree pixel for pixel (each pixel a 2x2 block on QEMU's screen)");
+    screen_matches_dump(source.name(), &dump, &screen)?;
+    eprintln!("xtask: QEMU's screendump agrees pixel for pixel (each pixel a 2x2 block on QEMU's screen)");
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dump_of(scene: &str) -> String {
+        let out = std::env::temp_dir();
+        format!("{:#}", dump(&DumpOpt { scene: scene.to_string(), method: None, out }).unwrap_err())
+    }
+
+    #[test]
+    fn a_bad_scene_file_is_refused_whole_before_any_boot_naming_its_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("bad.scene");
+        std::fs::write(&path, "clear 0\npoly color=2 0,0 10,0 0,10\npoly color=2 0,0 10,0 nan,10\n").unwrap();
+        let error = dump_of(path.to_str().unwrap());
+        assert!(error.ends_with("bad.scene: bad scene file: line 3: bad vertex `nan` (expected x,y)"), "{error}");
+        let long: Vec<String> = (0..600).map(|i| format!("{}.25,{}.75", i % 300, i % 190)).collect();
+        std::fs::write(&path, format!("poly color=2 0,0 10,0 0,10\npoly color=9 {}\n", long.join(" "))).unwrap();
+        let error = dump_of(path.to_str().unwrap());
+        assert!(error.contains("bad.scene:2: this polygon makes a POLY command of"), "{error}");
+    }
+
+    #[test]
+    fn an_unknown_scene_lists_the_built_in_ones() {
+        let error = dump_of("no-such-scene");
+        assert!(error.starts_with("`no-such-scene` is neither a built-in scene nor a scene file"), "{error}");
+    }
 }

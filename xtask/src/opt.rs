@@ -23,8 +23,10 @@ pub enum Action {
     Run(RunOpt),
     /// Builds the raw BIOS image (for QEMU or a USB stick); prints its path last.
     Image,
-    /// Boots the kernel, draws a scene, and writes DIR/NAME.png (the kernel's
-    /// dump) and DIR/NAME.screen.png (QEMU's screendump).
+    /// Boots the kernel, draws a built-in scene or a scene file, checks the
+    /// kernel's dump against the host render and QEMU's screendump, and
+    /// writes DIR/NAME.png (the kernel's dump) and DIR/NAME.screen.png
+    /// (QEMU's screendump).
     Dump(DumpOpt),
     /// Renders a scene on the host with the same raster code.
     Render(RenderOpt),
@@ -55,8 +57,9 @@ pub struct RunOpt {
 
 #[derive(Args, Debug)]
 pub struct DumpOpt {
-    /// A built-in scene.
-    #[arg(long)]
+    /// A built-in scene, or the path of a scene file (sent to the kernel
+    /// line by line with CLEAR and POLY).
+    #[arg(long, value_name = "NAME|FILE")]
     pub scene: String,
     /// Fill method (default: the scene's own, the method its source uses;
     /// exact for scene files).

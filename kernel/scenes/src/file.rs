@@ -67,13 +67,38 @@ impl fmt::Display for SceneFileError {
 
 /// Parses a whole scene file.
 pub fn parse(name: &str, text: &str) -> Result<Scene, SceneFileError> {
-    let mut ops = Vec::new();
-    for (i, line) in text.lines().enumerate() {
-        if let Some(op) = parse_line(line).map_err(|error| SceneFileError { line: i + 1, error })? {
-            ops.push(op);
+    let ops = parse_lines(text)?.into_iter().map(|line| line.op).collect();
+    Ok(Scene { name: String::from(name), ops, method: MethodId::Exact })
+}
+
+/// One operation of a scene file and where it stands.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Line<'a> {
+    /// 1-based line number.
+    pub number: usize,
+    pub op: Op,
+    /// The line without its comment and keyword: for a polygon, what the
+    /// protocol's `POLY` command carries after the method.
+    pub spec: &'a str,
+}
+
+/// Parses a whole scene file into its operations, each with its line; the
+/// first bad line is the error.
+pub fn parse_lines(text: &str) -> Result<Vec<Line<'_>>, SceneFileError> {
+    let mut lines = Vec::new();
+    for (i, text) in text.lines().enumerate() {
+        let number = i + 1;
+        if let Some(op) = parse_line(text).map_err(|error| SceneFileError { line: number, error })? {
+            lines.push(Line { number, op, spec: spec_of(text) });
         }
     }
-    Ok(Scene { name: String::from(name), ops, method: MethodId::Exact })
+    Ok(lines)
+}
+
+/// `line` without its comment and its first word, trimmed.
+fn spec_of(line: &str) -> &str {
+    let line = line.split('#').next().unwrap_or("").trim_start();
+    line.split_once(|c: char| c.is_ascii_whitespace()).map_or("", |(_, rest)| rest.trim())
 }
 
 /// Parses one line: `Ok(None)` for blank lines and comments.
@@ -176,6 +201,18 @@ mod tests {
         assert_eq!(p.rule, FillRule::NonZero);
         assert_eq!(p.contours[0], [Point::new(0, 0), Point::new(2688, 0), Point::new(1280, -576)]);
         assert_eq!(p.contours[1].len(), 3);
+    }
+
+    #[test]
+    fn lines_keep_their_number_and_the_text_a_poly_command_carries() {
+        let text = "# scene\nclear 3\n\n  poly\tcolor=6 0,0 10.5,0 5,-2.25 | 1,1 2,1 2,2 # hole\n";
+        let lines = parse_lines(text).unwrap();
+        assert_eq!(
+            lines.iter().map(|line| (line.number, line.spec)).collect::<Vec<_>>(),
+            [(2, "3"), (4, "color=6 0,0 10.5,0 5,-2.25 | 1,1 2,1 2,2")]
+        );
+        let Op::Fill(polygon) = &lines[1].op else { panic!("line 4 is a polygon") };
+        assert_eq!(parse_poly(lines[1].spec).as_ref(), Ok(polygon));
     }
 
     #[test]
