@@ -1,6 +1,6 @@
 //! Leaving QEMU with a status the host can assert on.
 //!
-//! QEMU's `isa-debug-exit` device (DESIGN.md "Hardware facts") ends the
+//! QEMU's `isa-debug-exit` device (`docs/hardware.md#isa-debug-exit`) ends the
 //! process with status `(value << 1) | 1`, so no value written here can
 //! look like QEMU's own success (0). On a PC without the device the write
 //! does nothing and the CPU halts for good.

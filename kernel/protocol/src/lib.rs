@@ -1,5 +1,5 @@
 //! The serial protocol between the kernel and the host, shared by both
-//! sides so they cannot drift apart. The README's "Protocol" section is the
+//! sides so they cannot drift apart. The README's "The serial protocol" section is the
 //! prose version of this file.
 //!
 //! Host to kernel: one ASCII command per line (`\n`, a `\r` before it is

@@ -46,7 +46,7 @@ pub struct PixelPoint {
     pub y: i32,
 }
 
-/// Which crossings count as inside (see DESIGN.md, "Conventions").
+/// Which crossings count as inside (`docs/conventions.md#fill-rules`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum FillRule {
     /// Inside where the number of edge crossings to the left is odd

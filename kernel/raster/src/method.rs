@@ -73,8 +73,9 @@ impl Heap {
 pub struct MethodInfo {
     /// Short name used on the command line and in the protocol.
     pub name: &'static str,
-    /// Seed file (and listing) it follows, or "ours".
-    pub seed: &'static str,
+    /// What it follows: author, book or article, chapter and listing
+    /// (`docs/methods.md`), or "ours".
+    pub source: &'static str,
     pub convention: Convention,
     /// Arithmetic, e.g. "f64 inverse slope, ceil".
     pub numeric: &'static str,

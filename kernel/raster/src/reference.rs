@@ -1,4 +1,4 @@
-//! `reference`: the rule of DESIGN.md ("Conventions for the rasterizer")
+//! `reference`: the rule of `docs/conventions.md#what-exact-means`
 //! computed the plainest way, to judge every method by. Not a method (it is
 //! not in [`crate::methods::ALL`]): it is slow on purpose, visiting every
 //! pixel of the polygon's bounding box within the target and testing every

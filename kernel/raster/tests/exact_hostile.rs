@@ -1,4 +1,4 @@
-//! Hostile input for `exact` (Pendleton's rule 3 in DESIGN.md): nothing
+//! Hostile input for `exact` (`docs/conventions.md#garbage-in-never-crashes`): nothing
 //! panics, nothing is refused for its range, no span leaves the target, no
 //! pixel is drawn twice, and the pixels are still the reference's.
 

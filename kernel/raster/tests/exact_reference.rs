@@ -72,6 +72,6 @@ fn generated_polygons_fall_in_every_class() {
 #[test]
 fn exact_is_registered_as_ours() {
     let registered = "exact".parse::<MethodId>().expect("exact is a method").method();
-    assert_eq!(registered.info().seed, "ours");
+    assert_eq!(registered.info().source, "ours");
     assert_eq!(registered.info().handles, Class::Complex);
 }

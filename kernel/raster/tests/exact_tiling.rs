@@ -1,5 +1,5 @@
 //! Exactly-once tiling: polygons that share edges draw every pixel once and
-//! only once (DESIGN.md's promise for the tie rules), checked with a sink
+//! only once (`docs/conventions.md#shared-edges`), checked with a sink
 //! that counts every draw.
 
 mod exact_support;

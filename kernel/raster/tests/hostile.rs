@@ -1,4 +1,5 @@
-//! Every method on hostile input: Pendleton's rule 3 in DESIGN.md ("no
+//! Every method on hostile input: Pendleton's rule 3
+//! (`docs/conventions.md#garbage-in-never-crashes`: "no
 //! method may panic, loop forever, or write outside the target on any
 //! input"). One list of cases for every method in [`ALL`], each filled
 //! with both fill rules into targets of odd sizes (two exceptions keep the

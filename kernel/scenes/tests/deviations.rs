@@ -1,5 +1,5 @@
 //! How far each classic method is from the exact reference on the pages of
-//! Listing 38.3 (ABRASH_FACTS.md §1), under our convention (pixel centres,
+//! Listing 38.3 (`docs/methods.md#chapter-38-sample-program`), under our convention (pixel centres,
 //! [`SampleOffset::CENTRE`]) and under the method's own
 //! ([`SampleOffset::of`] its [`Convention`](raster::Convention)): the
 //! measured counts are pinned, each with the reason it is what it is.
@@ -322,7 +322,7 @@ fn abrash_float() {
     let measured = measure(&AbrashFloat);
     // Its own convention is the reference at integer sample points, and it
     // picks the reference's pixels but two, both on hexagon 2 (colour 2):
-    // the "two pixels" of ch. 39 (ABRASH_FACTS.md §3), where the f64
+    // the "two pixels" of ch. 39 (`docs/methods.md#abrash-chapter-39`), where the f64
     // product (Y − Y1)·DX/DY crept just over a whole number and `ceil` went
     // one too far. The edges pass exactly through both: (202, 35) on the
     // upper right edge is drawn (a right edge is out), (118, 165) on the

@@ -34,10 +34,11 @@ impl Contender {
         matches!(self, Contender::Peer(_))
     }
 
-    /// The seed file a method follows, or the peer's crate and call.
+    /// What a method follows (book, chapter and listing, or article), or the
+    /// peer's crate and call.
     pub fn source(&self) -> &'static str {
         match self {
-            Contender::Method(m) => m.info().seed,
+            Contender::Method(m) => m.info().source,
             Contender::Peer(p) => p.source(),
         }
     }

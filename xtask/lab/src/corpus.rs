@@ -4,7 +4,8 @@
 //! Each family draws from its own generator, seeded from [`SEED`] and the
 //! family's name, so adding or resizing a family leaves the others as they
 //! were. Coordinates are generated in pixels as `f64` and snapped to the
-//! nearest 1/256 px ([`Point`]), as DESIGN.md's input rule says.
+//! nearest 1/256 px ([`Point`]), as `docs/conventions.md#coordinates` has
+//! vertices.
 
 use std::f64::consts::TAU;
 use std::ops::Range;

@@ -404,7 +404,7 @@ mod tests {
 
     static MISFIT: MethodInfo = MethodInfo {
         name: "misfit",
-        seed: "test",
+        source: "test",
         convention: raster::Convention { sample_x: 128, sample_y: 128, summary: "test" },
         numeric: "test",
         handles: raster::Class::Complex,

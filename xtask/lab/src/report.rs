@@ -190,7 +190,7 @@ fn classic_failures(out: &mut String, results: &Results) {
             Some(first) => parts.push(format!("and fails {} times (first: {first})", count(failed))),
             None => parts.push("and never fails".to_string()),
         }
-        let _ = writeln!(out, "- **{}** (seed: {}) {}.", c.name, c.source, parts.join("; "));
+        let _ = writeln!(out, "- **{}** ({}) {}.", c.name, c.source, parts.join("; "));
     }
     out.push('\n');
 }

@@ -1,7 +1,6 @@
 //! `abrash_aet`: Abrash's general polygon filler of chapter 40, Listing 40.1
-//! (`FillPolygon` with a global and an active edge table), seed
-//! `004_cbf8dbca5594f397.txt`; the listing is restated in `ABRASH_FACTS.md`
-//! §4.
+//! (`FillPolygon` with a global and an active edge table) of the Black
+//! Book (`docs/methods.md#abrash-chapter-40`).
 //!
 //! - Convention: integer sample points, as chapters 38 and 39: an edge
 //!   covers scan lines `StartY..EndY` (tops in, bottoms out) at X
@@ -54,7 +53,7 @@ pub struct AbrashAet;
 
 static INFO: MethodInfo = MethodInfo {
     name: "abrash_aet",
-    seed: "004_cbf8dbca5594f397.txt, ABRASH_FACTS.md §4 (Black Book ch. 40, Listing 40.1)",
+    source: "Abrash, Black Book ch. 40: Listing 40.1",
     convention: Convention {
         sample_x: 0,
         sample_y: 0,

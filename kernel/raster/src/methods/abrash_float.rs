@@ -1,6 +1,6 @@
 //! `abrash_float`: Abrash's first convex filler, Listing 38.1
-//! (`FillConvexPolygon` with the floating-point `ScanEdge`), seed
-//! `000_8935c452f75c56ce.txt`; the data restated in `ABRASH_FACTS.md` §2.
+//! (`FillConvexPolygon` with the floating-point `ScanEdge`) of the Black
+//! Book's chapter 38 (`docs/methods.md#abrash-chapter-38`).
 //!
 //! - Convention: samples at integer grid points; a point on a left edge or a
 //!   flat top is in, on a right edge or a flat bottom out. Vertices are
@@ -36,7 +36,7 @@ pub(super) const CONVENTION: Convention = Convention {
 
 static INFO: MethodInfo = MethodInfo {
     name: "abrash_float",
-    seed: "000_8935c452f75c56ce.txt (Black Book ch. 38, Listing 38.1)",
+    source: "Abrash, Black Book ch. 38: Listing 38.1",
     convention: CONVENTION,
     numeric: "integer vertices; f64 inverse slope with ceil",
     handles: Class::Convex,

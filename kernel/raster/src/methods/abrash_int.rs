@@ -1,8 +1,7 @@
 //! `abrash_int`: Abrash's fast convex filler of chapter 39: Listing 38.1's
 //! `FillConvexPolygon` driven by Listing 39.2's integer-only `ScanEdge`,
 //! drawing one whole span per scan line as Listing 39.1's `memset` does.
-//! Chapter 39 is restated in `ABRASH_FACTS.md` §3 (the OCR of seed
-//! `000_8935c452f75c56ce.txt` holds chapter 38 only).
+//! `docs/methods.md#abrash-chapter-39` has the chapter in short.
 //!
 //! - Convention: the same as `abrash_float`, integer sample points; a point
 //!   on a left edge or a flat top is in, on a right edge or a flat bottom
@@ -37,7 +36,7 @@ pub struct AbrashInt;
 
 static INFO: MethodInfo = MethodInfo {
     name: "abrash_int",
-    seed: "ABRASH_FACTS.md §3 (Black Book ch. 39, Listings 39.1 and 39.2 in Listing 38.1's driver)",
+    source: "Abrash, Black Book ch. 39: Listings 39.1 and 39.2 in Listing 38.1's driver",
     convention: CONVENTION,
     numeric: "integer vertices; integer error-term edge stepping (i32)",
     handles: Class::Convex,

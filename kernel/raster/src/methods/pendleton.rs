@@ -1,6 +1,6 @@
 //! `pendleton`: Bob Pendleton's edge-table renderer, `poly()` with
-//! `edge()`, `span()` and `adjust()`, from seed `001_bb4ea62db3c30381.txt`
-//! ("Drawing Polygons", the 2D versions of its listings).
+//! `edge()`, `span()` and `adjust()`, from his article "Drawing Polygons"
+//! (the 2D versions of its listings; `docs/methods.md#pendleton`).
 //!
 //! - Convention: pixel centres `(X + 0.5, Y + 0.5)`. `adjust()` rounds a
 //!   coordinate to the nearest integer, halves up, so an edge covers the rows
@@ -58,7 +58,7 @@ pub struct Pendleton;
 
 static INFO: MethodInfo = MethodInfo {
     name: "pendleton",
-    seed: "001_bb4ea62db3c30381.txt (Pendleton, \"Drawing Polygons\": poly, edge, span, adjust)",
+    source: "Pendleton, \"Drawing Polygons\": poly, edge, span, adjust",
     convention: Convention {
         sample_x: 128,
         sample_y: 128,

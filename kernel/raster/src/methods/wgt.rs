@@ -1,5 +1,5 @@
 //! `wgt`: Chris Egerter's `fillpoly` and `polyline` from WGT Graphics
-//! Tutorial #1, "Filled Polygons" (1994), seed `003_2ba7acb817ee5f46.txt`.
+//! Tutorial #1, "Filled Polygons" (1994; `docs/methods.md#wgt-tutorial-1`).
 //! Every edge is scan converted into two arrays, `startx` and `endx`, one
 //! entry per row, preset to the "impossible number" -16000: the first x
 //! found on a row goes to `startx`, any later one to `endx`. Then every row
@@ -59,7 +59,7 @@ const IMPOSSIBLE: i16 = -16000;
 
 static INFO: MethodInfo = MethodInfo {
     name: "wgt",
-    seed: "003_2ba7acb817ee5f46.txt (Egerter, WGT tutorial 1: fillpoly/polyline)",
+    source: "Egerter, WGT tutorial 1: fillpoly, polyline",
     convention: Convention {
         sample_x: 0,
         sample_y: 0,

@@ -1,4 +1,4 @@
-//! LaMothe's rotation test (seed `002_6f1d312f285a1c70.txt`): "it's always
+//! LaMothe's rotation test ("Solid Filled Polygons"; `docs/methods.md#lamothe`): "it's always
 //! a good idea to test if it can successfully render an object as it
 //! rotates ... by rotating an object, you get all kinds of tweaked-out
 //! values. If the function can hang through a complete 360-degree rotation,

@@ -9,7 +9,7 @@ use core::ops::Range;
 use crate::geometry::{Point, SUBPIXEL_BITS, SUBPIXEL_ONE};
 
 /// Where a pixel is sampled, in subpixels from its top-left corner on both
-/// axes: the centre (DESIGN.md, "Conventions for the rasterizer").
+/// axes: the centre (`docs/conventions.md#pixels-and-sample-points`).
 pub(super) const SAMPLE_OFFSET: i32 = SUBPIXEL_ONE / 2;
 
 /// The first pixel index, on either axis, whose sample lies at or after the

@@ -1,5 +1,5 @@
 //! `exact`: ours, and the one the project stakes itself on. Exactly the rule
-//! of DESIGN.md ("Conventions for the rasterizer"), for any polygon.
+//! of `docs/conventions.md#what-exact-means`, for any polygon.
 //!
 //! - Convention: pixel (x, y) is in when its centre (x + 0.5, y + 0.5) is:
 //!   a scan line meets an edge when `y_top <= y_centre < y_bottom`, and the
@@ -47,7 +47,7 @@ pub struct Exact;
 
 static INFO: MethodInfo = MethodInfo {
     name: "exact",
-    seed: "ours",
+    source: "ours",
     convention: Convention {
         sample_x: edge::SAMPLE_OFFSET,
         sample_y: edge::SAMPLE_OFFSET,
@@ -71,7 +71,7 @@ impl Method for Exact {
     }
 }
 
-/// Fills `polygon` exactly (DESIGN.md rule) by the cheapest path correct for
+/// Fills `polygon` exactly (`docs/conventions.md`) by the cheapest path correct for
 /// its class: degenerate polygons (and targets without pixels) draw
 /// nothing, triangles and monotone contours take the two-chain path,
 /// everything else the active edge table. Simple and complex polygons share

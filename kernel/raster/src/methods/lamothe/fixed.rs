@@ -1,5 +1,5 @@
-//! `lamothe_fixed`: the fixed-point twin of `lamothe`, named in the seed
-//! `002_6f1d312f285a1c70.txt` ("I've also created fixed-point versions of
+//! `lamothe_fixed`: the fixed-point twin of `lamothe`, named in LaMothe's
+//! article (`docs/methods.md#lamothe`: "I've also created fixed-point versions of
 //! the functions that run a bit faster") and followed from the book's
 //! library (`Draw_TriangleFP_2D`, `Draw_Top_TriFP`, `Draw_Bottom_TriFP`);
 //! decomposition and clipping in the parent module.
@@ -39,7 +39,7 @@ const FIXP16_ROUND_UP: i32 = 0x8000;
 
 static INFO: MethodInfo = MethodInfo {
     name: "lamothe_fixed",
-    seed: "002_6f1d312f285a1c70.txt (LaMothe, Solid Filled Polygons: Draw_TriangleFP_2D)",
+    source: "LaMothe, \"Solid Filled Polygons\": Draw_TriangleFP_2D",
     convention: Convention {
         sample_x: 0,
         sample_y: 0,

@@ -1,5 +1,5 @@
-//! `lamothe`: the float triangle filler printed in the seed
-//! `002_6f1d312f285a1c70.txt` (`Draw_Triangle_2D`, `Draw_Top_Tri`,
+//! `lamothe`: the float triangle filler printed in LaMothe's "Solid Filled
+//! Polygons" (`docs/methods.md#lamothe`: `Draw_Triangle_2D`, `Draw_Top_Tri`,
 //! `Draw_Bottom_Tri`); decomposition and clipping in the parent module.
 //!
 //! - Convention: integer rows, both span ends drawn; x truncated toward
@@ -30,7 +30,7 @@ pub struct Lamothe;
 
 static INFO: MethodInfo = MethodInfo {
     name: "lamothe",
-    seed: "002_6f1d312f285a1c70.txt (LaMothe, Solid Filled Polygons: Draw_Triangle_2D)",
+    source: "LaMothe, \"Solid Filled Polygons\": Draw_Triangle_2D",
     convention: Convention {
         sample_x: 0,
         sample_y: 0,

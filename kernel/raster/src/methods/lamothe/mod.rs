@@ -1,6 +1,6 @@
 //! `lamothe` and `lamothe_fixed`: André LaMothe's triangle filler from
 //! "Solid Filled Polygons" (*Tricks of the Windows Game Programming Gurus*,
-//! ch. 8), seed `002_6f1d312f285a1c70.txt`. `Draw_Triangle_2D` sorts the
+//! ch. 8; `docs/methods.md#lamothe`). `Draw_Triangle_2D` sorts the
 //! vertices by y and splits the triangle along its long edge into a
 //! flat-bottom half (`Draw_Bottom_Tri`) and a flat-top half
 //! (`Draw_Top_Tri`); each half traces its two edges one scan line at a time
