@@ -19,6 +19,7 @@ pub mod cargo;
 pub mod checks;
 pub mod compare;
 pub mod console;
+pub mod explorer;
 pub mod image;
 mod once;
 pub mod picture;

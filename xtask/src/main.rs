@@ -3,6 +3,7 @@
 //! library, shared with the tests.
 
 mod dump;
+mod explore;
 mod kbench;
 mod lab;
 mod opt;
@@ -31,5 +32,6 @@ fn main() -> Result<()> {
         Action::Test(opt) => test::test(&opt),
         Action::Lab(opt) => lab::lab(&opt),
         Action::Kbench(opt) => kbench::kbench(&opt),
+        Action::Explore(opt) => explore::explore(&opt),
     }
 }

@@ -99,6 +99,13 @@ pub extern "C" fn ex_output() -> *const u8 {
     with_state(|state| state.output.as_ptr())
 }
 
+/// The last text answer's length in bytes (for the functions that answer
+/// with a status, whose message is there when they fail).
+#[no_mangle]
+pub extern "C" fn ex_output_len() -> usize {
+    with_state(|state| state.output.len())
+}
+
 /// Built-in scene names, one a line.
 #[no_mangle]
 pub extern "C" fn ex_builtins() -> usize {
@@ -218,6 +225,12 @@ pub extern "C" fn ex_select(index: u32) -> u32 {
         state.explorer.select(index as usize);
         state.explorer.selected() as u32
     })
+}
+
+/// The selected polygon's index.
+#[no_mangle]
+pub extern "C" fn ex_selected() -> u32 {
+    with_state(|state| state.explorer.selected() as u32)
 }
 
 /// The topmost polygon whose exact fill covers pixel (x, y), or -1.
