@@ -15,6 +15,7 @@
 //! # }
 //! ```
 
+pub mod browser;
 pub mod cargo;
 pub mod checks;
 pub mod compare;
@@ -30,6 +31,7 @@ pub mod qemu;
 pub mod qmp;
 pub mod render;
 pub mod serial;
+pub mod webdriver;
 pub mod workspace;
 
 pub use compare::compare_images;

@@ -174,7 +174,8 @@ fn wasm_target_command(toolchain: &str) -> Command {
     add
 }
 
-fn find_in_path(program: &str) -> Option<PathBuf> {
+/// The first `program` on the `PATH`.
+pub fn find_in_path(program: &str) -> Option<PathBuf> {
     let path = std::env::var_os("PATH")?;
     std::env::split_paths(&path).map(|dir| dir.join(program)).find(|candidate| candidate.is_file())
 }
