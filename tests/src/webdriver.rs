@@ -10,7 +10,7 @@ use anyhow::{bail, Context, Result};
 use serde_json::{json, Value};
 
 /// The key under which WebDriver names an element.
-const ELEMENT_KEY: &str = "element-6066-11e4-a52f-4d56fd4b8d44";
+const ELEMENT_KEY: &str = "element-6066-11e4-a52e-4f735466cecf";
 /// How long one command may take; a page that stops answering fails the
 /// command (and the test) instead of hanging it.
 const COMMAND_TIMEOUT: Duration = Duration::from_secs(90);
@@ -29,27 +29,53 @@ pub fn request(address: SocketAddr, method: &str, path: &str, body: Option<&Valu
              Content-Length: {}\r\nConnection: close\r\n\r\n{body}",
             body.len()
         )?;
+        // chromedriver answers `Connection: close` but keeps the connection
+        // open: the response ends where its Content-Length says.
         let mut response = Vec::new();
-        stream.read_to_end(&mut response)?;
+        let mut chunk = [0; 16 * 1024];
+        while !is_complete(&response)? {
+            let read = stream.read(&mut chunk)?;
+            if read == 0 {
+                break;
+            }
+            response.extend_from_slice(&chunk[..read]);
+        }
         parse_response(&response)
     };
     exchange().with_context(|| format!("WebDriver {method} {path} at {address}"))
 }
 
-/// Splits an HTTP/1.1 response (read to the end of the connection) into
-/// its status and JSON body.
-fn parse_response(response: &[u8]) -> Result<(u16, Value)> {
-    let split = response.windows(4).position(|w| w == b"\r\n\r\n").context("no end of headers in the response")?;
+/// The header block of `response` and the length of the body it
+/// announces, once the whole header block is there.
+fn head_of(response: &[u8]) -> Result<Option<(&str, usize, usize)>> {
+    let Some(split) = response.windows(4).position(|w| w == b"\r\n\r\n") else { return Ok(None) };
     let head = std::str::from_utf8(&response[..split]).context("response headers are not UTF-8")?;
-    let status = head.split_whitespace().nth(1).and_then(|s| s.parse().ok()).context("no HTTP status")?;
-    let chunked = head.lines().any(|line| {
-        let line = line.to_ascii_lowercase();
-        line.starts_with("transfer-encoding:") && line.contains("chunked")
-    });
-    if chunked {
+    let header = |name: &str| {
+        head.lines().find_map(|line| {
+            let (key, value) = line.split_once(':')?;
+            key.trim().eq_ignore_ascii_case(name).then(|| value.trim().to_string())
+        })
+    };
+    if header("transfer-encoding").is_some_and(|value| value.contains("chunked")) {
         bail!("chunked responses are not read here");
     }
-    let body = &response[split + 4..];
+    let length = match header("content-length") {
+        Some(value) => value.parse().with_context(|| format!("bad Content-Length `{value}`"))?,
+        None => 0,
+    };
+    Ok(Some((head, split + 4, length)))
+}
+
+/// Whether `response` holds its headers and the whole body they announce.
+fn is_complete(response: &[u8]) -> Result<bool> {
+    Ok(head_of(response)?.is_some_and(|(_, body_start, length)| response.len() >= body_start + length))
+}
+
+/// Splits a complete HTTP/1.1 response into its status and JSON body.
+fn parse_response(response: &[u8]) -> Result<(u16, Value)> {
+    let (head, body_start, length) = head_of(response)?.context("no end of headers in the response")?;
+    let status = head.split_whitespace().nth(1).and_then(|s| s.parse().ok()).context("no HTTP status")?;
+    let body = response.get(body_start..body_start + length).context("the response ends before its body")?;
     let value = if body.is_empty() { Value::Null } else { serde_json::from_slice(body).context("body is not JSON")? };
     Ok((status, value))
 }
@@ -112,7 +138,7 @@ impl Session {
     /// The first element matching the CSS `selector`.
     pub fn find(&self, selector: &str) -> Result<Element> {
         let value = self.command("POST", "/element", Some(json!({ "using": "css selector", "value": selector })))?;
-        let id = value[ELEMENT_KEY].as_str().with_context(|| format!("no element id for `{selector}`"))?;
+        let id = value[ELEMENT_KEY].as_str().with_context(|| format!("no element id for `{selector}` in {value}"))?;
         Ok(Element(id.to_string()))
     }
 
@@ -150,12 +176,16 @@ mod tests {
 
     #[test]
     fn a_response_splits_into_status_and_json() {
-        let response =
-            b"HTTP/1.1 404 Not Found\r\nContent-Length: 36\r\n\r\n{\"value\":{\"error\":\"no such element\"}}";
-        let (status, value) = parse_response(response).unwrap();
+        let body = br#"{"value":{"error":"no such element"}}"#;
+        let mut response = format!("HTTP/1.1 404 Not Found\r\nContent-Length:{}\r\n\r\n", body.len()).into_bytes();
+        assert!(!is_complete(&response).unwrap());
+        response.extend_from_slice(body);
+        assert!(is_complete(&response).unwrap());
+        let (status, value) = parse_response(&response).unwrap();
         assert_eq!(status, 404);
         assert_eq!(value["value"]["error"], "no such element");
         assert!(parse_response(b"HTTP/1.1 200 OK\r\nTransfer-Encoding: chunked\r\n\r\n2\r\n{}\r\n0\r\n\r\n").is_err());
         assert!(parse_response(b"HTTP/1.1 200 OK\r\n").is_err());
+        assert!(parse_response(b"HTTP/1.1 200 OK\r\nContent-Length: 9\r\n\r\n{}").is_err());
     }
 }
