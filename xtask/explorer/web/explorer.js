@@ -279,7 +279,7 @@ function describePane(pane, method, report, info, selected) {
   const rule = pane.field("rule");
   const beyond = CLASSES.indexOf(selected.class) > CLASSES.indexOf(info.handles);
   rule.textContent =
-    `The selected polygon is ${selected.class || "absent"}, filled by the ${selected.rule || "?"} rule. ` +
+    `Selected polygon: ${selected.class || "none"}, ${selected.rule || "no"} rule; ` +
     (rules.includes(selected.rule) ? `${method} honours that rule` : `${method} does not honour that rule`) +
     (beyond ? `; it is beyond what ${method} handles (${info.handles}).` : ".");
   for (const key of ["seed", "sample", "convention", "arithmetic", "handles", "rules", "heap"]) {
@@ -384,8 +384,9 @@ function drawOverlay(pane, info) {
   // Far vertices (up to 2^23 px away) are drawn clamped: the canvas needs
   // no more than to know the direction of the edge.
   const clamp = (v) => Math.max(-1e7, Math.min(1e7, v));
-  ctx.lineWidth = 1.5;
-  ctx.strokeStyle = "rgba(255,255,0,0.9)";
+  // Thin and faint: the difference marks lie along the edges.
+  ctx.lineWidth = 1;
+  ctx.strokeStyle = "rgba(255,255,0,0.55)";
   ctx.beginPath();
   for (let i = 0; i < points.length; i += 3) {
     const [sx, sy] = toScreen(points[i + 1], points[i + 2]).map(clamp);
