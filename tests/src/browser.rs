@@ -4,7 +4,6 @@
 use std::net::{SocketAddr, TcpListener};
 use std::path::PathBuf;
 use std::process::{Child, Command, Stdio};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context, Result};
@@ -13,6 +12,7 @@ use serde_json::{json, Value};
 use crate::prerequisites::{ensure_chromium, find_in_path, CHROMEDRIVER, CHROMIUM};
 use crate::process::command_line;
 use crate::webdriver::{self, Session};
+use crate::workspace;
 
 /// Chromium's flags. This machine's network is closed: without the flags
 /// that stop its background connections (updates, sync, QUIC probes) it
@@ -61,13 +61,7 @@ impl Browser {
     /// session through it, installing both when missing.
     pub fn start() -> Result<Self> {
         ensure_chromium()?;
-        static RUNS: AtomicUsize = AtomicUsize::new(0);
-        let run_dir = std::env::temp_dir().join(format!(
-            "polylab-browser-{}-{}",
-            std::process::id(),
-            RUNS.fetch_add(1, Ordering::Relaxed)
-        ));
-        std::fs::create_dir_all(&run_dir).with_context(|| format!("failed to create {}", run_dir.display()))?;
+        let run_dir = workspace::fresh_run_dir("browser")?;
         let port = TcpListener::bind("127.0.0.1:0")?.local_addr()?.port();
         let address = SocketAddr::from(([127, 0, 0, 1], port));
         let mut command = Command::new(CHROMEDRIVER);
