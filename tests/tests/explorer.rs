@@ -285,3 +285,32 @@ fn lab_results_show_the_methods_figures_for_the_nearest_family() -> Result<()> {
     }
     Ok(())
 }
+
+#[test]
+fn a_click_selects_the_topmost_polygon_under_the_pointer() -> Result<()> {
+    let explorer = Explorer::open("#scene=abrash38-3&a=exact&poly=0&zoom=2&x=0&y=0")?;
+    let rect = explorer.session().execute(
+        "const r = document.querySelector('#pane-a .overlay').getBoundingClientRect(); return [r.left, r.top];",
+        vec![],
+    )?;
+    let corner = (rect[0].as_f64().context("left")?, rect[1].as_f64().context("top")?);
+    // Pixel (x, y) covers 2x2 CSS px at zoom 2; click its middle, away
+    // from the selected polygon's vertices (a press there grabs one).
+    for ((x, y), polygon) in [((160, 100), "237"), ((319, 199), "1"), ((314, 3), "0")] {
+        let at = |v: i32, origin: f64| (origin + f64::from(v) * 2.0 + 1.0).round() as i64;
+        let renders = explorer.renders()?;
+        explorer.session().perform_actions(json!([{
+            "type": "pointer",
+            "id": "mouse",
+            "parameters": { "pointerType": "mouse" },
+            "actions": [
+                { "type": "pointerMove", "x": at(x, corner.0), "y": at(y, corner.1), "origin": "viewport" },
+                { "type": "pointerDown", "button": 0 },
+                { "type": "pointerUp", "button": 0 },
+            ],
+        }]))?;
+        explorer.wait_for_render_after(renders)?;
+        ensure!(explorer.text("#poly")? == polygon, "a click on pixel ({x}, {y}) selected {}", explorer.text("#poly")?);
+    }
+    Ok(())
+}
