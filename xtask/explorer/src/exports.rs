@@ -40,7 +40,7 @@ struct State {
     /// The two panes' pictures, RGBA.
     panes: [Vec<u8>; 2],
     /// The two panes' last reports.
-    reports: [PaneReport; 2],
+    reports: [Option<PaneReport>; 2],
     /// The selected polygon's vertices as (contour, x, y) triples.
     vertices: Vec<i32>,
 }
@@ -310,21 +310,29 @@ pub extern "C" fn ex_render(pane: u32, method_index: u32, view_index: u32, judge
     with_state(|state| {
         let pane = (pane as usize).min(1);
         let mut rgba = std::mem::take(&mut state.panes[pane]);
-        state.reports[pane] = view::render(&mut state.explorer, method(method_index), view, judge, &mut rgba);
+        state.reports[pane] = Some(view::render(&mut state.explorer, method(method_index), view, judge, &mut rgba));
         state.panes[pane] = rgba;
         state.panes[pane].as_ptr()
     })
 }
 
-/// Pane `pane`'s last report, as `key<TAB>value` lines: polygons drawn and
-/// refused in the scene, then for the selected polygon (`selected_*`) and
+/// Pane `pane`'s last report, as `key<TAB>value` lines: the judge used
+/// (`exact` or `own`) and the reference's work for the scene against its
+/// budget, polygons drawn and refused in the scene, then for the selected polygon (`selected_*`) and
 /// the whole scene (`scene_*`) the pixels added and missed against the
 /// judge, pixels overdrawn, stray spans and the (first) refusal in words.
 #[no_mangle]
 pub extern "C" fn ex_report(pane: u32) -> usize {
     with_state(|state| {
-        let report = state.reports[(pane as usize).min(1)];
-        let mut text = format!("polygons\t{}\nrefused\t{}\n", report.drawn.polygons, report.drawn.refused);
+        let Some(report) = state.reports[(pane as usize).min(1)] else { return answer(state, String::new()) };
+        let judge = if report.judge == Judge::Exact { "exact" } else { "own" };
+        let mut text = format!(
+            "judge\t{judge}\nreference_work\t{}\nreference_budget\t{}\npolygons\t{}\nrefused\t{}\n",
+            report.reference_work,
+            view::REFERENCE_BUDGET,
+            report.drawn.polygons,
+            report.drawn.refused
+        );
         let parts = [("selected", report.selected), ("scene", Some(report.scene))];
         for (part, counts) in parts {
             let Some(counts) = counts else { continue };

@@ -17,8 +17,9 @@ use crate::view::CountCache;
 pub const MAX_TEXT_BYTES: usize = 1 << 20;
 /// Most vertices in one polygon; the lab's vertex sweep goes up to 1024.
 pub const MAX_POLYGON_VERTICES: usize = 1024;
-/// Most vertices in a whole scene.
-pub const MAX_SCENE_VERTICES: usize = 16_384;
+/// Most vertices in a whole scene: four polygons of the largest kind, each
+/// a zigzag across the whole screen, draw in a few hundred milliseconds.
+pub const MAX_SCENE_VERTICES: usize = 4096;
 /// Most operations (`clear` and `poly` lines) in a scene.
 pub const MAX_OPS: usize = 4096;
 
@@ -296,7 +297,7 @@ mod tests {
         let error = Explorer::from_text(&text).unwrap_err();
         assert_eq!(error, InputError::PolygonTooLarge { line: 2, vertices: 2000 });
         let small: Vec<String> = (0..1000).map(|i| format!("{i},1")).collect();
-        let many = format!("poly color=3 {}\n", small.join(" ")).repeat(17);
+        let many = format!("poly color=3 {}\n", small.join(" ")).repeat(5);
         assert_eq!(Explorer::from_text(&many).unwrap_err(), InputError::SceneTooLarge);
         assert_eq!(Explorer::from_text(&"clear 1\n".repeat(MAX_OPS + 1)).unwrap_err(), InputError::TooManyOps);
         let long = "#".repeat(MAX_TEXT_BYTES + 1);

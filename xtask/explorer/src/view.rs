@@ -5,7 +5,7 @@
 //! selected polygon and over every polygon of the scene.
 
 use raster::reference::{self, SampleOffset};
-use raster::{CoverageSink, Framebuffer, MethodId, Polygon, Refusal, SCREEN};
+use raster::{CoverageSink, Framebuffer, MethodId, Polygon, Refusal, SCREEN, SUBPIXEL_BITS};
 use scenes::palette::{c6_to_8, VGA_DEFAULT};
 use scenes::DrawReport;
 
@@ -28,6 +28,12 @@ pub enum View {
     /// ([`ADDED`]), missed ([`MISSED`]), agreed ([`AGREED`]).
     Difference,
 }
+
+/// Most pixel-edge tests the reference may make to judge a whole scene
+/// under a method's own convention (it tests every edge at every pixel of
+/// a polygon's box: a screen-wide zigzag of 1024 vertices alone takes 65
+/// million). Past it, the pane judges against `exact` and says why.
+pub const REFERENCE_BUDGET: u64 = 16_000_000;
 
 /// What a method is judged against.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -67,8 +73,13 @@ impl Counts {
 }
 
 /// What one render of a pane found.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PaneReport {
+    /// The judge used: the one asked for, or `exact` when the reference
+    /// would have taken more than [`REFERENCE_BUDGET`] tests.
+    pub judge: Judge,
+    /// The reference's pixel-edge tests for the whole scene.
+    pub reference_work: u64,
     /// The whole scene drawn with the method.
     pub drawn: DrawReport,
     /// The selected polygon against the judge, if there is one.
@@ -156,6 +167,8 @@ fn polygon_counts(explorer: &mut Explorer, index: usize, method: MethodId, judge
 /// Draws the pane's picture into `rgba` (resized to [`RGBA_BYTES`]) and
 /// reports what the method did.
 pub fn render(explorer: &mut Explorer, method: MethodId, view: View, judge: Judge, rgba: &mut Vec<u8>) -> PaneReport {
+    let reference_work: u64 = explorer.polygons().map(reference_work).sum();
+    let judge = if reference_work > REFERENCE_BUDGET { Judge::Exact } else { judge };
     let mut framebuffer = Framebuffer::new(SCREEN);
     let drawn = explorer.scene().draw(method.method(), &mut framebuffer);
     rgba.clear();
@@ -178,7 +191,25 @@ pub fn render(explorer: &mut Explorer, method: MethodId, view: View, judge: Judg
         }
         counts
     });
-    PaneReport { drawn, selected, scene }
+    PaneReport { judge, reference_work, drawn, selected, scene }
+}
+
+/// The reference's pixel-edge tests for `polygon`: its box's pixels on
+/// the screen times its edges.
+fn reference_work(polygon: &Polygon) -> u64 {
+    let mut points = polygon.contours.iter().flatten();
+    let Some(first) = points.next() else { return 0 };
+    let (mut low, mut high) = ((first.x, first.y), (first.x, first.y));
+    for p in points {
+        low = (low.0.min(p.x), low.1.min(p.y));
+        high = (high.0.max(p.x), high.1.max(p.y));
+    }
+    let pixels = |low: i32, high: i32, limit: i32| {
+        let first = (low >> SUBPIXEL_BITS).clamp(0, limit);
+        let last = ((high >> SUBPIXEL_BITS) + 1).clamp(0, limit);
+        u64::try_from(last - first).unwrap_or(0)
+    };
+    pixels(low.0, high.0, SCREEN.width) * pixels(low.1, high.1, SCREEN.height) * polygon.vertex_count() as u64
 }
 
 /// Paints the selected polygon's pixels over the darkened scene.
@@ -266,6 +297,19 @@ mod tests {
             assert_eq!(report.drawn.polygons, 1, "{method}");
             assert_eq!(report.scene.strays, 0, "{method}");
         }
+    }
+
+    #[test]
+    fn scenes_too_big_for_the_reference_are_judged_against_exact() {
+        let zigzag: Vec<String> = (0..1024).map(|i| format!("{:.3},{}", f64::from(i) * 0.3, (i % 2) * 200)).collect();
+        let mut explorer = Explorer::from_text(&format!("poly color=3 {}\n", zigzag.join(" "))).unwrap();
+        let mut rgba = Vec::new();
+        let report = render(&mut explorer, MethodId::Wgt, View::Picture, Judge::OwnConvention, &mut rgba);
+        assert_eq!(report.judge, Judge::Exact);
+        assert!(report.reference_work > REFERENCE_BUDGET, "{}", report.reference_work);
+        let mut small = Explorer::builtin("abrash38-3").unwrap();
+        let report = render(&mut small, MethodId::Wgt, View::Picture, Judge::OwnConvention, &mut rgba);
+        assert_eq!(report.judge, Judge::OwnConvention);
     }
 
     #[test]

@@ -246,8 +246,13 @@ function render() {
 }
 
 function describePane(pane, method, report, info, selected) {
-  const judge = view.judge === "own" ? "the reference at its own sample point" : "exact";
-  pane.field("title").textContent = `${method} against ${judge}`;
+  const judge = report.judge === "own" ? "the reference at its own sample point" : "exact";
+  const millions = (v) => (Number(v) / 1e6).toFixed(0);
+  const fallback =
+    view.judge === "own" && report.judge !== "own"
+      ? ` (the reference would make ${millions(report.reference_work)} million pixel-edge tests on this scene; the page's limit is ${millions(report.reference_budget)} million)`
+      : "";
+  pane.field("title").textContent = `${method} against ${judge}${fallback}`;
   const legend = pane.field("legend");
   legend.replaceChildren();
   if (view.mode === "diff") {
