@@ -15,10 +15,12 @@
 //! # }
 //! ```
 
+pub mod browser;
 pub mod cargo;
 pub mod checks;
 pub mod compare;
 pub mod console;
+pub mod explorer;
 pub mod image;
 mod once;
 pub mod picture;
@@ -29,6 +31,7 @@ pub mod qemu;
 pub mod qmp;
 pub mod render;
 pub mod serial;
+pub mod webdriver;
 pub mod workspace;
 
 pub use compare::compare_images;

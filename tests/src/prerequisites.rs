@@ -88,29 +88,94 @@ fn install_commands(installed: Option<&str>) -> Vec<Command> {
 /// with the exact command to run.
 pub fn ensure_qemu() -> Result<()> {
     static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || ensure_programs(&[QEMU], &[QEMU_PACKAGE]))
+}
+
+/// The browser the explorer's tests drive, its WebDriver server, and the
+/// Debian packages that have them.
+pub const CHROMIUM: &str = "chromium";
+pub const CHROMEDRIVER: &str = "chromedriver";
+const CHROMIUM_PACKAGES: [&str; 2] = ["chromium", "chromium-driver"];
+
+/// Makes sure `chromium` and `chromedriver` are on the `PATH`, installing
+/// Debian's `chromium` and `chromium-driver` as [`ensure_qemu`] installs QEMU.
+pub fn ensure_chromium() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || ensure_programs(&[CHROMIUM, CHROMEDRIVER], &CHROMIUM_PACKAGES))
+}
+
+/// Installs `packages` with apt-get when one of `programs` is not on the
+/// `PATH` and we are root; otherwise fails with the command to run.
+fn ensure_programs(programs: &[&str], packages: &[&str]) -> Result<()> {
+    let missing: Vec<&str> = programs.iter().copied().filter(|program| find_in_path(program).is_none()).collect();
+    if missing.is_empty() {
+        return Ok(());
+    }
+    let packages_line = packages.join(" ");
+    let as_root = output_of(Command::new("id").arg("-u")).is_ok_and(|uid| uid.trim() == "0");
+    if !as_root || find_in_path("apt-get").is_none() {
+        bail!(
+            "{} not installed; install with:\n    \
+             sudo apt-get update && sudo apt-get install -y {packages_line}",
+            missing.join(" and ")
+        );
+    }
+    eprintln!(
+        "harness: {} missing; installing the Debian packages {packages_line} with apt-get",
+        missing.join(" and ")
+    );
+    run_streaming(Command::new("apt-get").arg("update"))?;
+    run_streaming(
+        Command::new("apt-get").args(["install", "-y"]).args(packages).env("DEBIAN_FRONTEND", "noninteractive"),
+    )?;
+    for program in missing {
+        find_in_path(program)
+            .with_context(|| format!("{packages_line} installed but {program} is still not on the PATH"))?;
+    }
+    Ok(())
+}
+
+/// The target the explorer's engine is built for.
+pub const WASM_TARGET: &str = "wasm32-unknown-unknown";
+
+/// Makes sure the toolchain that runs us (the one `cargo xtask` or `cargo
+/// test` was started with, the one [`crate::cargo::host`] builds with) has
+/// the `wasm32-unknown-unknown` target, adding it with rustup when missing.
+pub fn ensure_wasm_target() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
     once_per_process(&DONE, || {
-        if find_in_path(QEMU).is_some() {
+        let toolchain = host_toolchain()?;
+        let installed =
+            output_of(Command::new("rustup").args(["target", "list", "--installed", "--toolchain"]).arg(&toolchain))
+                .context("rustup is needed to add the wasm32 target (see https://rustup.rs)")?;
+        if installed.lines().any(|line| line.trim() == WASM_TARGET) {
             return Ok(());
         }
-        let as_root = output_of(Command::new("id").arg("-u")).is_ok_and(|uid| uid.trim() == "0");
-        if !as_root || find_in_path("apt-get").is_none() {
-            bail!(
-                "{QEMU} is not installed; install it with:\n    \
-                 sudo apt-get update && sudo apt-get install -y {QEMU_PACKAGE}"
-            );
-        }
-        eprintln!("harness: {QEMU} is missing; installing the Debian package {QEMU_PACKAGE} with apt-get");
-        run_streaming(Command::new("apt-get").arg("update"))?;
-        run_streaming(
-            Command::new("apt-get").args(["install", "-y", QEMU_PACKAGE]).env("DEBIAN_FRONTEND", "noninteractive"),
-        )?;
-        find_in_path(QEMU)
-            .with_context(|| format!("{QEMU_PACKAGE} is installed but {QEMU} is still not on the PATH"))?;
-        Ok(())
+        eprintln!("harness: adding target {WASM_TARGET} to Rust toolchain {toolchain} for the explorer page");
+        run_streaming(&mut wasm_target_command(&toolchain)).context("failed to add the wasm32 target")
     })
 }
 
-fn find_in_path(program: &str) -> Option<PathBuf> {
+/// The rustup toolchain that runs us: rustup's proxies name it in
+/// `RUSTUP_TOOLCHAIN` to every process they start; failing that, the one
+/// rustup picks here.
+fn host_toolchain() -> Result<String> {
+    if let Some(toolchain) = std::env::var_os("RUSTUP_TOOLCHAIN") {
+        return Ok(toolchain.to_string_lossy().into_owned());
+    }
+    let active = output_of(Command::new("rustup").args(["show", "active-toolchain"]))
+        .context("rustup is needed to add the wasm32 target (see https://rustup.rs)")?;
+    active.split_whitespace().next().map(str::to_string).context("rustup named no active toolchain")
+}
+
+fn wasm_target_command(toolchain: &str) -> Command {
+    let mut add = Command::new("rustup");
+    add.args(["target", "add", "--toolchain", toolchain, WASM_TARGET]);
+    add
+}
+
+/// The first `program` on the `PATH`.
+pub fn find_in_path(program: &str) -> Option<PathBuf> {
     let path = std::env::var_os("PATH")?;
     std::env::split_paths(&path).map(|dir| dir.join(program)).find(|candidate| candidate.is_file())
 }
@@ -148,6 +213,14 @@ mod tests {
                 "rustup component add --toolchain nightly-2026-10-01 llvm-tools-preview",
                 "rustup target add --toolchain nightly-2026-10-01 x86_64-unknown-none",
             ]
+        );
+    }
+
+    #[test]
+    fn the_wasm_target_is_added_to_the_named_toolchain() {
+        assert_eq!(
+            command_line(&wasm_target_command("stable-x86_64-unknown-linux-gnu")),
+            "rustup target add --toolchain stable-x86_64-unknown-linux-gnu wasm32-unknown-unknown"
         );
     }
 

@@ -5,7 +5,6 @@
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, ExitStatus, Stdio};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::mpsc::Receiver;
 use std::time::{Duration, Instant};
 
@@ -18,6 +17,7 @@ use crate::prerequisites::{ensure_qemu, QEMU};
 use crate::process::command_line;
 use crate::qmp::Qmp;
 use crate::serial::{forward_bytes, FrameReader};
+use crate::workspace;
 
 /// Longest wait for QEMU to exit after QMP `quit`.
 pub const QUIT_TIMEOUT: Duration = Duration::from_secs(30);
@@ -139,13 +139,7 @@ impl Qemu {
     /// the kernel.
     pub fn spawn(image: &Path, options: QemuOptions) -> Result<Self> {
         ensure_qemu()?;
-        static RUNS: AtomicUsize = AtomicUsize::new(0);
-        let run_dir = std::env::temp_dir().join(format!(
-            "polylab-qemu-{}-{}",
-            std::process::id(),
-            RUNS.fetch_add(1, Ordering::Relaxed)
-        ));
-        std::fs::create_dir_all(&run_dir).with_context(|| format!("failed to create {}", run_dir.display()))?;
+        let run_dir = workspace::fresh_run_dir("qemu")?;
         let mut command = Command::new(QEMU);
         command.args(qemu_arguments(image, &run_dir.join("qmp.sock"), options));
         command.stdin(Stdio::piped()).stdout(Stdio::piped()).stderr(Stdio::piped());

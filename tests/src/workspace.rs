@@ -1,6 +1,9 @@
 //! Where things are in the workspace.
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use anyhow::{Context, Result};
 
 /// The workspace root: the harness crate lives in its `tests/` folder.
 pub fn root() -> &'static Path {
@@ -21,4 +24,18 @@ pub fn target_dir() -> PathBuf {
 /// never invalidate each other's artifacts.
 pub fn nightly_target_dir() -> PathBuf {
     target_dir().join("nightly")
+}
+
+/// A new, empty folder for one run of a child process (QEMU, a browser):
+/// `polylab-<kind>-<pid>-<n>` in the system's temporary folder. The caller
+/// removes it when the run ends.
+pub fn fresh_run_dir(kind: &str) -> Result<PathBuf> {
+    static RUNS: AtomicUsize = AtomicUsize::new(0);
+    let dir = std::env::temp_dir().join(format!(
+        "polylab-{kind}-{}-{}",
+        std::process::id(),
+        RUNS.fetch_add(1, Ordering::Relaxed)
+    ));
+    std::fs::create_dir_all(&dir).with_context(|| format!("failed to create {}", dir.display()))?;
+    Ok(dir)
 }

@@ -3,6 +3,7 @@
 //! library, shared with the tests.
 
 mod dump;
+mod explore;
 mod kbench;
 mod lab;
 mod lint;
@@ -33,5 +34,6 @@ fn main() -> Result<()> {
         Action::Lab(opt) => lab::lab(&opt),
         Action::Lint => lint::lint(),
         Action::Kbench(opt) => kbench::kbench(&opt),
+        Action::Explore(opt) => explore::explore(&opt),
     }
 }

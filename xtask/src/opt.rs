@@ -46,6 +46,10 @@ pub enum Action {
     /// `BENCH` (rdtsc cycles under QEMU TCG, apart from the host lab) and
     /// writes kernel_bench.md and kernel_bench.json under --out.
     Kbench(KbenchOpt),
+    /// Builds the explorer page (the raster code for wasm32, a hand-written
+    /// page), serves it on 127.0.0.1 and prints its address; with --out,
+    /// writes it to DIR and stops.
+    Explore(ExploreOpt),
 }
 
 #[derive(Args, Debug)]
@@ -139,4 +143,16 @@ pub struct KbenchOpt {
     /// Where kernel_bench.md and kernel_bench.json go.
     #[arg(long, default_value = "target/lab")]
     pub out: PathBuf,
+}
+
+#[derive(Args, Debug)]
+pub struct ExploreOpt {
+    /// Write the page to DIR without serving it (default: serve it from
+    /// target/explorer).
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// A lab results.json (from `cargo xtask lab`, e.g. target/lab/results.json)
+    /// to copy beside the page, whose figures it then shows.
+    #[arg(long, value_name = "FILE")]
+    pub results: Option<PathBuf>,
 }

@@ -6,7 +6,7 @@ use anyhow::Result;
 use harness::build_image;
 use harness::cargo::NIGHTLY_ONLY;
 use harness::image::IMAGE_ENV;
-use harness::prerequisites::{ensure_qemu, ensure_toolchain};
+use harness::prerequisites::{ensure_chromium, ensure_qemu, ensure_toolchain, ensure_wasm_target};
 use harness::process::run_streaming;
 
 use crate::opt::TestOpt;
@@ -14,6 +14,10 @@ use crate::opt::TestOpt;
 pub fn test(opt: &TestOpt) -> Result<()> {
     ensure_toolchain()?;
     ensure_qemu()?;
+    // The explorer page's tests: its engine is built for wasm32 and run in
+    // headless Chromium.
+    ensure_wasm_target()?;
+    ensure_chromium()?;
     let image = build_image()?;
     run_streaming(test_command(&opt.cargo_args).env(IMAGE_ENV, image))
 }

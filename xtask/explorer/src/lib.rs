@@ -1,0 +1,25 @@
+//! `explorer`: the engine of the explorer page (`cargo xtask explore`), where
+//! one polygon is looked at under every method. It is the `raster` and
+//! `scenes` code itself, built for `wasm32-unknown-unknown` and driven by the
+//! page's hand-written script through a few `extern "C"` functions
+//! ([`exports`]); everything else here is plain Rust, unit-tested on the
+//! host.
+//!
+//! - [`model`]: the scene being explored (a built-in page or a scene file),
+//!   the selected polygon, vertex edits, and the limits that keep the page
+//!   responsive on hostile input.
+//! - [`view`]: a method's picture of the scene, and the difference view of
+//!   the selected polygon against `exact` (or against the reference at the
+//!   method's own sample point), with counts.
+//! - [`decimal`]: subpixel coordinates written as exact decimals, so a
+//!   polygon copied out as a scene-file line reads back to the same vertices.
+//! - [`family`]: which family of the lab's corpus a polygon is nearest to,
+//!   for reading its speed and error figures out of `results.json`.
+
+#![deny(unsafe_code)]
+
+pub mod decimal;
+pub mod exports;
+pub mod family;
+pub mod model;
+pub mod view;
