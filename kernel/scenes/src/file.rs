@@ -14,9 +14,9 @@
 
 use alloc::string::String;
 use alloc::vec::Vec;
-use core::fmt;
+use core::fmt::{self, Write};
 
-use raster::{FillRule, MethodId, Point, Polygon, SUBPIXEL_BITS};
+use raster::{FillRule, MethodId, Point, Polygon, SUBPIXEL_BITS, SUBPIXEL_ONE};
 
 use crate::scene::{Op, Scene};
 
@@ -154,6 +154,37 @@ fn parse_poly_words<'a>(words: impl Iterator<Item = &'a str>) -> Result<Polygon,
     Ok(Polygon { contours, color, rule })
 }
 
+/// `subpixels / 256` pixels as the shortest exact decimal ("-3.25", "12").
+fn pixels(subpixels: i32) -> String {
+    let magnitude = i64::from(subpixels).unsigned_abs();
+    let whole = magnitude >> SUBPIXEL_BITS;
+    let fraction = magnitude & (SUBPIXEL_ONE as u64 - 1);
+    let sign = if subpixels < 0 { "-" } else { "" };
+    if fraction == 0 {
+        return alloc::format!("{sign}{whole}");
+    }
+    // fraction / 256 = fraction * 5^8 / 10^8.
+    let digits = alloc::format!("{:08}", fraction * 390_625);
+    alloc::format!("{sign}{whole}.{}", digits.trim_end_matches('0'))
+}
+
+/// `polygon` as one scene-file `poly` line that [`parse_line`] reads back
+/// to the very same polygon: every subpixel value has a finite decimal form
+/// (1/256 is 0.00390625), written out in full and no longer.
+pub fn poly_line(polygon: &Polygon) -> String {
+    let mut line = alloc::format!("poly color={} rule={}", polygon.color, polygon.rule.name());
+    for (i, contour) in polygon.contours.iter().enumerate() {
+        if i > 0 {
+            line.push_str(" |");
+        }
+        for point in contour {
+            // Writing to a String cannot fail.
+            let _ = write!(line, " {},{}", pixels(point.x), pixels(point.y));
+        }
+    }
+    line
+}
+
 /// A decimal number of pixels to subpixels, rounded to nearest, halves up.
 fn parse_coordinate(text: &str) -> Result<i32, LineError> {
     let bad = || LineError::BadVertex(String::from(text));
@@ -239,5 +270,31 @@ mod tests {
         assert!(matches!(parse_line("poly color=1 1;1"), Err(LineError::BadVertex(_))));
         assert!(matches!(parse_line("poly color=1 1,1 | | 2,2"), Err(LineError::EmptyContour)));
         assert!(matches!(parse_line("clear 1 2"), Err(LineError::Extra(_))));
+    }
+
+    #[test]
+    fn decimals_are_exact_and_shortest() {
+        assert_eq!(pixels(0), "0");
+        assert_eq!(pixels(256), "1");
+        assert_eq!(pixels(-832), "-3.25");
+        assert_eq!(pixels(1), "0.00390625");
+        assert_eq!(pixels(-1), "-0.00390625");
+        assert_eq!(pixels(i32::MAX), "8388607.99609375");
+        assert_eq!(pixels(i32::MIN), "-8388608");
+    }
+
+    #[test]
+    fn a_copied_line_parses_back_to_the_same_polygon() {
+        let values = [i32::MIN, i32::MIN + 1, -257, -256, -255, -128, -1, 0, 1, 127, 128, 255, 70_000, i32::MAX];
+        let contour: Vec<Point> = values.iter().zip(values.iter().rev()).map(|(&x, &y)| Point::new(x, y)).collect();
+        let polygon = Polygon {
+            contours: alloc::vec![contour, alloc::vec![Point::new(5, 6), Point::new(-7, 8), Point::new(9, -10)]],
+            color: 200,
+            rule: FillRule::NonZero,
+        };
+        let line = poly_line(&polygon);
+        assert!(line.starts_with("poly color=200 rule=nonzero -8388608,8388607.99609375 "), "{line}");
+        let back = parse_poly(line.strip_prefix("poly").unwrap()).unwrap();
+        assert_eq!(back, polygon);
     }
 }

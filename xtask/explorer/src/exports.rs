@@ -26,10 +26,11 @@ use std::sync::{Mutex, PoisonError};
 use raster::{MethodId, Point};
 use scenes::builtin;
 
-use crate::decimal;
 use crate::family;
+use crate::judge::Judge;
 use crate::model::{Explorer, Origin};
-use crate::view::{self, Judge, PaneReport, View};
+use crate::view::{self, PaneReport, View};
+use scenes::file::poly_line;
 
 /// Everything the page has in the module.
 #[derive(Default)]
@@ -250,7 +251,7 @@ pub extern "C" fn ex_selected_info() -> usize {
         let nearest = family::nearest(polygon);
         let text = [
             ("index", state.explorer.selected().to_string()),
-            ("line", decimal::poly_line(polygon)),
+            ("line", poly_line(polygon)),
             ("rule", polygon.rule.name().to_string()),
             ("color", polygon.color.to_string()),
             ("contours", polygon.contours.len().to_string()),

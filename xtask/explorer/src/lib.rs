@@ -8,18 +8,17 @@
 //! - [`model`]: the scene being explored (a built-in page or a scene file),
 //!   the selected polygon, vertex edits, and the limits that keep the page
 //!   responsive on hostile input.
+//! - [`judge`]: what a method is judged against (`exact`, or the reference
+//!   at the method's own sample point) and the counts of how it differs.
 //! - [`view`]: a method's picture of the scene, and the difference view of
-//!   the selected polygon against `exact` (or against the reference at the
-//!   method's own sample point), with counts.
-//! - [`decimal`]: subpixel coordinates written as exact decimals, so a
-//!   polygon copied out as a scene-file line reads back to the same vertices.
+//!   the selected polygon against its judge, with counts.
 //! - [`family`]: which family of the lab's corpus a polygon is nearest to,
 //!   for reading its speed and error figures out of `results.json`.
 
 #![deny(unsafe_code)]
 
-pub mod decimal;
 pub mod exports;
 pub mod family;
+pub mod judge;
 pub mod model;
 pub mod view;

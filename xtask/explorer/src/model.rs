@@ -11,7 +11,7 @@ use scenes::builtin::{self, Builtin};
 use scenes::file::{self, LineError};
 use scenes::{Op, Scene};
 
-use crate::view::CountCache;
+use crate::judge::{exact_coverage, CountCache};
 
 /// Longest scene text taken (pasted, loaded or in a URL fragment).
 pub const MAX_TEXT_BYTES: usize = 1 << 20;
@@ -239,7 +239,7 @@ impl Explorer {
         for op in &self.scene.ops {
             match op {
                 Op::Clear(color) => text.push_str(&format!("clear {color}")),
-                Op::Fill(polygon) => text.push_str(&crate::decimal::poly_line(polygon)),
+                Op::Fill(polygon) => text.push_str(&scenes::file::poly_line(polygon)),
             }
             text.push('\n');
         }
@@ -267,7 +267,7 @@ impl Explorer {
                 && corner.0 <= i64::from(high.0)
                 && i64::from(low.1) < corner.1 + one
                 && corner.1 <= i64::from(high.1);
-            overlaps && crate::view::exact_coverage(polygon).count(x, y) > 0
+            overlaps && exact_coverage(polygon).count(x, y) > 0
         })
     }
 }

@@ -4,11 +4,11 @@
 //! pixels the method adds and the pixels it misses counted for the
 //! selected polygon and over every polygon of the scene.
 
-use raster::reference::{self, SampleOffset};
-use raster::{CoverageSink, Framebuffer, MethodId, Polygon, Refusal, SCREEN, SUBPIXEL_BITS};
+use raster::{CoverageSink, Framebuffer, MethodId, Polygon, SCREEN, SUBPIXEL_BITS};
 use scenes::palette::{c6_to_8, VGA_DEFAULT};
 use scenes::DrawReport;
 
+use crate::judge::{compare, Counts, Judge};
 use crate::model::Explorer;
 
 /// Bytes of a pane's picture: 320x200 pixels of red, green, blue, alpha.
@@ -35,43 +35,6 @@ pub enum View {
 /// million). Past it, the pane judges against `exact` and says why.
 pub const REFERENCE_BUDGET: u64 = 16_000_000;
 
-/// What a method is judged against.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Judge {
-    /// Our convention: the `exact` method (pixel centres, top-left rule).
-    Exact,
-    /// The reference sampling at the method's own sample point, so that
-    /// only the method's arithmetic is judged, not its convention.
-    OwnConvention,
-}
-
-/// A method against a judge on one polygon.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Counts {
-    /// Pixels the method draws that the judge does not.
-    pub added: usize,
-    /// Pixels the judge draws that the method does not.
-    pub missed: usize,
-    /// Pixels the method draws more than once.
-    pub overdrawn: usize,
-    /// Spans the method emitted outside the screen.
-    pub strays: usize,
-    /// Why the method declined the polygon, if it did.
-    pub refusal: Option<Refusal>,
-}
-
-impl Counts {
-    fn add(self, other: Counts) -> Counts {
-        Counts {
-            added: self.added + other.added,
-            missed: self.missed + other.missed,
-            overdrawn: self.overdrawn + other.overdrawn,
-            strays: self.strays + other.strays,
-            refusal: self.refusal.or(other.refusal),
-        }
-    }
-}
-
 /// What one render of a pane found.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PaneReport {
@@ -88,79 +51,15 @@ pub struct PaneReport {
     pub scene: Counts,
 }
 
-/// Per polygon, the counts already worked out for each method and judge:
-/// dragging one vertex recomputes one polygon, not the whole scene.
-#[derive(Clone, Debug, Default)]
-pub struct CountCache {
-    polygons: Vec<Vec<(MethodId, Judge, Counts)>>,
-}
-
-impl CountCache {
-    pub fn new(polygons: usize) -> Self {
-        Self { polygons: vec![Vec::new(); polygons] }
-    }
-
-    /// Drops what was known about polygon `index` (it changed).
-    pub fn forget(&mut self, index: usize) {
-        if let Some(known) = self.polygons.get_mut(index) {
-            known.clear();
-        }
-    }
-}
-
-/// The pixels `exact` draws for `polygon`.
-pub fn exact_coverage(polygon: &Polygon) -> CoverageSink {
-    let mut wanted = CoverageSink::new(SCREEN);
-    // `exact` takes any polygon; were it ever to decline one, the judge
-    // would want no pixels, and every pixel drawn would count as added.
-    let _ = MethodId::Exact.method().fill(polygon, &mut wanted);
-    wanted
-}
-
-/// The pixels `judge` wants of `polygon` when `method` is judged.
-fn judge_coverage(polygon: &Polygon, method: MethodId, judge: Judge) -> CoverageSink {
-    match judge {
-        Judge::Exact => exact_coverage(polygon),
-        Judge::OwnConvention => {
-            let mut wanted = CoverageSink::new(SCREEN);
-            reference::fill(polygon, SampleOffset::of(&method.method().info().convention), &mut wanted);
-            wanted
-        }
-    }
-}
-
-/// `method` against `judge` on `polygon`, with both coverages.
-fn compare(polygon: &Polygon, method: MethodId, judge: Judge) -> (Counts, CoverageSink, CoverageSink) {
-    let mut drawn = CoverageSink::new(SCREEN);
-    let refusal = method.method().fill(polygon, &mut drawn).err();
-    let wanted = judge_coverage(polygon, method, judge);
-    let report = drawn.report(&wanted);
-    let counts = Counts {
-        added: report.extras,
-        missed: report.gaps,
-        overdrawn: report.overdrawn,
-        strays: report.out_of_bounds,
-        refusal,
-    };
-    (counts, drawn, wanted)
-}
-
 /// `method` against `judge` on polygon `index` of the scene, from the
 /// cache when known.
 fn polygon_counts(explorer: &mut Explorer, index: usize, method: MethodId, judge: Judge) -> Counts {
-    let known = explorer
-        .counts
-        .polygons
-        .get(index)
-        .and_then(|known| known.iter().find(|(m, j, _)| (*m, *j) == (method, judge)).map(|(_, _, counts)| *counts));
-    if let Some(counts) = known {
+    if let Some(counts) = explorer.counts.get(index, method, judge) {
         return counts;
     }
     let Some(polygon) = explorer.polygon(index) else { return Counts::default() };
     let (counts, _, _) = compare(polygon, method, judge);
-    if let Some(known) = explorer.counts.polygons.get_mut(index) {
-        known.push((method, judge, counts));
-    }
+    explorer.counts.insert(index, method, judge, counts);
     counts
 }
 
@@ -182,7 +81,7 @@ pub fn render(explorer: &mut Explorer, method: MethodId, view: View, judge: Judg
     }
     let mut scene = Counts::default();
     for index in 0..explorer.polygon_count() {
-        scene = scene.add(polygon_counts(explorer, index, method, judge));
+        scene = scene + polygon_counts(explorer, index, method, judge);
     }
     let selected = explorer.selected_polygon().map(|polygon| {
         let (counts, drawn, wanted) = compare(polygon, method, judge);
@@ -231,7 +130,7 @@ fn mark_differences(drawn: &CoverageSink, wanted: &CoverageSink, rgba: &mut [u8]
 #[cfg(test)]
 mod tests {
     use super::*;
-    use raster::Point;
+    use raster::{Point, Refusal};
 
     fn count_colour(rgba: &[u8], colour: [u8; 3]) -> usize {
         rgba.chunks_exact(4).filter(|p| p[..3] == colour).count()
