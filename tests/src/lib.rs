@@ -15,6 +15,7 @@
 //! # }
 //! ```
 
+pub mod bootloader;
 pub mod cargo;
 pub mod checks;
 pub mod compare;
@@ -35,4 +36,4 @@ pub use compare::compare_images;
 pub use console::{Console, Dump, Listing, Reply, Shown};
 pub use image::build_image;
 pub use picture::Image;
-pub use qemu::{Display, Medium, Qemu, QemuOptions};
+pub use qemu::{Adapter, Display, Medium, Qemu, QemuOptions};
