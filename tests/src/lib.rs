@@ -36,4 +36,4 @@ pub use compare::compare_images;
 pub use console::{Console, Dump, Listing, Reply, Shown};
 pub use image::build_image;
 pub use picture::Image;
-pub use qemu::{Adapter, Display, Medium, Qemu, QemuOptions};
+pub use qemu::{Adapter, Clock, Display, Medium, Qemu, QemuOptions};

@@ -86,11 +86,26 @@ impl Adapter {
     }
 }
 
+/// What the guest's clocks (the PIT, rdtsc) follow.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Clock {
+    /// The host's time: the demo plays at its real pace, and rdtsc counts
+    /// host time spent emulating, which moves with the host's load.
+    #[default]
+    RealTime,
+    /// Executed instructions: the virtual clock, and with it rdtsc, steps
+    /// one nanosecond (one tick) per emulated instruction, whatever the
+    /// host does, so the kernel's figures repeat exactly from run to run.
+    /// For measuring; the demo's pacing then follows instructions too.
+    InstructionCount,
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct QemuOptions {
     pub medium: Medium,
     pub display: Display,
     pub adapter: Adapter,
+    pub clock: Clock,
 }
 
 /// QEMU's arguments for booting `image` with `options`, its QMP socket at
@@ -105,6 +120,12 @@ pub fn qemu_arguments(image: &Path, qmp_socket: &Path, options: QemuOptions) -> 
     flag(&mut args, "-accel", "tcg");
     // Plenty for the bootloader and the kernel's heap; small enough to start fast.
     flag(&mut args, "-m", "128M");
+    if options.clock == Clock::InstructionCount {
+        // `shift=0`: each instruction advances the virtual clock by 2^0 ns,
+        // which rdtsc then reads; `sleep=off`: when the guest halts, the
+        // clock jumps to the next timer instead of waiting for the host.
+        flag(&mut args, "-icount", "shift=0,sleep=off");
+    }
     // The display card (`Adapter`): each one's VGA BIOS puts it in text mode
     // at boot, from which the kernel programs mode 13h.
     flag(&mut args, "-vga", options.adapter.qemu_name());
@@ -343,6 +364,13 @@ mod tests {
             assert_eq!(args.iter().filter(|a| *a == "-vga").count(), 1, "{args:?}");
         }
         assert!(!Adapter::WITH_VGA.contains(&Adapter::None));
+    }
+
+    #[test]
+    fn only_instruction_counting_adds_icount() {
+        assert!(!arguments(QemuOptions::default()).iter().any(|a| a == "-icount"));
+        let args = arguments(QemuOptions { clock: Clock::InstructionCount, ..QemuOptions::default() });
+        assert!(has_pair(&args, "-icount", "shift=0,sleep=off"), "{args:?}");
     }
 
     #[test]
