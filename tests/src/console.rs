@@ -266,7 +266,7 @@ impl Console {
 
     /// Times every method drawing built-in `scene` `repeats` times: per
     /// method in `raster::methods::ALL` order, its name and the median
-    /// rdtsc cycles of one draw (emulated cycles under QEMU TCG).
+    /// rdtsc ticks of one draw (see `protocol::BENCH_UNIT_LINE`).
     pub fn bench(&mut self, scene: &str, repeats: u8) -> Result<Vec<(String, u64)>> {
         let command = Command::Bench { scene, repeats };
         match self.request(&command)? {

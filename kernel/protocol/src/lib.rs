@@ -27,8 +27,8 @@ pub const BENCH_DEFAULT_REPEATS: u8 = 3;
 /// few seconds of emulated time.
 pub const BENCH_MAX_REPEATS: u8 = 31;
 /// The first line of a `BENCH` payload: the unit of the numbers after it.
-pub const BENCH_UNIT_LINE: &str =
-    "# rdtsc cycles per scene draw, median of the repeats; under QEMU TCG these are emulated cycles";
+pub const BENCH_UNIT_LINE: &str = "# rdtsc ticks per scene draw, median of the repeats; on a PC, cycles; under QEMU, \
+     its virtual clock: emulated instructions with -icount shift=0, host time without";
 
 /// The exit code a host sends with `EXIT` to end a run cleanly.
 pub const EXIT_SUCCESS: u8 = 0x10;
