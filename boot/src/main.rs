@@ -13,8 +13,9 @@ fn main() -> Result<()> {
         bail!("usage: boot KERNEL_ELF OUT_IMAGE");
     };
     // The bootloader logs to COM1 and the framebuffer by default; COM1 is
-    // our protocol channel, and the VESA framebuffer is gone after the mode
-    // switch, so both stay quiet.
+    // our protocol channel, and the framebuffer its patched stage 2 hands
+    // on is the mode-13h window (tests/src/bootloader.rs), where log text
+    // would only slow the boot, so both stay quiet.
     let mut config = BootConfig::default();
     config.serial_logging = false;
     config.frame_buffer_logging = false;

@@ -1,9 +1,9 @@
 //! `BENCH`: times every method drawing a built-in scene onto the real
 //! screen with the time-stamp counter.
 //!
-//! Under QEMU TCG the counter is emulated, so these cycles describe the
-//! emulator as much as the method: they are reported on their own, never
-//! next to the host lab's nanoseconds.
+//! Under QEMU the counter follows QEMU's virtual clock: host time, or with
+//! `-icount` executed instructions. Either way it is reported on its own,
+//! never next to the host lab's nanoseconds.
 
 use alloc::string::String;
 use alloc::vec::Vec;

@@ -2,34 +2,33 @@
 //! one command line in, one frame out. Whatever arrives, the console
 //! answers and keeps serving: a bad line gets an `ERR` frame naming the
 //! problem, an over-long one is thrown away up to its newline, and no byte
-//! sequence can make it panic or wait forever (DESIGN.md, "Kernel <->
-//! host").
+//! sequence can make it panic or wait forever.
 
 use alloc::format;
 use alloc::string::{String, ToString};
 use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt::Write;
-use core::hint::spin_loop;
-
-use protocol::{Command, CommandError, FrameKind, MAX_LINE};
+use protocol::{Command, CommandError, FrameKind, Pong, Ready, MAX_LINE};
 use raster::MethodId;
 use scenes::show::{Stage, ENTRIES_IN_ORDER};
 use scenes::{builtin, file, Op, Scene};
 
 use crate::exit::exit_qemu;
 use crate::video::Screen;
-use crate::{bench, fault, player, serial, vga};
+use crate::{bench, fault, pci, player, serial, vga};
 
 /// Tells the host the kernel is up: a `LOG` frame per VGA register or DAC
-/// entry that did not read back as written, then `READY` with the
-/// summary.
+/// entry that did not read back as written, then `READY` naming the
+/// display adapter, counting those mismatches and the bytes the serial
+/// line lost so far.
 pub fn announce(screen: &Screen) {
     let mismatches = vga::verify(screen.palette());
     for mismatch in &mismatches {
         serial::send_frame(FrameKind::Log, mismatch.to_string().as_bytes());
     }
-    serial::send_frame(FrameKind::Ready, vga::summary(&mismatches).as_bytes());
+    let ready = Ready { display: pci::display_adapter(), vga_mismatches: mismatches.len(), losses: serial::losses() };
+    serial::send_frame(FrameKind::Ready, ready.to_string().as_bytes());
 }
 
 /// Serves the host forever, starting with `first_byte` (the byte that
@@ -38,10 +37,7 @@ pub fn serve(screen: &mut Screen, stage: &mut Stage, first_byte: u8) -> ! {
     let mut console = Console { screen, stage, line: Vec::with_capacity(MAX_LINE), overlong: false };
     console.accept(first_byte);
     loop {
-        match serial::try_read_byte() {
-            Some(byte) => console.accept(byte),
-            None => spin_loop(),
-        }
+        console.accept(serial::read_byte());
     }
 }
 
@@ -92,7 +88,7 @@ impl Console<'_> {
 
     fn run(&mut self, command: Command<'_>) -> Reply {
         match command {
-            Command::Ping => ok("pong"),
+            Command::Ping => ok(Pong { losses: serial::losses() }),
             Command::List => Ok((FrameKind::List, listing().into_bytes())),
             Command::Draw { scene, method } => {
                 let scene = builtin_scene(scene)?;

@@ -3,7 +3,10 @@
 //! the LaMothe, WGT and Pendleton pieces, the race of every method) in
 //! turn, round and round, at `FRAMES_PER_SECOND`, each entry for its
 //! `demo_frames()` with the method of its source. Every frame goes through
-//! `player::play`, as a `SHOW` would. It works with no keyboard and no serial
+//! `player::play`, as a `SHOW` would, except that a still page, which
+//! `player::play` draws straight onto the screen, is drawn once and left
+//! there for its frames (again when a key changes its method). It works
+//! with no keyboard and no serial
 //! line: the timer alone moves it on. Keys (PS/2, `keyboard`): space or
 //! Enter, the next entry; 1 to 8, every entry with that method of
 //! `MethodId::ALL` until 0 gives each its own again; Escape, from the
@@ -31,10 +34,18 @@ pub fn run(screen: &mut Screen, stage: &mut Stage) -> u8 {
     let mut frame = 0;
     // The method the viewer picked for every entry, if any.
     let mut picked: Option<MethodId> = None;
+    // The still page on the screen: its index and its method.
+    let mut still_shown: Option<(usize, MethodId)> = None;
     loop {
         let entry = &ENTRIES_IN_ORDER[index];
         let method = picked.unwrap_or_else(|| entry.method_at(frame));
-        player::play(screen, stage, entry, frame, method, Some(&mut pacer));
+        let still = (!entry.is_animated()).then_some((index, method));
+        if still.is_some() && still == still_shown {
+            pacer.wait();
+        } else {
+            player::play(screen, stage, entry, frame, method, Some(&mut pacer));
+        }
+        still_shown = still;
         frame += 1;
         let mut next = frame >= entry.demo_frames();
         match keyboard::poll() {

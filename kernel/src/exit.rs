@@ -9,6 +9,7 @@ use crate::port::DEBUG_EXIT;
 
 /// Exits QEMU with `code`, or halts forever where there is no QEMU.
 pub fn exit_qemu(code: u8) -> ! {
+    x86_64::instructions::interrupts::disable();
     DEBUG_EXIT.write(u32::from(code));
     loop {
         // Interrupts are off, so only an NMI ends a `hlt`; halt again.

@@ -20,6 +20,8 @@ static REPORTING: AtomicBool = AtomicBool::new(false);
 
 /// Reports `what` in a `FATAL` frame and exits QEMU with the failure code.
 pub fn fatal(what: fmt::Arguments<'_>) -> ! {
+    // Nothing runs after this: no interrupt handler either.
+    x86_64::instructions::interrupts::disable();
     if !REPORTING.swap(true, Ordering::SeqCst) {
         let mut message = Message { bytes: [0; MESSAGE_CAPACITY], len: 0 };
         // `Message` never fails; it cuts what does not fit.

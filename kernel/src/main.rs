@@ -1,11 +1,12 @@
-//! The bare-metal side of the polygon lab (DESIGN.md): boots from the
-//! `bootloader` crate's BIOS stages, puts the VGA in mode 13h with its own
+//! The bare-metal side of the polygon lab: boots from the `bootloader`
+//! crate's BIOS stages (stage 2 patched to leave the card in text mode,
+//! see tests/src/bootloader.rs), puts the VGA in mode 13h with its own
 //! register writes, runs the demo (the show), and serves the host's
 //! commands over COM1 as soon as one arrives.
 //!
 //! Hardware access lives in small modules with `// SAFETY:` notes
-//! (`port`, `serial`, `video`, `heap`, `gdt`, `interrupts`, `fault`, and
-//! `bench`'s one RDTSC); everything above them is safe code.
+//! (`port`, `video`, `heap`, `gdt`, `interrupts`, `fault`, and `bench`'s
+//! one RDTSC); everything above them is safe code.
 #![no_std]
 #![no_main]
 #![feature(abi_x86_interrupt)]
@@ -23,6 +24,7 @@ mod gdt;
 mod heap;
 mod interrupts;
 mod keyboard;
+mod pci;
 mod pit;
 mod player;
 mod port;
@@ -33,8 +35,8 @@ mod video;
 use bootloader_api::config::{BootloaderConfig, Mapping};
 use bootloader_api::{entry_point, BootInfo};
 
-/// All physical memory mapped at an offset the bootloader chooses: the only
-/// way to reach 0xA0000 (DESIGN.md "Hardware facts").
+/// All physical memory mapped at an offset the bootloader chooses: how the
+/// kernel reaches 0xA0000, which is not mapped otherwise.
 static CONFIG: BootloaderConfig = {
     let mut config = BootloaderConfig::new_default();
     config.mappings.physical_memory = Some(Mapping::Dynamic);
@@ -52,8 +54,10 @@ fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
     let Some(mut screen) = video::Screen::new(boot_info) else {
         panic!("the bootloader did not map physical memory, so 0xA0000 is out of reach");
     };
-    // A mode set leaves a black screen; the VESA mode left other bytes.
+    // The text mode the BIOS left had other bytes in video memory.
     screen.clear(0);
+    serial::enable_receive_interrupt();
+    interrupts::enable();
     console::announce(&screen);
     // The show's memory, allocated once for the demo and `SHOW`.
     let mut stage = scenes::show::Stage::new();

@@ -2,12 +2,18 @@
 //! screen, one at a time.
 //! [`play`] is the one way a frame gets there, for the demo and for
 //! `SHOW` alike, so what the host checks is what the demo plays.
+//!
+//! A still page is drawn straight into video memory at 0xA0000, as the
+//! books' listings drew: it is drawn once and then stays. An animation's
+//! frame is drawn off screen and copied whole at a vertical retrace, so
+//! the viewer never sees a frame half drawn over the last one (no
+//! tearing).
 
 use core::hint::spin_loop;
 
 use protocol::ShowReply;
 use raster::MethodId;
-use scenes::show::{Entry, Stage, FRAMES_PER_SECOND, PALETTE};
+use scenes::show::{draw_labels, Entry, Stage, FRAMES_PER_SECOND, PALETTE};
 
 use crate::pit::{Stopwatch, TICKS_PER_SECOND};
 use crate::video::Screen;
@@ -16,12 +22,13 @@ use crate::{bench, heap, vga};
 /// PIT ticks from one show frame to the next.
 const FRAME_TICKS: u64 = TICKS_PER_SECOND / FRAMES_PER_SECOND as u64;
 
-/// Draws frame `frame` of `entry` with `method` on `stage`, labels it with
-/// the rdtsc cycles the draw took, then, in the show's palette, at the
-/// start of a vertical retrace (and after `pacer`'s next frame time if
-/// there is one), copies it to the screen. Returns what the `SHOW` reply
-/// says; allocates nothing itself, so `allocs` counts what the entry and
-/// the method allocated.
+/// Puts frame `frame` of `entry`, drawn with `method` and labelled with
+/// the rdtsc cycles the draw took, on the screen in the show's palette,
+/// after `pacer`'s next frame time if there is one: a still page drawn
+/// straight onto the screen, an animation's frame drawn on `stage` and
+/// copied to the screen at the start of a vertical retrace. Returns what
+/// the `SHOW` reply says; allocates nothing itself, so `allocs` counts
+/// what the entry and the method allocated.
 pub fn play(
     screen: &mut Screen,
     stage: &mut Stage,
@@ -31,17 +38,30 @@ pub fn play(
     pacer: Option<&mut Pacer>,
 ) -> ShowReply<'static> {
     let allocations = heap::allocations();
-    let strays = stage.stray_spans();
-    let (report, cycles) = bench::timed(|| stage.draw(entry, frame, method.method()));
-    let strays = stage.stray_spans().wrapping_sub(strays);
-    stage.label(entry, frame, method.method(), cycles);
+    let (report, cycles, strays) = if entry.is_animated() {
+        let strays = stage.stray_spans();
+        let (report, cycles) = bench::timed(|| stage.draw(entry, frame, method.method()));
+        let strays = stage.stray_spans().wrapping_sub(strays);
+        stage.label(entry, frame, method.method(), cycles);
+        if let Some(pacer) = pacer {
+            pacer.wait();
+        }
+        screen.use_palette(&PALETTE);
+        vga::wait_for_retrace();
+        screen.blit(stage.pixels());
+        (report, cycles, strays)
+    } else {
+        if let Some(pacer) = pacer {
+            pacer.wait();
+        }
+        screen.use_palette(&PALETTE);
+        let strays = screen.stray_spans();
+        let (report, cycles) = bench::timed(|| stage.draw_still(entry, method.method(), screen));
+        let strays = screen.stray_spans().wrapping_sub(strays);
+        draw_labels(screen, entry, frame, method.method(), cycles);
+        (report, cycles, strays)
+    };
     let allocs = heap::allocations().wrapping_sub(allocations);
-    if let Some(pacer) = pacer {
-        pacer.wait();
-    }
-    screen.use_palette(&PALETTE);
-    vga::wait_for_retrace();
-    screen.blit(stage.pixels());
     ShowReply {
         entry: entry.name,
         frame: entry.wrap(frame),
@@ -70,7 +90,7 @@ impl Pacer {
     /// Waits until the next frame is due. A frame more than a frame time
     /// late is shown at once and the count starts again from it: a slow
     /// frame slows the show down rather than making it rush afterwards.
-    fn wait(&mut self) {
+    pub fn wait(&mut self) {
         let now = self.stopwatch.elapsed_ticks();
         if now > self.next + FRAME_TICKS {
             self.next = now;

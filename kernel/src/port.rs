@@ -1,13 +1,14 @@
-//! The I/O ports this kernel touches, and the only place it does port I/O
-//! itself (COM1 goes through `uart_16550`).
+//! The I/O ports this kernel touches, and the only place it does port I/O.
 //!
 //! Port I/O is `unsafe` in `x86_64` because a port can reach memory behind
-//! the compiler's back (a DMA controller, a disk, the interrupt
-//! controllers). [`IoPort`] can only be made here, for the registers listed
-//! below: VGA, the Bochs display interface, the PIT, the PS/2 controller
-//! and QEMU's debug-exit device. None of them moves memory, so reading or
-//! writing them from safe code cannot break memory safety; the worst they
-//! do is change the picture, the timer or end the machine.
+//! the compiler's back (a DMA controller, a disk, a PCI device's address
+//! decoders). [`IoPort`] can only be made here, for the registers listed
+//! below: VGA, COM1, the PIT, the PS/2 controller, the interrupt
+//! controllers, PCI configuration reads and QEMU's debug-exit device. None
+//! of them moves memory, so reading or writing them from safe code cannot
+//! break memory safety; the worst they do is change the picture, the timer
+//! or the serial line, raise an interrupt (whose vector the IDT handles,
+//! or reports as a fault) or end the machine.
 
 use core::marker::PhantomData;
 
@@ -49,7 +50,7 @@ impl<T: PortWrite> IoPort<T> {
 }
 
 /// VGA registers at their colour addresses (Misc bit 0 set, as mode 13h
-/// has it); see DESIGN.md "Hardware facts".
+/// and the BIOS's colour text mode have it).
 pub mod vga {
     use super::IoPort;
 
@@ -76,14 +77,60 @@ pub mod vga {
     pub const INPUT_STATUS_1: IoPort<u8> = IoPort::new(0x3DA);
 }
 
-/// The Bochs/QEMU "dispi" VBE interface. On real cards these ports may be
-/// vendor registers: only `vga::disable_bochs_vbe` writes them, and only
-/// after reading a Bochs ID back.
-pub mod bochs {
+/// COM1, a 16550 UART (`serial.rs`). With the divisor latch bit of
+/// [`com1::LINE_CONTROL`] set, the first two ports are the baud divisor.
+pub mod com1 {
     use super::IoPort;
 
-    pub const INDEX: IoPort<u16> = IoPort::new(0x1CE);
-    pub const DATA: IoPort<u16> = IoPort::new(0x1CF);
+    /// Receive buffer when read, transmit holding register when written;
+    /// divisor low byte while the divisor latch is open.
+    pub const DATA: IoPort<u8> = IoPort::new(0x3F8);
+    /// Which events raise the UART's interrupt; divisor high byte while
+    /// the divisor latch is open.
+    pub const INTERRUPT_ENABLE: IoPort<u8> = IoPort::new(0x3F9);
+    pub const FIFO_CONTROL: IoPort<u8> = IoPort::new(0x3FA);
+    pub const LINE_CONTROL: IoPort<u8> = IoPort::new(0x3FB);
+    pub const MODEM_CONTROL: IoPort<u8> = IoPort::new(0x3FC);
+    /// Reading it clears its error bits (overrun among them).
+    pub const LINE_STATUS: IoPort<u8> = IoPort::new(0x3FD);
+}
+
+/// The two 8259 interrupt controllers of the PC, master and slave.
+pub mod pic {
+    use super::IoPort;
+
+    pub const MASTER_COMMAND: IoPort<u8> = IoPort::new(0x20);
+    pub const MASTER_DATA: IoPort<u8> = IoPort::new(0x21);
+    pub const SLAVE_COMMAND: IoPort<u8> = IoPort::new(0xA0);
+    pub const SLAVE_DATA: IoPort<u8> = IoPort::new(0xA1);
+}
+
+/// PCI configuration mechanism 1: a write to 0xCF8 selects a dword of one
+/// function's configuration space, which 0xCFC then reads. Only reads are
+/// offered here, through [`pci::read_config`]: a write to 0xCFC could move
+/// a device's address windows or let it master the bus, and reach memory.
+pub mod pci {
+    use super::IoPort;
+
+    const ADDRESS: IoPort<u32> = IoPort::new(0xCF8);
+    const DATA: IoPort<u32> = IoPort::new(0xCFC);
+    /// Bit 31 of the address: the cycle is a configuration access.
+    const ENABLE: u32 = 1 << 31;
+
+    /// The dword at `offset` (rounded down to a multiple of 4) of the
+    /// configuration space of `bus`:`device`.`function` (device below 32,
+    /// function below 8; higher bits are dropped). An absent function
+    /// reads 0xFFFF_FFFF. Reads of the standard header have no side
+    /// effects.
+    pub fn read_config(bus: u8, device: u8, function: u8, offset: u8) -> u32 {
+        let address = ENABLE
+            | u32::from(bus) << 16
+            | u32::from(device & 0x1F) << 11
+            | u32::from(function & 0x07) << 8
+            | u32::from(offset & 0xFC);
+        ADDRESS.write(address);
+        DATA.read()
+    }
 }
 
 /// The 8253/8254 programmable interval timer, channel 0.

@@ -4,9 +4,16 @@
 //! knows the order the registers must be written in, and [`verify`] reads
 //! every one of them back, with the DAC against the palette the screen
 //! loaded last. [`wait_for_retrace`] is the one timing signal the card
-//! gives. Values and order are DESIGN.md's "Hardware facts" (Chris
-//! Giese's modes.c, SeaBIOS vgasrc/stdvgamodes.c and rust-osdev/vga agree
-//! on them).
+//! gives. The values are the standard mode-13h table (Chris Giese's
+//! modes.c, SeaBIOS vgasrc/stdvgamodes.c and rust-osdev/vga agree on
+//! them).
+//!
+//! The card is expected in a standard VGA mode, as the BIOS leaves it
+//! (the image's boot stages never set a VBE mode): these are the standard
+//! registers only, and a card still in a vendor's extended mode could read
+//! them all back as written and show garbage. [`verify`] proves the
+//! writes, not the picture; the harness proves the picture with QEMU's
+//! screendump.
 
 use alloc::format;
 use alloc::string::String;
@@ -15,7 +22,7 @@ use core::fmt::{self, Write};
 
 use scenes::palette::ENTRIES;
 
-use crate::port::{bochs, vga, IoPort};
+use crate::port::{vga, IoPort};
 
 /// Bytes in the DAC: 256 entries of red, green, blue.
 pub const DAC_LEN: usize = ENTRIES * 3;
@@ -57,10 +64,6 @@ const CRTC_PROTECT_BIT: u8 = 0x80;
 /// attribute registers are open to the CPU and the screen is blank; it must
 /// be set again at the end or the screen stays blank.
 const ATTRIBUTE_VIDEO_ON: u8 = 0x20;
-/// Bochs dispi register numbers and the ID range of its VBE versions.
-const BOCHS_ID_INDEX: u16 = 0;
-const BOCHS_ENABLE_INDEX: u16 = 4;
-const BOCHS_IDS: core::ops::RangeInclusive<u16> = 0xB0C0..=0xB0CF;
 /// Input status 1 bit 3: the CRT is in vertical retrace.
 const VERTICAL_RETRACE: u8 = 0x08;
 /// Most reads of input status 1 [`wait_for_retrace`] spends on each of its
@@ -114,34 +117,21 @@ fn read_attribute(index: u8) -> u8 {
     vga::ATTRIBUTE_READ.read()
 }
 
-/// Turns the Bochs VBE interface off, so that the VGA registers rule the
-/// screen again (the bootloader left a VESA mode on). Only when the ID
-/// register answers with a Bochs ID: on real cards 0x1CE/0x1CF may be
-/// someone else's registers.
-fn disable_bochs_vbe() {
-    bochs::INDEX.write(BOCHS_ID_INDEX);
-    if BOCHS_IDS.contains(&bochs::DATA.read()) {
-        bochs::INDEX.write(BOCHS_ENABLE_INDEX);
-        bochs::DATA.write(0);
-    }
-}
-
 /// Puts the card in mode 13h. The DAC is the screen's to load
-/// (`video::Screen`): after the bootloader's VESA mode it does not hold the
-/// VGA default palette.
+/// (`video::Screen`).
 pub fn init() {
     set_mode(&MODE_13H);
 }
 
-/// Programs `mode` in the order DESIGN.md gives: Misc first (colour ports
-/// are ignored until Misc bit 0 selects them), the sequencer inside a
-/// synchronous reset, CRTC after unlocking registers 0-7, graphics, then
-/// the attribute controller, and finally the video back on.
+/// Programs `mode` in the order the registers depend on: the sequencer
+/// held in a synchronous reset while Misc (whose clock select changes the
+/// dot clock under it) and the other sequencer registers change; CRTC
+/// after Misc bit 0 has put it at the colour addresses and after unlocking
+/// registers 0-7; graphics; the attribute controller; finally the video
+/// back on.
 fn set_mode(mode: &Mode) {
-    disable_bochs_vbe();
-    vga::MISC_WRITE.write(mode.misc);
-
     SEQUENCER.write(0, SEQUENCER_SYNC_RESET);
+    vga::MISC_WRITE.write(mode.misc);
     for (index, &value) in (0..).zip(mode.sequencer).skip(1) {
         SEQUENCER.write(index, value);
     }
@@ -162,9 +152,9 @@ fn set_mode(mode: &Mode) {
     vga::ATTRIBUTE_WRITE.write(ATTRIBUTE_VIDEO_ON);
 }
 
-/// Loads the DAC: 6-bit red, green, blue per entry from entry 0 on.
-/// After the bootloader's VESA mode it does not hold the VGA default
-/// palette, so mode 13h needs it loaded by hand (DESIGN.md).
+/// Loads the DAC: 6-bit red, green, blue per entry from entry 0 on. A
+/// register-level mode set leaves the DAC as the text mode had it, so mode
+/// 13h's palette is loaded by hand.
 pub fn load_dac(palette: &Palette) {
     vga::DAC_WRITE_INDEX.write(0);
     for &level in palette.as_flattened() {

@@ -1,6 +1,5 @@
 //! The mode-13h framebuffer: 64,000 bytes at physical 0xA0000, one byte a
-//! pixel, row after row (DESIGN.md "Hardware facts"), and the palette its
-//! bytes are shown in.
+//! pixel, row after row, and the palette its bytes are shown in.
 //!
 //! Every access is volatile: the compiler sees stores that nobody reads and
 //! would be free to drop or merge them if they were plain writes.
@@ -37,10 +36,9 @@ pub struct Screen {
 
 impl Screen {
     /// The framebuffer through the bootloader's map of all physical memory
-    /// (`mappings.physical_memory` in main.rs's config): 0xA0000 is not
-    /// mapped otherwise, and the boot-info framebuffer is the VESA one,
-    /// stale after the mode switch. `None` if the map is missing.
-    /// Loads the VGA default palette.
+    /// (`mappings.physical_memory` in main.rs's config), where 0xA0000
+    /// certainly is. `None` if the map is missing. Loads the VGA default
+    /// palette: the BIOS's text mode leaves the DAC set up for text.
     pub fn new(boot_info: &BootInfo) -> Option<Self> {
         let offset = boot_info.physical_memory_offset.into_option()?;
         let start = offset.checked_add(FRAMEBUFFER_PHYSICAL)?;
@@ -61,6 +59,12 @@ impl Screen {
             vga::load_dac(palette);
             self.palette = palette;
         }
+    }
+
+    /// Spans that broke the sink contract since the last [`Screen::draw`]
+    /// (a method bug; they were dropped).
+    pub fn stray_spans(&self) -> usize {
+        self.stray_spans
     }
 
     /// The palette in the DAC: what `vga::verify` must read back.

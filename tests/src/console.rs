@@ -4,7 +4,7 @@ use std::io::Write;
 use std::time::Duration;
 
 use anyhow::{bail, ensure, Context, Result};
-use protocol::{Command, FrameKind, ShowReply, BENCH_UNIT_LINE, DUMP_LEN, FRAMEBUFFER_LEN};
+use protocol::{Command, FrameKind, LineLosses, Pong, Ready, ShowReply, BENCH_UNIT_LINE, DUMP_LEN, FRAMEBUFFER_LEN};
 use raster::{MethodId, SCREEN};
 use scenes::palette::ENTRIES;
 
@@ -183,11 +183,12 @@ impl Console {
         Self { frames, input: Box::new(input), logs: Vec::new() }
     }
 
-    /// Waits for the READY frame and returns its text (the VGA read-back
-    /// summary). LOG frames before it are kept in [`Console::logs`].
-    pub fn wait_ready(&mut self) -> Result<String> {
+    /// Waits for the READY frame and returns what it says (display
+    /// adapter, VGA read-back mismatches, serial losses). LOG frames before
+    /// it are kept in [`Console::logs`].
+    pub fn wait_ready(&mut self) -> Result<Ready> {
         match self.reply_within(READY_TIMEOUT).context("waiting for the kernel's READY frame")? {
-            Reply::Ready(text) => Ok(text),
+            Reply::Ready(text) => Ready::parse(&text).with_context(|| format!("READY \"{text}\" does not parse")),
             other => bail!("the kernel's first frame is {}, not READY", other.describe()),
         }
     }
@@ -280,13 +281,21 @@ impl Console {
 
     /// Times every method drawing built-in `scene` `repeats` times: per
     /// method in [`MethodId::ALL`] order, the method and the median
-    /// rdtsc cycles of one draw (emulated cycles under QEMU TCG).
+    /// rdtsc ticks of one draw (see `protocol::BENCH_UNIT_LINE`).
     pub fn bench(&mut self, scene: &str, repeats: u8) -> Result<Vec<(MethodId, u64)>> {
         let command = Command::Bench { scene, repeats };
         match self.request(&command)? {
             Reply::Bench(rows) => Ok(rows),
             other => bail!("`{command}` answered {}", other.describe()),
         }
+    }
+
+    /// Sends `PING` and returns what the kernel says the serial line has
+    /// lost so far.
+    pub fn ping(&mut self) -> Result<LineLosses> {
+        let text = self.ok(&Command::Ping)?;
+        let pong = Pong::parse(&text).with_context(|| format!("`PING` answered OK \"{text}\", not a pong"))?;
+        Ok(pong.losses)
     }
 
     pub fn list(&mut self) -> Result<Listing> {
@@ -334,12 +343,13 @@ mod tests {
     fn commands_go_out_as_lines_and_replies_come_back_typed() {
         let (mut console, sent, _keep) = console(&[
             (FrameKind::Log, b"vga: CRTC 0x11 reads 0x0e"),
-            (FrameKind::Ready, b"vga: 1 mismatches"),
-            (FrameKind::Ok, b"pong"),
+            (FrameKind::Ready, b"display=1234:1111 vga_mismatches=1 overruns=0 dropped=0"),
+            (FrameKind::Ok, b"pong overruns=3 dropped=1"),
             (FrameKind::List, b"scene abrash38-1\nshow race 240\nmethod abrash_float\n"),
         ]);
-        assert_eq!(console.wait_ready().unwrap(), "vga: 1 mismatches");
-        assert_eq!(console.ok(&Command::Ping).unwrap(), "pong");
+        let ready = console.wait_ready().unwrap();
+        assert_eq!((ready.display.unwrap().to_string(), ready.vga_mismatches), ("1234:1111".to_string(), 1));
+        assert_eq!(console.ping().unwrap(), LineLosses { overruns: 3, dropped: 1 });
         let listing = console.list().unwrap();
         let expected = Listing {
             scenes: vec!["abrash38-1".into()],
@@ -416,6 +426,15 @@ mod tests {
     fn a_short_dump_is_refused() {
         let error = Dump::parse(&[0; 10]).unwrap_err().to_string();
         assert_eq!(error, format!("a dump has {DUMP_LEN} bytes, this one 10"));
+    }
+
+    #[test]
+    fn a_ready_or_pong_of_the_wrong_shape_is_an_error() {
+        let (mut console, _, _keep) = console(&[(FrameKind::Ready, b"vga: 0 mismatches"), (FrameKind::Ok, b"pong")]);
+        let error = console.wait_ready().unwrap_err().to_string();
+        assert_eq!(error, "READY \"vga: 0 mismatches\" does not parse");
+        let error = console.ping().unwrap_err().to_string();
+        assert_eq!(error, "`PING` answered OK \"pong\", not a pong");
     }
 
     #[test]

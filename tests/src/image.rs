@@ -1,5 +1,7 @@
 //! The bootable BIOS disk image: the kernel built with the pinned nightly,
-//! wrapped by the `boot` image builder.
+//! wrapped by the `boot` image builder, which is built against the
+//! bootloader copy whose stage 2 leaves the card in text mode
+//! (`bootloader.rs`).
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -7,6 +9,7 @@ use std::sync::OnceLock;
 
 use anyhow::{ensure, Context, Result};
 
+use crate::bootloader;
 use crate::cargo::NightlyBuild;
 use crate::once::once_per_process;
 use crate::prerequisites::ensure_toolchain;
@@ -31,10 +34,14 @@ pub fn build_image() -> Result<PathBuf> {
             return Ok(image);
         }
         ensure_toolchain()?;
+        let patched = bootloader::prepare()?;
         eprintln!("harness: building the kernel and the BIOS image builder (the first build takes minutes)");
-        for build in [NightlyBuild::KERNEL, NightlyBuild::IMAGE_BUILDER] {
-            run_streaming(&mut build.command()).with_context(|| format!("failed to build `{}`", build.package))?;
-        }
+        let kernel = NightlyBuild::KERNEL;
+        run_streaming(&mut kernel.command()).with_context(|| format!("failed to build `{}`", kernel.package))?;
+        let builder = NightlyBuild::IMAGE_BUILDER;
+        run_streaming(builder.command().args(patched.cargo_args()?))
+            .with_context(|| format!("failed to build `{}` against {}", builder.package, patched.dir.display()))?;
+        patched.ensure_used()?;
         let image = image_path();
         let mut make_image = Command::new(NightlyBuild::IMAGE_BUILDER.artifact());
         make_image.arg(NightlyBuild::KERNEL.artifact()).arg(&image);

@@ -15,6 +15,7 @@
 //! # }
 //! ```
 
+pub mod bootloader;
 pub mod browser;
 pub mod cargo;
 pub mod checks;
@@ -38,4 +39,4 @@ pub use compare::compare_images;
 pub use console::{Console, Dump, Listing, Reply, Shown};
 pub use image::build_image;
 pub use picture::Image;
-pub use qemu::{Display, Medium, Qemu, QemuOptions};
+pub use qemu::{Adapter, Clock, Display, Medium, Qemu, QemuOptions};

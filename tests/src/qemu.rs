@@ -9,6 +9,7 @@ use std::sync::mpsc::Receiver;
 use std::time::{Duration, Instant};
 
 use anyhow::{anyhow, Context, Result};
+use protocol::{PciId, Ready};
 
 use crate::console::Console;
 use crate::image::build_image;
@@ -42,27 +43,92 @@ pub enum Display {
     Window,
 }
 
+/// The display card QEMU emulates (`-vga`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Adapter {
+    /// QEMU's standard VGA, with the Bochs "dispi" VBE extension.
+    #[default]
+    Std,
+    /// A Cirrus Logic GD5446: a real card's design, whose extended
+    /// registers keep a VBE mode the standard ones cannot undo.
+    Cirrus,
+    /// The VMware SVGA II adapter.
+    Vmware,
+    /// No display card at all.
+    None,
+}
+
+impl Adapter {
+    /// Every adapter QEMU offers with a VGA BIOS: the ones the picture is
+    /// proven on.
+    pub const WITH_VGA: [Adapter; 3] = [Adapter::Std, Adapter::Cirrus, Adapter::Vmware];
+
+    /// The value of QEMU's `-vga`.
+    pub fn qemu_name(self) -> &'static str {
+        match self {
+            Adapter::Std => "std",
+            Adapter::Cirrus => "cirrus",
+            Adapter::Vmware => "vmware",
+            Adapter::None => "none",
+        }
+    }
+
+    /// The PCI IDs QEMU gives the card (as `lspci -n` shows them in a
+    /// guest), which the kernel reports in READY.
+    pub fn pci_id(self) -> Option<PciId> {
+        let (vendor, device) = match self {
+            Adapter::Std => (0x1234, 0x1111),
+            Adapter::Cirrus => (0x1013, 0x00b8),
+            Adapter::Vmware => (0x15ad, 0x0405),
+            Adapter::None => return None,
+        };
+        Some(PciId { vendor, device })
+    }
+}
+
+/// What the guest's clocks (the PIT, rdtsc) follow.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Clock {
+    /// The host's time: the demo plays at its real pace, and rdtsc counts
+    /// host time spent emulating, which moves with the host's load.
+    #[default]
+    RealTime,
+    /// Executed instructions: the virtual clock, and with it rdtsc, steps
+    /// one nanosecond (one tick) per emulated instruction, whatever the
+    /// host does, so the kernel's figures repeat exactly from run to run.
+    /// For measuring; the demo's pacing then follows instructions too.
+    InstructionCount,
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct QemuOptions {
     pub medium: Medium,
     pub display: Display,
+    pub adapter: Adapter,
+    pub clock: Clock,
 }
 
 /// QEMU's arguments for booting `image` with `options`, its QMP socket at
 /// `qmp_socket`.
 pub fn qemu_arguments(image: &Path, qmp_socket: &Path, options: QemuOptions) -> Vec<OsString> {
     let mut args: Vec<OsString> = Vec::new();
-    // The i440FX PC with SeaBIOS: where DESIGN.md's hardware facts were
-    // verified, and a BIOS that boots the bootloader's BIOS image.
+    // The i440FX PC with SeaBIOS: a BIOS that boots the bootloader's BIOS
+    // image, like a PC's BIOS or CSM.
     flag(&mut args, "-machine", "pc");
     // Always emulate: KVM here is nested and pathologically slow, and TCG
     // exists everywhere QEMU does.
     flag(&mut args, "-accel", "tcg");
     // Plenty for the bootloader and the kernel's heap; small enough to start fast.
     flag(&mut args, "-m", "128M");
-    // The standard VGA (with the Bochs VBE interface the kernel switches off):
-    // the card the mode-13h register tables are proven on.
-    flag(&mut args, "-vga", "std");
+    if options.clock == Clock::InstructionCount {
+        // `shift=0`: each instruction advances the virtual clock by 2^0 ns,
+        // which rdtsc then reads; `sleep=off`: when the guest halts, the
+        // clock jumps to the next timer instead of waiting for the host.
+        flag(&mut args, "-icount", "shift=0,sleep=off");
+    }
+    // The display card (`Adapter`): each one's VGA BIOS puts it in text mode
+    // at boot, from which the kernel programs mode 13h.
+    flag(&mut args, "-vga", options.adapter.qemu_name());
     match options.display {
         // No window; QMP screendumps still render the card's output.
         Display::Headless => flag(&mut args, "-display", "none"),
@@ -115,8 +181,8 @@ pub struct Qemu {
     child: Child,
     /// The protocol session on COM1.
     pub console: Console,
-    /// The kernel's READY text (its VGA read-back summary), once booted.
-    pub ready: String,
+    /// What the kernel's READY frame said, once booted.
+    pub ready: Ready,
     run_dir: PathBuf,
     qmp: Option<Qmp>,
     stderr: Receiver<Vec<u8>>,
@@ -154,7 +220,7 @@ impl Qemu {
         Ok(Self {
             child,
             console,
-            ready: String::new(),
+            ready: Ready::default(),
             run_dir,
             qmp: None,
             stderr: forward_bytes(stderr),
@@ -281,6 +347,24 @@ mod tests {
         assert!(has_pair(&args, "-device", "qemu-xhci,id=xhci"));
         assert!(has_pair(&args, "-device", "usb-storage,bus=xhci.0,drive=stick"));
         assert!(!args.iter().any(|a| a.starts_with("if=ide")));
+    }
+
+    #[test]
+    fn the_adapter_is_the_vga_flag_and_std_is_the_default() {
+        assert!(has_pair(&arguments(QemuOptions::default()), "-vga", "std"));
+        for adapter in [Adapter::Cirrus, Adapter::Vmware, Adapter::None] {
+            let args = arguments(QemuOptions { adapter, ..QemuOptions::default() });
+            assert!(has_pair(&args, "-vga", adapter.qemu_name()), "{args:?}");
+            assert_eq!(args.iter().filter(|a| *a == "-vga").count(), 1, "{args:?}");
+        }
+        assert!(!Adapter::WITH_VGA.contains(&Adapter::None));
+    }
+
+    #[test]
+    fn only_instruction_counting_adds_icount() {
+        assert!(!arguments(QemuOptions::default()).iter().any(|a| a == "-icount"));
+        let args = arguments(QemuOptions { clock: Clock::InstructionCount, ..QemuOptions::default() });
+        assert!(has_pair(&args, "-icount", "shift=0,sleep=off"), "{args:?}");
     }
 
     #[test]

@@ -1,9 +1,10 @@
 //! `BENCH` answers for every demo scene with one cycle count per method,
-//! in the order of `raster::MethodId::ALL`. Only the shape of the answer is
-//! checked: the cycles are emulated (QEMU TCG) and speed is never asserted.
+//! in the order of `raster::MethodId::ALL`, and under instruction counting
+//! its figures repeat exactly from run to run. Only the shape and the
+//! repetition are checked: speed is never asserted.
 
-use anyhow::{bail, ensure, Result};
-use harness::{Qemu, QemuOptions, Reply};
+use anyhow::{bail, ensure, Context, Result};
+use harness::{Clock, Qemu, QemuOptions, Reply};
 use protocol::Command;
 use raster::MethodId;
 use scenes::builtin;
@@ -23,7 +24,26 @@ fn bench_answers_one_positive_cycle_count_per_method_for_every_demo_scene() -> R
         Reply::Err(text) if text.contains("no-such-scene") => {}
         other => bail!("BENCH of an unknown scene answered {other:?}, expected an ERR naming it"),
     }
-    let pong = qemu.console.ok(&Command::Ping)?;
-    ensure!(pong == "pong", "PING after BENCH answered OK \"{pong}\"");
+    let losses = qemu.console.ping()?;
+    ensure!(losses.none(), "PING after BENCH says the serial line lost bytes: {losses}");
+    Ok(())
+}
+
+/// Under instruction counting (`Clock::InstructionCount`, as `cargo xtask
+/// kbench` and `record` run) the figures count emulated instructions, so
+/// two QEMUs booted side by side, each slowing the other down, time
+/// `abrash38-3` to the same number for every method. Without it they
+/// follow the host's clock and differ.
+#[test]
+fn two_runs_under_instruction_counting_give_identical_bench_figures() -> Result<()> {
+    let options = QemuOptions { clock: Clock::InstructionCount, ..QemuOptions::default() };
+    let bench = || -> Result<Vec<(MethodId, u64)>> { Qemu::boot(options)?.console.bench("abrash38-3", 3) };
+    let (first, second) = std::thread::scope(|scope| {
+        let (first, second) = (scope.spawn(bench), scope.spawn(bench));
+        (first.join(), second.join())
+    });
+    let first = first.ok().context("the first run panicked")??;
+    let second = second.ok().context("the second run panicked")??;
+    ensure!(first == second, "BENCH abrash38-3 3 gave {first:?} in one run and {second:?} in the other");
     Ok(())
 }

@@ -6,9 +6,8 @@
 //! `DUMP`, the bulk of the time.
 
 use anyhow::{bail, ensure, Result};
-use harness::checks::{screen_matches_dump, show_matches_host_render};
+use harness::checks::show_matches_host_render;
 use harness::{Qemu, QemuOptions, Reply, Shown};
-use protocol::Command;
 use raster::{Heap, MethodId};
 use scenes::show::{self, Entry, ENTRIES_IN_ORDER};
 
@@ -111,14 +110,6 @@ fn every_animation_drawn_with_exact_allocates_nothing_after_its_first_frame() ->
 }
 
 #[test]
-fn the_screen_shows_a_shaded_frame_through_the_show_palette() -> Result<()> {
-    let mut qemu = Qemu::boot(QemuOptions::default())?;
-    let (_, dump) = show_matches_host_render(&mut qemu.console, "wgt-gouraud", 0, None)?;
-    let screen = qemu.screendump()?;
-    screen_matches_dump("wgt-gouraud.0", &dump, &screen)
-}
-
-#[test]
 fn kernel_lists_the_show_and_refuses_bad_show_commands_and_keeps_serving() -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     let listing = qemu.console.list()?;
@@ -131,7 +122,7 @@ fn kernel_lists_the_show_and_refuses_bad_show_commands_and_keeps_serving() -> Re
             other => bail!("`{line}` answered {other:?}, expected an ERR naming `{named}`"),
         }
     }
-    let pong = qemu.console.ok(&Command::Ping)?;
-    ensure!(pong == "pong", "PING after bad SHOWs answered OK \"{pong}\"");
+    let losses = qemu.console.ping()?;
+    ensure!(losses.none(), "PING after bad SHOWs says the serial line lost bytes: {losses}");
     Ok(())
 }

@@ -42,9 +42,10 @@ pub enum Action {
     /// Measures every method for speed and accuracy (release build) and
     /// writes results.json, report.md and charts under --out.
     Lab(LabOpt),
-    /// Boots the kernel, times every method on every demo scene with
-    /// `BENCH` (rdtsc cycles under QEMU TCG, apart from the host lab) and
-    /// writes kernel_bench.md and kernel_bench.json under --out.
+    /// Boots the kernel with instruction counting, times every method on
+    /// every demo scene with `BENCH` (rdtsc ticks, one per emulated
+    /// instruction, apart from the host lab) and writes kernel_bench.md and
+    /// kernel_bench.json under --out.
     Kbench(KbenchOpt),
     /// Builds the explorer page (the raster code for wasm32, a hand-written
     /// page), serves it on 127.0.0.1 and prints its address; with --out,

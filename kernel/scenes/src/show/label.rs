@@ -13,7 +13,7 @@ use core::fmt::{self, Write};
 use font8x8::legacy::BASIC_LEGACY;
 
 use super::Entry;
-use raster::sink::{Framebuffer, SpanSink};
+use raster::sink::SpanSink;
 
 /// A glyph's width and height in pixels.
 const GLYPH: i32 = 8;
@@ -31,7 +31,7 @@ const OUTLINE_COLOR: u8 = 0;
 
 /// Draws the entry's name and frame counter at the top of `target`, the
 /// method's name and `cycles` at the bottom. `frame` counts from 0.
-pub(super) fn draw_labels(target: &mut Framebuffer, entry: &Entry, frame: u32, method: &str, cycles: u64) {
+pub(super) fn draw_labels(target: &mut dyn SpanSink, entry: &Entry, frame: u32, method: &str, cycles: u64) {
     let mut counter = Line::new();
     if entry.is_animated() {
         // Writing into a `Line` never fails: it cuts instead.
@@ -46,7 +46,7 @@ pub(super) fn draw_labels(target: &mut Framebuffer, entry: &Entry, frame: u32, m
 /// `left` from the left margin and `right` up to the right margin on the
 /// line whose glyphs start at row `y`; `left` is cut short to leave a blank
 /// column before `right`.
-fn draw_line(target: &mut Framebuffer, y: i32, left: &str, right: &Line, color: u8) {
+fn draw_line(target: &mut dyn SpanSink, y: i32, left: &str, right: &Line, color: u8) {
     let mut line = Line::new();
     let _ = line.write_str(left);
     let room = if right.len == 0 { COLUMNS } else { COLUMNS.saturating_sub(right.len + 1) };
@@ -86,7 +86,7 @@ impl Write for Line {
 /// Draws ASCII `text` with its first glyph's top-left corner at (`x`, `y`):
 /// first the black outline of every glyph, then the glyphs in `color`, so
 /// that one glyph's outline never cuts into its neighbour.
-fn draw_text(target: &mut Framebuffer, x: i32, y: i32, text: &[u8], color: u8) {
+fn draw_text(target: &mut dyn SpanSink, x: i32, y: i32, text: &[u8], color: u8) {
     for (px, py) in lit_pixels(x, y, text) {
         for dy in -1..=1 {
             put(target, px - 1, py + dy, px + 2, OUTLINE_COLOR);
@@ -109,7 +109,7 @@ fn lit_pixels(x: i32, y: i32, text: &[u8]) -> impl Iterator<Item = (i32, i32)> +
 }
 
 /// Pixels `x_start..x_end` of row `y` in `color`, cut to the target.
-fn put(target: &mut Framebuffer, x_start: i32, y: i32, x_end: i32, color: u8) {
+fn put(target: &mut dyn SpanSink, x_start: i32, y: i32, x_end: i32, color: u8) {
     let size = target.size();
     let (x0, x1) = (x_start.max(0), x_end.min(size.width));
     if (0..size.height).contains(&y) && x0 < x1 {
@@ -121,7 +121,7 @@ fn put(target: &mut Framebuffer, x_start: i32, y: i32, x_end: i32, color: u8) {
 mod tests {
     use super::*;
     use crate::show::ENTRIES_IN_ORDER;
-    use raster::sink::{self, SCREEN};
+    use raster::sink::{self, Framebuffer, SCREEN};
 
     const BACKGROUND: u8 = 3;
 

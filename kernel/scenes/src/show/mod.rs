@@ -23,7 +23,7 @@ use crate::builtin::{self, Builtin};
 use crate::palette::{ENTRIES, VGA_DEFAULT};
 use crate::scene::{DrawReport, Scene};
 use raster::geometry::{Point, Polygon};
-use raster::sink::{self, Framebuffer, SCREEN};
+use raster::sink::{self, Framebuffer, SpanSink, SCREEN};
 use raster::{Method, MethodId};
 
 /// Frames per second the show is paced at: every second retrace of mode
@@ -242,13 +242,7 @@ impl Stage {
         let frame = entry.wrap(frame);
         sink::clear(&mut self.target, 0);
         match entry.kind {
-            Kind::Still(builtin) => {
-                let still = match &mut self.still {
-                    Some(scene) if scene.name == builtin.name => scene,
-                    still => still.insert(builtin.scene()),
-                };
-                still.draw(method, &mut self.target)
-            }
+            Kind::Still(_) => draw_page(&mut self.still, entry, method, &mut self.target),
             Kind::LamotheRotate => lamothe::draw(frame, method, &mut self.scratch, &mut self.target),
             Kind::WgtGouraud => shaded::gouraud(frame, method, &mut self.scratch, &mut self.target),
             Kind::WgtTexture => shaded::texture(frame, method, &mut self.scratch, &mut self.target),
@@ -257,10 +251,18 @@ impl Stage {
         }
     }
 
-    /// Draws the labels over the frame: the entry and frame number at the
-    /// top, the method and the cycles its draw took at the bottom.
+    /// Draws still `entry` with `method` onto `target`, cleared to black
+    /// first, as [`Stage::draw`] draws it onto the stage: for a target
+    /// other than the stage, such as the screen itself. An animated entry
+    /// draws nothing but the black.
+    pub fn draw_still(&mut self, entry: &Entry, method: &dyn Method, target: &mut dyn SpanSink) -> DrawReport {
+        sink::clear(target, 0);
+        draw_page(&mut self.still, entry, method, target)
+    }
+
+    /// Draws the labels over the frame (see [`draw_labels`]).
     pub fn label(&mut self, entry: &Entry, frame: u32, method: &dyn Method, cycles: u64) {
-        label::draw_labels(&mut self.target, entry, entry.wrap(frame), method.info().name, cycles);
+        draw_labels(&mut self.target, entry, frame, method, cycles);
     }
 
     /// The frame: 320x200 bytes, row after row.
@@ -273,6 +275,25 @@ impl Stage {
     pub fn stray_spans(&self) -> usize {
         self.target.stray_spans()
     }
+}
+
+/// Draws the still page of `entry` with `method` onto `target`, building
+/// the page into `built` unless it is the one built last; nothing for an
+/// entry that is not a still.
+fn draw_page(built: &mut Option<Scene>, entry: &Entry, method: &dyn Method, target: &mut dyn SpanSink) -> DrawReport {
+    let Kind::Still(page) = entry.kind else { return DrawReport::default() };
+    let scene = match built {
+        Some(scene) if scene.name == page.name => scene,
+        built => built.insert(page.scene()),
+    };
+    scene.draw(method, target)
+}
+
+/// Draws the labels of frame `frame` (modulo `entry.frames`) of `entry`
+/// over `target`: the entry and frame number at the top, the method and
+/// the cycles its draw took at the bottom.
+pub fn draw_labels(target: &mut dyn SpanSink, entry: &Entry, frame: u32, method: &dyn Method, cycles: u64) {
+    label::draw_labels(target, entry, entry.wrap(frame), method.info().name, cycles);
 }
 
 /// What one animation's `draw` puts on a fresh screen with fresh scratch.
@@ -339,6 +360,29 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_still_drawn_onto_another_target_is_the_stage_s_frame_and_an_animation_is_black() {
+        let mut stage = Stage::new();
+        for entry in ENTRIES_IN_ORDER.iter().filter(|e| !e.is_animated()) {
+            let method = entry.method_at(0).method();
+            let mut elsewhere = Framebuffer::new(SCREEN);
+            // Not black: the still clears its target first.
+            sink::clear(&mut elsewhere, 9);
+            let report = stage.draw_still(entry, method, &mut elsewhere);
+            draw_labels(&mut elsewhere, entry, 0, method, 1234);
+            let staged = stage.draw(entry, 0, method);
+            stage.label(entry, 0, method, 1234);
+            assert_eq!(elsewhere.pixels(), stage.pixels(), "{}", entry.name);
+            assert_eq!(report, staged, "{}", entry.name);
+            assert!(report.polygons > 0, "{}", entry.name);
+        }
+        let rotate = entry("lamothe-rotate").unwrap();
+        let mut elsewhere = Framebuffer::new(SCREEN);
+        sink::clear(&mut elsewhere, 9);
+        assert_eq!(stage.draw_still(rotate, &Exact, &mut elsewhere).polygons, 0);
+        assert!(elsewhere.pixels().iter().all(|&p| p == 0));
     }
 
     #[test]
