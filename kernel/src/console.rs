@@ -16,7 +16,7 @@ use scenes::{builtin, file, Op, Scene};
 
 use crate::exit::exit_qemu;
 use crate::video::Screen;
-use crate::{bench, fault, pci, player, serial, vga};
+use crate::{bench, demo, fault, pci, player, serial, vga};
 
 /// Tells the host the kernel is up: a `LOG` frame per VGA register or DAC
 /// entry that did not read back as written, then `READY` naming the
@@ -34,10 +34,16 @@ pub fn announce(screen: &Screen) {
 /// Serves the host forever, starting with `first_byte` (the byte that
 /// stopped the demo). `SHOW` draws on `stage`.
 pub fn serve(screen: &mut Screen, stage: &mut Stage, first_byte: u8) -> ! {
-    let mut console = Console { screen, stage, line: Vec::with_capacity(MAX_LINE), overlong: false };
-    console.accept(first_byte);
+    let mut console = Console { screen, stage, line: Vec::with_capacity(MAX_LINE), overlong: false, demo: None };
+    let mut byte = first_byte;
     loop {
-        console.accept(serial::read_byte());
+        console.accept(byte);
+        // `DEMO` was answered: play until the host's next byte, which is
+        // then the first of its next command.
+        byte = match console.demo.take() {
+            Some(start) => demo::run(console.screen, console.stage, start),
+            None => serial::read_byte(),
+        };
     }
 }
 
@@ -53,6 +59,8 @@ struct Console<'a> {
     line: Vec<u8>,
     /// The current line outgrew `MAX_LINE`: drop bytes up to its `\n`.
     overlong: bool,
+    /// The demo `DEMO` asked for, to play once its answer is sent.
+    demo: Option<demo::Start>,
 }
 
 impl Console<'_> {
@@ -113,6 +121,24 @@ impl Console<'_> {
             Command::Bench { scene, repeats } => {
                 let scene = builtin_scene(scene)?;
                 Ok((FrameKind::Bench, bench::run(self.screen, &scene, repeats).into_bytes()))
+            }
+            Command::Demo { entry, method } => {
+                let index = match entry {
+                    Some(name) => Some(
+                        ENTRIES_IN_ORDER
+                            .iter()
+                            .position(|e| e.name == name)
+                            .ok_or_else(|| format!("unknown show entry `{name}`"))?,
+                    ),
+                    None => None,
+                };
+                let start = demo::Start { entry: index.unwrap_or(0), stay: index.is_some(), method };
+                self.demo = Some(start);
+                let from = ENTRIES_IN_ORDER[start.entry].name;
+                match method {
+                    Some(method) => ok(format_args!("demo from={from} stay={} method={method}", start.stay)),
+                    None => ok(format_args!("demo from={from} stay={} method=own", start.stay)),
+                }
             }
             Command::VgaCheck => {
                 let mismatches = vga::verify(self.screen.palette());

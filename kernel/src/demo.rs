@@ -9,13 +9,17 @@
 //! with no keyboard and no serial
 //! line: the timer alone moves it on. Keys (PS/2, `keyboard`): space or
 //! Enter, the next entry; 1 to 8, every entry with that method of
-//! `MethodId::ALL` until 0 gives each its own again; Escape, from the
-//! start.
+//! `MethodId::ALL` until 0 gives each its own again; Escape, the whole show
+//! from the start with each entry's own method.
 //!
-//! The first byte from the host stops it for good and leaves the screen
-//! as boot left it, black in the VGA default palette, so that what the
-//! host draws is all that is on the screen when it asks for a dump, and
-//! the palette is the one `DRAW` uses whichever frame the demo was at.
+//! It starts at boot from the first entry ([`Start::default`]), and again
+//! when the host asks with `DEMO`, which may name an entry to start at and
+//! stay on, and a method for every entry ([`Start`]).
+//!
+//! The first byte from the host stops it and leaves the screen as boot
+//! left it, black in the VGA default palette, so that what the host draws
+//! is all that is on the screen when it asks for a dump, and the palette
+//! is the one `DRAW` uses whichever frame the demo was at.
 
 use raster::MethodId;
 use scenes::show::{Stage, ENTRIES_IN_ORDER};
@@ -25,15 +29,28 @@ use crate::player::{self, Pacer};
 use crate::serial;
 use crate::video::Screen;
 
-/// Runs the demo on `stage` until the host sends a byte, clears the
-/// screen, and returns that byte. Allocates nothing per frame beyond what
-/// the entries and their methods do.
-pub fn run(screen: &mut Screen, stage: &mut Stage) -> u8 {
+/// Where the demo starts and what it keeps to.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Start {
+    /// The entry it starts at: an index into `ENTRIES_IN_ORDER`.
+    pub entry: usize,
+    /// Stay on the entry: the timer does not move the show on (space and
+    /// Enter still do).
+    pub stay: bool,
+    /// Every entry drawn with this method, as after its digit key.
+    pub method: Option<MethodId>,
+}
+
+/// Runs the demo on `stage` from `start` until the host sends a byte,
+/// clears the screen, and returns that byte. Allocates nothing per frame
+/// beyond what the entries and their methods do.
+pub fn run(screen: &mut Screen, stage: &mut Stage, start: Start) -> u8 {
     let mut pacer = Pacer::start();
-    let mut index = 0;
-    let mut frame = 0;
+    let mut index = start.entry % ENTRIES_IN_ORDER.len();
+    let mut stay = start.stay;
+    let mut frame: u32 = 0;
     // The method the viewer picked for every entry, if any.
-    let mut picked: Option<MethodId> = None;
+    let mut picked = start.method;
     // The still page on the screen: its index and its method.
     let mut still_shown: Option<(usize, MethodId)> = None;
     loop {
@@ -46,13 +63,14 @@ pub fn run(screen: &mut Screen, stage: &mut Stage) -> u8 {
             player::play(screen, stage, entry, frame, method, Some(&mut pacer));
         }
         still_shown = still;
-        frame += 1;
-        let mut next = frame >= entry.demo_frames();
+        // An entry stayed on loops; its frame numbers wrap in `Entry::wrap`.
+        frame = frame.wrapping_add(1);
+        let mut next = !stay && frame >= entry.demo_frames();
         match keyboard::poll() {
             Some(Key::Next) => next = true,
             Some(Key::Method(method)) => picked = Some(method),
             Some(Key::OwnMethods) => picked = None,
-            Some(Key::Restart) => (index, frame, picked, next) = (0, 0, None, false),
+            Some(Key::Restart) => (index, frame, picked, stay, next) = (0, 0, None, false, false),
             None => {}
         }
         if next {

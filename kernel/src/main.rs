@@ -61,6 +61,6 @@ fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
     console::announce(&screen);
     // The show's memory, allocated once for the demo and `SHOW`.
     let mut stage = scenes::show::Stage::new();
-    let first_byte = demo::run(&mut screen, &mut stage);
+    let first_byte = demo::run(&mut screen, &mut stage, demo::Start::default());
     console::serve(&mut screen, &mut stage, first_byte)
 }

@@ -73,6 +73,15 @@ impl Adapter {
         }
     }
 
+    /// The adapter whose `-vga` name is `name`, among [`Adapter::WITH_VGA`]
+    /// (the cards the picture is proven on); otherwise an error listing them.
+    pub fn with_vga_named(name: &str) -> Result<Adapter> {
+        Adapter::WITH_VGA.into_iter().find(|adapter| adapter.qemu_name() == name).with_context(|| {
+            let valid: Vec<&str> = Adapter::WITH_VGA.iter().map(|adapter| adapter.qemu_name()).collect();
+            format!("unknown display adapter `{name}`; the adapters are {}", valid.join(", "))
+        })
+    }
+
     /// The PCI IDs QEMU gives the card (as `lspci -n` shows them in a
     /// guest), which the kernel reports in READY.
     pub fn pci_id(self) -> Option<PciId> {
@@ -358,6 +367,17 @@ mod tests {
             assert_eq!(args.iter().filter(|a| *a == "-vga").count(), 1, "{args:?}");
         }
         assert!(!Adapter::WITH_VGA.contains(&Adapter::None));
+    }
+
+    #[test]
+    fn adapters_with_a_vga_bios_are_found_by_name_and_others_refused_with_the_list() {
+        for adapter in Adapter::WITH_VGA {
+            assert_eq!(Adapter::with_vga_named(adapter.qemu_name()).unwrap(), adapter);
+        }
+        for name in ["none", "qxl", ""] {
+            let error = Adapter::with_vga_named(name).unwrap_err().to_string();
+            assert_eq!(error, format!("unknown display adapter `{name}`; the adapters are std, cirrus, vmware"));
+        }
     }
 
     #[test]

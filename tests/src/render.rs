@@ -75,6 +75,7 @@ impl SceneSource {
 
 /// A scene file, read and parsed, with each operation's line kept so the
 /// kernel can be sent the same operations and a problem can name its line.
+#[derive(Clone)]
 pub struct SceneFile {
     pub path: PathBuf,
     pub scene: Scene,

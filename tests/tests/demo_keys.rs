@@ -22,7 +22,8 @@ use anyhow::{bail, ensure, Context, Result};
 use harness::checks::{as_on_screen, SCREEN_SCALE};
 use harness::compare::{compare_image_rows, images_match_in_rows};
 use harness::render::{render_show, show_entry};
-use harness::{Image, Qemu, QemuOptions};
+use harness::{Image, Qemu, QemuOptions, Reply};
+use protocol::Command;
 use raster::MethodId;
 use scenes::show::{ENTRIES_IN_ORDER, FRAMES_PER_SECOND, STILL_FRAMES};
 
@@ -193,6 +194,14 @@ fn with_no_key_the_timer_turns_the_pages_and_animations_play_by_themselves() -> 
         qemu.send_key("spc")?;
         std::thread::sleep(Duration::from_millis(100));
     }
+    plays_forward(&mut qemu, "lamothe-rotate", &frames)
+}
+
+/// Takes screendumps until four different frames of an animation (`frames`,
+/// its host renders on QEMU's screen) have been seen, in at most 30 s, and
+/// checks that each is ahead of the one before, modulo the loop (it may
+/// wrap between two dumps), by less than half the loop.
+fn plays_forward(qemu: &mut Qemu, name: &str, frames: &[Image]) -> Result<()> {
     let mut shown = Vec::new();
     let started = Instant::now();
     while shown.len() < 4 && started.elapsed() < Duration::from_secs(30) {
@@ -204,12 +213,43 @@ fn with_no_key_the_timer_turns_the_pages_and_animations_play_by_themselves() -> 
         }
         std::thread::sleep(Duration::from_millis(150));
     }
-    eprintln!("harness: lamothe-rotate frames seen in turn: {shown:?}");
-    ensure!(shown.len() >= 4, "lamothe-rotate showed only the frames {shown:?} in 30 s");
-    // Each frame seen is ahead of the one before, modulo the loop (it may
-    // wrap between two dumps), by less than half the loop.
-    let loop_len = rotate.frames as usize;
+    eprintln!("harness: {name} frames seen in turn: {shown:?}");
+    ensure!(shown.len() >= 4, "{name} showed only the frames {shown:?} in 30 s");
+    let loop_len = frames.len();
     let steps: Vec<usize> = shown.windows(2).map(|w| (w[1] + loop_len - w[0]) % loop_len).collect();
-    ensure!(steps.iter().all(|&s| s > 0 && s < loop_len / 2), "frames {shown:?} do not move forward");
+    ensure!(steps.iter().all(|&s| s > 0 && s < loop_len / 2), "{name}: frames {shown:?} do not move forward");
     Ok(())
+}
+
+/// `DEMO ENTRY METHOD` (what `cargo xtask run --scene --method` sends in a
+/// window) plays the demo again from the host's command: a still page
+/// drawn with the method named, staying past its 3 s, and an animation
+/// that plays forward with it; the byte that ends the demo is the first of
+/// the next command, which is answered.
+#[test]
+fn demo_resumes_the_show_on_the_named_entry_and_method_and_stays_there() -> Result<()> {
+    let page = show_entry("abrash38-3")?;
+    let still = as_on_screen(&render_show(page, 0, MethodId::Wgt.method(), 0));
+    let rotate = show_entry("lamothe-rotate")?;
+    let frames: Vec<Image> =
+        (0..rotate.frames).map(|f| as_on_screen(&render_show(rotate, f, MethodId::Exact.method(), 0))).collect();
+
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    let answer = qemu.console.ok(&Command::Demo { entry: Some(page.name), method: Some(MethodId::Wgt) })?;
+    ensure!(answer == "demo from=abrash38-3 stay=true method=wgt", "DEMO answered OK \"{answer}\"");
+    let started = Instant::now();
+    screen_shows(&mut qemu, "demo.abrash38-3.wgt", &still, started + page_lasts())?;
+    // Past the page's 3 s (and as much again), it is still there.
+    std::thread::sleep(2 * page_lasts());
+    screen_shows(&mut qemu, "demo.abrash38-3.wgt.stays", &still, Instant::now() + Duration::from_secs(1))?;
+
+    let answer = qemu.console.ok(&Command::Demo { entry: Some(rotate.name), method: Some(MethodId::Exact) })?;
+    ensure!(answer == "demo from=lamothe-rotate stay=true method=exact", "DEMO answered OK \"{answer}\"");
+    plays_forward(&mut qemu, "lamothe-rotate with exact", &frames)?;
+    let losses = qemu.console.ping()?;
+    ensure!(losses.none(), "PING after DEMO says the serial line lost bytes: {losses}");
+    match qemu.console.request(&Command::Demo { entry: Some("no-such-entry"), method: None })? {
+        Reply::Err(text) if text.contains("no-such-entry") => Ok(()),
+        other => bail!("DEMO of an unknown entry answered {other:?}, expected an ERR naming it"),
+    }
 }

@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
+use harness::Adapter;
 use protocol::{BENCH_DEFAULT_REPEATS, BENCH_MAX_REPEATS};
 use raster::MethodId;
 
@@ -18,8 +19,9 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Action {
     /// The demo in QEMU: in a window when a display is available; otherwise
-    /// headless, playing the show into target/run: each still as
-    /// <entry>.png, each animation as <entry>.gif.
+    /// headless, playing the show into target/run (or --out): each still as
+    /// <entry>.png, each animation as <entry>.gif, a scene file as
+    /// <name>.png, every one checked against the host render.
     Run(RunOpt),
     /// Builds the raw BIOS image (for QEMU or a USB stick); prints its path last.
     Image,
@@ -58,6 +60,25 @@ pub struct RunOpt {
     /// Run headless even when a display is available.
     #[arg(long)]
     pub headless: bool,
+    /// Show this entry of the show (a book page or an animation) and stay
+    /// on it, or draw this scene file and keep it on the screen.
+    #[arg(long, value_name = "NAME|FILE")]
+    pub scene: Option<String>,
+    /// Draw every entry (or the scene file) with this method, as the digit
+    /// keys do.
+    #[arg(long)]
+    pub method: Option<MethodId>,
+    /// The display card QEMU emulates: std, cirrus or vmware (the cards
+    /// the harness proves the picture on).
+    #[arg(long, default_value = "std", value_parser = Adapter::with_vga_named)]
+    pub vga: Adapter,
+    /// Boot from the emulated USB stick (usb-storage on xHCI), as a PC
+    /// boots the image written to a stick.
+    #[arg(long)]
+    pub usb: bool,
+    /// Where a headless run writes its pictures (default target/run).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]

@@ -1,12 +1,17 @@
-//! `cargo xtask run`: the demo, in a window or headless.
+//! `cargo xtask run`: the demo, in a window or headless, on the display
+//! card and boot medium asked for, from the entry or scene file and with
+//! the method asked for.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use anyhow::Result;
-use harness::checks::show_matches_host_render;
+use anyhow::{bail, Result};
+use harness::checks::{screen_matches_dump, show_matches_host_render, source_matches_host_render};
+use harness::render::{SceneFile, SceneSource};
 use harness::workspace::target_dir;
-use harness::{build_image, Display, Qemu, QemuOptions};
-use scenes::show::ENTRIES_IN_ORDER;
+use harness::{build_image, Display, Medium, Qemu, QemuOptions};
+use protocol::Command;
+use raster::MethodId;
+use scenes::show::{self, Entry, ENTRIES_IN_ORDER};
 
 use crate::opt::RunOpt;
 use crate::record::{summary, Frames, Recording};
@@ -15,50 +20,203 @@ use crate::record::{summary, Frames, Recording};
 /// a loop of 256 frames becomes a GIF of 64.
 const HEADLESS_STEP: u32 = 4;
 
-pub fn run(opt: &RunOpt) -> Result<()> {
-    let has_display =
-        ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|var| std::env::var_os(var).is_some_and(|v| !v.is_empty()));
-    if has_display && !opt.headless {
-        in_a_window()
-    } else {
-        headless(&target_dir().join("run"))
+/// What `--scene` names.
+enum OnScreen {
+    /// The whole show (no `--scene`), or one entry of it.
+    Show(Option<&'static Entry>),
+    /// A scene file, drawn once and left on the screen.
+    File(SceneFile),
+}
+
+impl OnScreen {
+    /// A show entry called `name`, or else the scene file at that path; an
+    /// error listing the entries when it is neither. Checked before QEMU
+    /// starts.
+    fn find(name: Option<&str>) -> Result<Self> {
+        let Some(name) = name else { return Ok(OnScreen::Show(None)) };
+        if let Some(entry) = show::entry(name) {
+            return Ok(OnScreen::Show(Some(entry)));
+        }
+        if Path::new(name).is_file() {
+            return SceneFile::read(Path::new(name)).map(OnScreen::File);
+        }
+        let entries: Vec<&str> = ENTRIES_IN_ORDER.iter().map(|entry| entry.name).collect();
+        bail!("`{name}` is neither an entry of the show nor a scene file; the entries are {}", entries.join(", "))
     }
 }
 
-/// QEMU in a window, the kernel running its demo with nobody talking to it
-/// (pages change on a timer, or on a key press), until the window closes.
-fn in_a_window() -> Result<()> {
-    let options = QemuOptions { display: Display::Window, ..QemuOptions::default() };
-    let mut qemu = Qemu::spawn(&build_image()?, options)?;
+pub fn run(opt: &RunOpt) -> Result<()> {
+    // Everything that can be refused is refused before QEMU starts.
+    let shown = OnScreen::find(opt.scene.as_deref())?;
+    if let (OnScreen::File(file), method) = (&shown, opt.method) {
+        file.commands(method.unwrap_or(file.scene.method))?;
+    }
+    let medium = if opt.usb { Medium::UsbStick } else { Medium::Disk };
+    let options = QemuOptions { adapter: opt.vga, medium, ..QemuOptions::default() };
+    let has_display =
+        ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|var| std::env::var_os(var).is_some_and(|v| !v.is_empty()));
+    if has_display && !opt.headless {
+        in_a_window(&shown, opt.method, options)
+    } else {
+        let out = opt.out.clone().unwrap_or_else(|| target_dir().join("run"));
+        headless(&shown, opt.method, options, &out)
+    }
+}
+
+/// QEMU in a window until it closes. With nothing asked for, the kernel
+/// plays its demo with nobody talking to it (pages change on a timer, or
+/// on a key press); an entry or a method is asked for with `DEMO`, which
+/// plays the demo from that entry and stays on it; a scene file is drawn
+/// with `CLEAR` and `POLY` and stays on the screen.
+fn in_a_window(shown: &OnScreen, method: Option<MethodId>, options: QemuOptions) -> Result<()> {
+    let options = QemuOptions { display: Display::Window, ..options };
+    let mut qemu = match (shown, method) {
+        (OnScreen::Show(None), None) => Qemu::spawn(&build_image()?, options)?,
+        (OnScreen::Show(entry), method) => {
+            let mut qemu = Qemu::boot(options)?;
+            qemu.console.ok(&Command::Demo { entry: entry.map(|entry| entry.name), method })?;
+            qemu
+        }
+        (OnScreen::File(file), method) => {
+            let mut qemu = Qemu::boot(options)?;
+            qemu.console.draw_file(file, method.unwrap_or(file.scene.method))?;
+            qemu
+        }
+    };
     eprintln!("xtask: the demo runs in the QEMU window; close it to finish");
     qemu.wait_until_closed()
 }
 
-/// No display: plays the show through `SHOW` as the demo would, entry by
-/// entry, into `out`: a still as `<entry>.png`, an animation as
-/// `<entry>.gif` (every [`HEADLESS_STEP`]-th frame of one loop), each
-/// checked against the host render, printing each path and the cycles.
-fn headless(out: &Path) -> Result<()> {
-    eprintln!(
-        "xtask: no display (DISPLAY and WAYLAND_DISPLAY unset): playing the show headless into {}",
-        out.display()
-    );
-    let mut qemu = Qemu::boot(QemuOptions::default())?;
-    for entry in ENTRIES_IN_ORDER {
-        if entry.is_animated() {
-            let path = out.join(format!("{}.gif", entry.name));
-            let frames = Frames { start: 0, step: HEADLESS_STEP, count: entry.frames.div_ceil(HEADLESS_STEP) };
-            let shown = Recording::new(entry, frames, None, true, &path)?.film(&mut qemu.console)?;
-            println!("{}", path.display());
-            print!("{}", summary(&shown));
-        } else {
-            let path = out.join(format!("{}.png", entry.name));
-            let (shown, dump) = show_matches_host_render(&mut qemu.console, entry.name, 0, None)?;
-            dump.image().write_png(&path)?;
-            println!("{}", path.display());
-            print!("{}", summary(&[shown]));
+/// No display: plays the show (or the one entry) through `SHOW` as the
+/// demo would, entry by entry, into `out`: a still as `<entry>.png`, an
+/// animation as `<entry>.gif` (every [`HEADLESS_STEP`]-th frame of one
+/// loop); or draws the scene file into `<name>.png`. Every picture is the
+/// kernel's dump, checked against the host render, and a still's (or the
+/// file's) against QEMU's screendump too; each path and the cycles are
+/// printed.
+fn headless(shown: &OnScreen, method: Option<MethodId>, options: QemuOptions, out: &Path) -> Result<()> {
+    eprintln!("xtask: headless (no display, or --headless): writing the pictures into {}", out.display());
+    let mut qemu = Qemu::boot(options)?;
+    let png = |name: &str| -> PathBuf { out.join(format!("{name}.png")) };
+    match shown {
+        OnScreen::Show(entry) => {
+            let entries = entry.map_or(ENTRIES_IN_ORDER, std::slice::from_ref);
+            for entry in entries {
+                if entry.is_animated() {
+                    let path = out.join(format!("{}.gif", entry.name));
+                    let frames = Frames { start: 0, step: HEADLESS_STEP, count: entry.frames.div_ceil(HEADLESS_STEP) };
+                    let shown = Recording::new(entry, frames, method, true, &path)?.film(&mut qemu.console)?;
+                    println!("{}", path.display());
+                    print!("{}", summary(&shown));
+                } else {
+                    let (shown, dump) = show_matches_host_render(&mut qemu.console, entry.name, 0, method)?;
+                    screen_matches_dump(entry.name, &dump, &qemu.screendump()?)?;
+                    write_png(&dump.image(), &png(entry.name))?;
+                    print!("{}", summary(&[shown]));
+                }
+            }
+        }
+        OnScreen::File(file) => {
+            let method = method.unwrap_or(file.scene.method);
+            let source = SceneSource::File(file.clone());
+            let dump = source_matches_host_render(&mut qemu.console, &source, method)?;
+            screen_matches_dump(source.name(), &dump, &qemu.screendump()?)?;
+            write_png(&dump.image(), &png(source.name()))?;
         }
     }
     qemu.quit()?;
     Ok(())
+}
+
+/// Writes `image` to `path` (creating its folder) and prints the path.
+fn write_png(image: &harness::Image, path: &Path) -> Result<()> {
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir)?;
+    }
+    image.write_png(path)?;
+    println!("{}", path.display());
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use std::fs;
+
+    use clap::Parser;
+    use harness::render::render_show;
+    use harness::Adapter;
+
+    use super::*;
+    use crate::opt::{Action, Cli};
+
+    fn parse(args: &[&str]) -> Result<RunOpt, clap::Error> {
+        let args = ["cargo xtask", "run"].iter().chain(args);
+        Cli::try_parse_from(args).map(|cli| match cli.action {
+            Action::Run(opt) => opt,
+            other => panic!("parsed as {other:?}"),
+        })
+    }
+
+    /// `cargo xtask run --headless ARGS --out DIR`: what it wrote, by name.
+    fn run_headless(args: &[&str], out: &Path) -> Result<Vec<String>> {
+        let out_arg = out.to_str().expect("a UTF-8 temporary path");
+        let opt = parse(&[args, &["--headless", "--out", out_arg]].concat())?;
+        run(&opt)?;
+        let mut names: Vec<String> = fs::read_dir(out)?
+            .map(|entry| entry.map(|e| e.file_name().to_string_lossy().into_owned()))
+            .collect::<std::io::Result<_>>()?;
+        names.sort();
+        Ok(names)
+    }
+
+    #[test]
+    fn defaults_are_the_whole_show_on_the_standard_vga_from_the_disk() {
+        let opt = parse(&[]).unwrap();
+        assert_eq!((opt.scene, opt.method, opt.vga, opt.usb, opt.out), (None, None, Adapter::Std, false, None));
+    }
+
+    #[test]
+    fn unknown_names_are_refused_with_the_valid_ones_before_qemu_starts() {
+        let vga = parse(&["--vga", "qxl"]).unwrap_err().to_string();
+        assert!(vga.contains("unknown display adapter `qxl`; the adapters are std, cirrus, vmware"), "{vga}");
+        let method = parse(&["--method", "fastest"]).unwrap_err().to_string();
+        assert!(method.contains("unknown method; the methods are abrash_float, "), "{method}");
+        let scene = run(&parse(&["--scene", "no-such-entry", "--headless"]).unwrap()).unwrap_err().to_string();
+        assert!(scene.starts_with("`no-such-entry` is neither an entry of the show nor a scene file"), "{scene}");
+        assert!(scene.ends_with(", race"), "{scene}");
+    }
+
+    #[test]
+    fn an_animation_with_one_method_on_the_cirrus_card_is_filmed_alone() -> Result<()> {
+        let dir = tempfile::tempdir()?;
+        let written = run_headless(&["--scene", "lamothe-rotate", "--method", "exact", "--vga", "cirrus"], dir.path())?;
+        assert_eq!(written, ["lamothe-rotate.gif"]);
+        Ok(())
+    }
+
+    #[test]
+    fn a_page_with_one_method_boots_from_the_usb_stick_on_the_vmware_card() -> Result<()> {
+        let dir = tempfile::tempdir()?;
+        let written =
+            run_headless(&["--scene", "abrash38-2", "--method", "wgt", "--usb", "--vga", "vmware"], dir.path())?;
+        assert_eq!(written, ["abrash38-2.png"]);
+        // The PNG is the kernel's dump, which `run` checked against the
+        // host render and QEMU's screendump; here it is read back from disk.
+        let page = show::entry("abrash38-2").expect("a page of the show");
+        let expected = render_show(page, 0, MethodId::Wgt.method(), 0);
+        let written = harness::Image::read_png(&dir.path().join("abrash38-2.png"))?;
+        harness::compare::compare_image_rows("run.abrash38-2.wgt", &expected, &written, 0..188)?;
+        Ok(())
+    }
+
+    #[test]
+    fn a_scene_file_is_drawn_and_kept_with_the_method_asked_for() -> Result<()> {
+        let dir = tempfile::tempdir()?;
+        let file = dir.path().join("mine.scene");
+        fs::write(&file, "clear 1\npoly color=14 10,10 300.5,20 160,190.25 | 100,60 200,60 150,150\n")?;
+        let out = dir.path().join("out");
+        let written = run_headless(&["--scene", file.to_str().unwrap(), "--method", "abrash_aet"], &out)?;
+        assert_eq!(written, ["mine.png"]);
+        Ok(())
+    }
 }

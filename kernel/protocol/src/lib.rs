@@ -32,6 +32,9 @@ pub const BENCH_MAX_REPEATS: u8 = 31;
 pub const BENCH_UNIT_LINE: &str = "# rdtsc ticks per scene draw, median of the repeats; on a PC, cycles; under QEMU, \
      its virtual clock: emulated instructions with -icount shift=0, host time without";
 
+/// What `DEMO` takes for "every entry" where an entry is named.
+pub const EVERY_ENTRY: &str = "*";
+
 /// The exit code a host sends with `EXIT` to end a run cleanly.
 pub const EXIT_SUCCESS: u8 = 0x10;
 /// The exit code the kernel uses after a panic or CPU exception.
@@ -90,6 +93,12 @@ pub enum Command<'a> {
     /// `VGACHECK`: reads every mode-13h register and the DAC back; answers
     /// `OK` or an `ERR` listing the mismatches.
     VgaCheck,
+    /// `DEMO [ENTRY|*] [METHOD]`: answers `OK`, then plays the demo again
+    /// until the next byte from the host, as it plays after boot; with
+    /// ENTRY (a show entry; `*` is every entry) from that entry, staying on
+    /// it, and with METHOD every entry drawn with that method, as the digit
+    /// keys do.
+    Demo { entry: Option<&'a str>, method: Option<MethodId> },
     /// `BENCH SCENE [REPEATS]`: draws a built-in scene REPEATS times
     /// ([`BENCH_DEFAULT_REPEATS`] if absent, 1 to [`BENCH_MAX_REPEATS`])
     /// with every method; answers a `BENCH` frame.
@@ -367,6 +376,10 @@ impl<'a> Command<'a> {
                 Command::Bench { scene, repeats }
             }
             "VGACHECK" => Command::VgaCheck,
+            "DEMO" => Command::Demo {
+                entry: words.next().filter(|&entry| entry != EVERY_ENTRY),
+                method: words.next().map(parse_method).transpose()?,
+            },
             "EXIT" => Command::Exit(parse_u8(words.next().ok_or(CommandError::MissingArgument("code"))?)?),
             "FAULT" => {
                 let kind = words.next().ok_or(CommandError::MissingArgument("fault kind"))?;
@@ -406,6 +419,11 @@ impl fmt::Display for Command<'_> {
             Command::Dump => write!(f, "DUMP"),
             Command::Bench { scene, repeats } => write!(f, "BENCH {scene} {repeats}"),
             Command::VgaCheck => write!(f, "VGACHECK"),
+            Command::Demo { entry: None, method: None } => write!(f, "DEMO"),
+            Command::Demo { entry, method: None } => write!(f, "DEMO {}", entry.unwrap_or(EVERY_ENTRY)),
+            Command::Demo { entry, method: Some(method) } => {
+                write!(f, "DEMO {} {method}", entry.unwrap_or(EVERY_ENTRY))
+            }
             Command::Exit(code) => write!(f, "EXIT {code}"),
             Command::Fault(kind) => write!(f, "FAULT {}", kind.name()),
         }
@@ -521,6 +539,10 @@ mod tests {
             Command::Poly { method: MethodId::Exact, spec: "color=4 0,0 9.5,0 0,9" },
             Command::Dump,
             Command::Bench { scene: "abrash38-3", repeats: 1 },
+            Command::Demo { entry: None, method: None },
+            Command::Demo { entry: Some("race"), method: None },
+            Command::Demo { entry: Some("lamothe-rotate"), method: Some(MethodId::Exact) },
+            Command::Demo { entry: None, method: Some(MethodId::Wgt) },
             Command::Bench { scene: "abrash38-1", repeats: BENCH_MAX_REPEATS },
             Command::VgaCheck,
             Command::Exit(16),
@@ -553,6 +575,8 @@ mod tests {
         assert_eq!(Command::parse(b"SHOW race -1"), Err(CommandError::BadArgument("-1")));
         assert_eq!(Command::parse(b"SHOW race 1 exact 2"), Err(CommandError::ExtraArgument("2")));
         assert_eq!(Command::parse(b"SHOW race 1 exakt"), Err(CommandError::UnknownMethod("exakt")));
+        assert_eq!(Command::parse(b"DEMO * exakt"), Err(CommandError::UnknownMethod("exakt")));
+        assert_eq!(Command::parse(b"DEMO race exact 1"), Err(CommandError::ExtraArgument("1")));
         assert_eq!(Command::parse(b"DRAW abrash38-1 abrash"), Err(CommandError::UnknownMethod("abrash")));
         assert_eq!(Command::parse(b"POLY fast color=1 0,0 1,0 0,1"), Err(CommandError::UnknownMethod("fast")));
         assert_eq!(Command::parse(b"PI\xffNG"), Err(CommandError::NotAscii));
