@@ -178,3 +178,10 @@ pub struct ExploreOpt {
     #[arg(long, value_name = "FILE")]
     pub results: Option<PathBuf>,
 }
+
+/// `cargo xtask COMMAND ARGS` parsed, for the commands' tests.
+#[cfg(test)]
+pub fn parse_command(command: &str, args: &[&str]) -> Result<Action, clap::Error> {
+    let head = ["cargo xtask", command];
+    Cli::try_parse_from(head.iter().chain(args)).map(|cli| cli.action)
+}

@@ -229,15 +229,13 @@ impl<W: Write> Gif<W> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use clap::Parser;
     use scenes::palette::VGA_DEFAULT;
     use scenes::show::{self, PALETTE};
 
-    use crate::opt::{Action, Cli};
+    use crate::opt::{parse_command, Action};
 
     fn parse(args: &[&str]) -> Result<RecordOpt, clap::Error> {
-        let args = ["cargo xtask", "record"].iter().chain(args);
-        Cli::try_parse_from(args).map(|cli| match cli.action {
+        parse_command("record", args).map(|action| match action {
             Action::Record(opt) => opt,
             other => panic!("parsed as {other:?}"),
         })

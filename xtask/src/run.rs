@@ -142,16 +142,14 @@ fn write_png(image: &harness::Image, path: &Path) -> Result<()> {
 mod tests {
     use std::fs;
 
-    use clap::Parser;
     use harness::render::render_show;
     use harness::Adapter;
 
     use super::*;
-    use crate::opt::{Action, Cli};
+    use crate::opt::{parse_command, Action};
 
     fn parse(args: &[&str]) -> Result<RunOpt, clap::Error> {
-        let args = ["cargo xtask", "run"].iter().chain(args);
-        Cli::try_parse_from(args).map(|cli| match cli.action {
+        parse_command("run", args).map(|action| match action {
             Action::Run(opt) => opt,
             other => panic!("parsed as {other:?}"),
         })
