@@ -13,6 +13,11 @@
 //!
 //! `EXPECTED` was printed by this test at the commit that added it, before
 //! the sink rework: the pixels of today's `exact` are the pixels of that one.
+//! Each polygon is filled twice, through `Method::fill` (a call per span
+//! through the sink's vtable) and through `MethodId::fill` (the sink's
+//! store compiled into the fill), which must emit the same spans; the
+//! screen-sized ones are also filled into a `Framebuffer`, whose pixels
+//! must be the spans' pixels.
 
 mod exact_support;
 
@@ -20,7 +25,7 @@ use exact_support::{any_polygon, polygon_of, Kind, TARGET};
 use proptest::strategy::{Strategy, ValueTree};
 use proptest::test_runner::TestRunner;
 use raster::methods::exact::Exact;
-use raster::{Method, Point, Polygon, Size, SpanSink, SCREEN};
+use raster::{Framebuffer, Method, MethodId, Point, Polygon, Size, SpanSink, SCREEN};
 
 /// The hash of the whole corpus, recorded before the sink rework.
 const EXPECTED: u64 = 0xddf3_e3f4_dbe2_531e;
@@ -64,6 +69,12 @@ impl Fnv {
 fn add_fill(hash: &mut Fnv, polygon: &Polygon, size: Size) {
     let mut sink = Spans { size, spans: Vec::new() };
     let result = Exact.fill(polygon, &mut sink);
+    let mut inlined = Spans { size, spans: Vec::new() };
+    assert_eq!(MethodId::Exact.fill(polygon, &mut inlined), result);
+    assert_eq!(inlined.spans, sink.spans, "the two dispatches differ on {polygon:?}");
+    if size == SCREEN {
+        assert_framebuffer_holds(polygon, &sink.spans);
+    }
     hash.add(i64::from(result.is_ok()));
     let broken = sink.spans.iter().filter(|&&(y, x0, x1)| !size.holds_span(y, x0, x1)).count();
     hash.add(broken as i64);
@@ -82,6 +93,19 @@ fn add_fill(hash: &mut Fnv, polygon: &Polygon, size: Size) {
         hash.add(i64::from(x0));
         hash.add(i64::from(x1));
     }
+}
+
+/// `polygon` filled into a [`Framebuffer`] sets exactly the pixels of
+/// `spans`, which lie inside the screen.
+fn assert_framebuffer_holds(polygon: &Polygon, spans: &[(i32, i32, i32)]) {
+    let mut drawn = Framebuffer::new(SCREEN);
+    MethodId::Exact.fill(polygon, &mut drawn).expect("exact takes every polygon");
+    let mut expected = vec![0u8; drawn.pixels().len()];
+    for &(y, x0, x1) in spans {
+        let row = (y * SCREEN.width) as usize;
+        expected[row + x0 as usize..row + x1 as usize].fill(polygon.color);
+    }
+    assert!(drawn.pixels() == expected, "the framebuffer differs from the spans of {polygon:?}");
 }
 
 fn corpus_hash() -> u64 {

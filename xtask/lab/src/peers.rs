@@ -165,31 +165,33 @@ fn triangle(polygon: &Polygon) -> Option<Styled<Triangle, PrimitiveStyle<Gray8>>
     )
 }
 
-fn draw_triangle(shape: &Styled<Triangle, PrimitiveStyle<Gray8>>, sink: &mut dyn SpanSink) {
+/// Draws `shape` into `sink`; timed into a [`Framebuffer`], whose store is
+/// then inlined as it is into our methods.
+fn draw_triangle<S: SpanSink + ?Sized>(shape: &Styled<Triangle, PrimitiveStyle<Gray8>>, sink: &mut S) {
     let Ok(()) = shape.draw(&mut SpanTarget { sink });
 }
 
 /// An embedded-graphics draw target over a [`SpanSink`]: rows of a solid
 /// rectangle become spans, single pixels one-pixel spans. As the
 /// `DrawTarget` contract asks, whatever falls outside is dropped.
-struct SpanTarget<'a> {
-    sink: &'a mut dyn SpanSink,
+struct SpanTarget<'a, S: SpanSink + ?Sized> {
+    sink: &'a mut S,
 }
 
-impl SpanTarget<'_> {
+impl<S: SpanSink + ?Sized> SpanTarget<'_, S> {
     fn screen(&self) -> Rectangle {
         let size = self.sink.size();
         Rectangle::new(embedded_graphics::geometry::Point::zero(), Size::new(size.width as u32, size.height as u32))
     }
 }
 
-impl Dimensions for SpanTarget<'_> {
+impl<S: SpanSink + ?Sized> Dimensions for SpanTarget<'_, S> {
     fn bounding_box(&self) -> Rectangle {
         self.screen()
     }
 }
 
-impl DrawTarget for SpanTarget<'_> {
+impl<S: SpanSink + ?Sized> DrawTarget for SpanTarget<'_, S> {
     type Color = Gray8;
     type Error = core::convert::Infallible;
 

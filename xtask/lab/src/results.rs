@@ -69,8 +69,8 @@ pub struct Row {
     pub pixels_per_second: Option<f64>,
     /// Time over the memset bound's on the same polygons.
     pub time_vs_memset: Option<f64>,
-    /// Time over the span-write bound's on the same polygons.
-    pub time_vs_span_write: Option<f64>,
+    /// Time over the store bound's on the same polygons.
+    pub time_vs_store: Option<f64>,
     pub wrong_pixels: Option<u64>,
     pub wrong_pixels_own: Option<u64>,
     pub overdraw: Option<u64>,
@@ -170,7 +170,7 @@ impl Results {
             ns_per_polygon: ns,
             pixels_per_second: ns.map(|ns| timed_pixels as f64 / (ns * timed as f64) * 1e9),
             time_vs_memset: ratio(ns, Bound::Memset),
-            time_vs_span_write: ratio(ns, Bound::SpanWrite),
+            time_vs_store: ratio(ns, Bound::Store),
             wrong_pixels: None,
             wrong_pixels_own: None,
             overdraw: None,

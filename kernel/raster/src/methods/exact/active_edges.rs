@@ -25,7 +25,11 @@ use super::monotone::span_rows;
 
 /// Fills `polygon` by its fill rule. Refuses only when memory for the edge
 /// tables cannot be had.
-pub(crate) fn fill_active_edges(polygon: &Polygon, size: Size, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+pub(crate) fn fill_active_edges<S: SpanSink + ?Sized>(
+    polygon: &Polygon,
+    size: Size,
+    sink: &mut S,
+) -> Result<(), Refusal> {
     let mut edges = edge_table(polygon, size)?;
     edges.sort_unstable_by_key(|edge| edge.rows.start);
     let mut active: Vec<ActiveEdge> = Vec::new();
@@ -33,8 +37,8 @@ pub(crate) fn fill_active_edges(polygon: &Polygon, size: Size, sink: &mut dyn Sp
     let mut sorter = Sorter::for_edges(edges.len(), size.width)?;
     let target = Target { color: polygon.color, width: size.width };
     match polygon.rule {
-        FillRule::EvenOdd => walk::<false>(&edges, &mut active, &mut sorter, target, sink),
-        FillRule::NonZero => walk::<true>(&edges, &mut active, &mut sorter, target, sink),
+        FillRule::EvenOdd => walk::<false, _>(&edges, &mut active, &mut sorter, target, sink),
+        FillRule::NonZero => walk::<true, _>(&edges, &mut active, &mut sorter, target, sink),
     }
     Ok(())
 }
@@ -47,12 +51,12 @@ struct Target {
 }
 
 /// Walks the rows of the edge table, top down. `NON_ZERO` picks the rule.
-fn walk<const NON_ZERO: bool>(
+fn walk<const NON_ZERO: bool, S: SpanSink + ?Sized>(
     edges: &[TableEdge],
     active: &mut Vec<ActiveEdge>,
     sorter: &mut Sorter,
     target: Target,
-    sink: &mut dyn SpanSink,
+    sink: &mut S,
 ) {
     let mut next = 0;
     let mut row = 0;
@@ -89,7 +93,7 @@ fn walk<const NON_ZERO: bool>(
             // Two crossings, outside right of both: whatever their order
             // (they may cross), the inside is the span between them, as on
             // the monotone path.
-            span_rows::<false, true>(row..run_end, &mut a.stepper, &mut b.stepper, target.color, target.width, sink);
+            span_rows::<false, true, _>(row..run_end, &mut a.stepper, &mut b.stepper, target.color, target.width, sink);
             row = run_end;
         }
         let mut sorted = true;
@@ -282,12 +286,12 @@ fn assign_parts<const NON_ZERO: bool>(active: &mut [ActiveEdge]) -> bool {
 /// reaches the right border. Columns are clamped to the target, which
 /// changes no visible pixel's inside test.
 #[inline]
-fn emit_and_step(
+fn emit_and_step<S: SpanSink + ?Sized>(
     row: i64,
     active: &mut [ActiveEdge],
     open_at_end: bool,
     target: Target,
-    sink: &mut dyn SpanSink,
+    sink: &mut S,
 ) -> bool {
     let width = i64::from(target.width);
     // The open run's start, and the run waiting to be emitted: the next one
@@ -324,7 +328,7 @@ fn emit_and_step(
 
 /// Emits a run of `row`, columns in `-1..=width`, unless it is empty.
 #[inline(always)]
-fn emit(row: i64, (start, end): (i64, i64), target: Target, sink: &mut dyn SpanSink) {
+fn emit<S: SpanSink + ?Sized>(row: i64, (start, end): (i64, i64), target: Target, sink: &mut S) {
     if start < end {
         // `row` is a visible row, in `0..height`; `0 <= start < end <= width`.
         sink.span(row as i32, start as i32, end as i32, target.color);

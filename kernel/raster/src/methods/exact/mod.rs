@@ -39,7 +39,8 @@ use monotone::{fill_monotone, fill_triangle};
 
 use crate::classify::{is_monotone, Shape};
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
+use crate::method::{Builtin, Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::MethodId;
 use crate::sink::SpanSink;
 
 /// The exact method.
@@ -60,13 +61,12 @@ static INFO: MethodInfo = MethodInfo {
     heap: Heap::BeyondConvex,
 };
 
-impl Method for Exact {
-    fn info(&self) -> &'static MethodInfo {
-        &INFO
-    }
+impl Builtin for Exact {
+    const ID: MethodId = MethodId::Exact;
+    const INFO: &'static MethodInfo = &INFO;
 
     /// The automatic path: the cheapest exact stage for the polygon's class.
-    fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+    fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
         fill_auto(polygon, sink)
     }
 }
@@ -85,7 +85,7 @@ impl Method for Exact {
 /// pixel lies between them (the edge table drops edges right of the target
 /// whole, so on a row it keeps all of them or the column is past the
 /// target).
-pub fn fill_auto(polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+pub fn fill_auto<S: SpanSink + ?Sized>(polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
     let size = sink.size();
     if size.width <= 0 || size.height <= 0 {
         return Ok(());
@@ -115,6 +115,7 @@ pub fn fill_auto(polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refus
 mod tests {
     use super::*;
     use crate::geometry::Point;
+    use crate::method::Method;
     use crate::methods::test_support::fill;
     use crate::sink::Size;
 
