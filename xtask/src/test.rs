@@ -5,7 +5,7 @@ use std::process::Command;
 use anyhow::Result;
 use harness::build_image;
 use harness::image::IMAGE_ENV;
-use harness::prerequisites::{ensure_qemu, ensure_toolchain};
+use harness::prerequisites::{ensure_cairo, ensure_qemu, ensure_toolchain};
 use harness::process::run_streaming;
 
 use crate::opt::TestOpt;
@@ -13,6 +13,8 @@ use crate::opt::TestOpt;
 pub fn test(opt: &TestOpt) -> Result<()> {
     ensure_toolchain()?;
     ensure_qemu()?;
+    // The lab, a workspace member, builds its Cairo peer against libcairo.
+    ensure_cairo()?;
     let image = build_image()?;
     run_streaming(test_command(&opt.cargo_args).env(IMAGE_ENV, image))
 }

@@ -12,12 +12,9 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use crate::corpus::{Axis, Group};
 use crate::results::{Kind, Results};
 use crate::stats::pareto_front;
-use crate::EXACT;
+use crate::{EXACT, ZERO_FLOOR};
 
 const FONT: &str = "sans-serif";
-
-/// Error rates below this are drawn on the floor of the log axis, as 0.
-const ZERO_FLOOR: f64 = 1e-4;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Chart {
@@ -103,11 +100,17 @@ fn contenders(results: &Results) -> Vec<(&'static str, Kind, RGBColor)> {
         .collect()
 }
 
-/// A marker for a point of `kind`: circles for methods, triangles for peers.
-fn marker<DB: DrawingBackend, C: Clone + 'static>(kind: Kind, at: C, color: RGBColor) -> DynElement<'static, DB, C> {
+/// A marker for a point of `kind`, `size` pixels: circles for methods,
+/// triangles for peers.
+fn marker<DB: DrawingBackend, C: Clone + 'static>(
+    kind: Kind,
+    at: C,
+    size: i32,
+    style: ShapeStyle,
+) -> DynElement<'static, DB, C> {
     match kind {
-        Kind::Peer => TriangleMarker::new(at, 7, color.filled()).into_dyn(),
-        _ => Circle::new(at, 5, color.filled()).into_dyn(),
+        Kind::Peer => TriangleMarker::new(at, size + size / 3, style).into_dyn(),
+        _ => Circle::new(at, size, style).into_dyn(),
     }
 }
 
@@ -143,17 +146,21 @@ where
     DB::ErrorType: 'static,
 {
     let points = results.speed_accuracy_points(ZERO_FLOOR);
+    let means = results.speed_accuracy_means(ZERO_FLOOR);
     let x_range = log_range(points.iter().map(|(_, p)| p.0).chain([1.0]), 1e-3);
     let y_range = log_range(points.iter().map(|(_, p)| p.1), ZERO_FLOOR / 2.0);
     let mut chart = ChartBuilder::on(root)
-        .caption("Speed against accuracy: one point per method per family", (FONT, 26))
+        .caption(
+            "Speed against accuracy: large points are each method's geometric mean over the families, small ones the families",
+            (FONT, 22),
+        )
         .margin(20)
         .x_label_area_size(55)
         .y_label_area_size(80)
         .build_cartesian_2d(x_range.clone().log_scale(), y_range.clone().log_scale())?;
     chart
         .configure_mesh()
-        .x_desc("time per polygon ÷ memset bound's time (log; 1 = writing the pixels alone)")
+        .x_desc("time per polygon ÷ memset bound's time (log; 1 = writing the pixels as one run)")
         .y_desc("wrong pixels, % of exact pixels (log; bottom row = none)")
         .x_label_formatter(&|v| compact(*v))
         .y_label_formatter(&|v| if *v <= ZERO_FLOOR * 1.01 { "0".to_string() } else { compact(*v) })
@@ -166,29 +173,77 @@ where
         .label("memset bound (x = 1)")
         .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], BLACK.stroke_width(2)));
 
-    let coordinates: Vec<(f64, f64)> = points.iter().map(|(_, p)| *p).collect();
+    let colors = contenders(results);
+    let color_of = |name: &str| colors.iter().find(|c| c.0 == name).map_or(BLACK, |c| c.2);
+    // Families first, small and faint, under everything else.
+    for (row, p) in &points {
+        chart.draw_series([marker::<DB, _>(row.kind, *p, 3, color_of(row.name).mix(0.3).filled())])?;
+    }
+
+    // The front is the edge of the region its points dominate: down from
+    // the top to the first, across and down point by point, on to the right.
+    let coordinates: Vec<(f64, f64)> = means.iter().map(|m| m.at).collect();
     let front: Vec<(f64, f64)> = pareto_front(&coordinates).into_iter().map(|i| coordinates[i]).collect();
     let mut staircase = Vec::new();
-    for (i, &(x, y)) in front.iter().enumerate() {
-        staircase.push((x, y));
-        if let Some(&(next_x, _)) = front.get(i + 1) {
+    if let (Some(first), Some(last)) = (front.first(), front.last()) {
+        staircase.push((first.0, y_range.end));
+        for (i, &(x, y)) in front.iter().enumerate() {
+            staircase.push((x, y));
+            let next_x = front.get(i + 1).map_or(x_range.end, |next| next.0);
             staircase.push((next_x, y));
         }
+        staircase.push((x_range.end, last.1));
     }
+    let front_style = RGBColor(90, 90, 90).stroke_width(3);
     chart
-        .draw_series(LineSeries::new(staircase, RGBColor(120, 120, 120).stroke_width(2)))?
-        .label("Pareto front")
-        .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], RGBColor(120, 120, 120).stroke_width(2)));
+        .draw_series(DashedLineSeries::new(staircase, 12, 6, front_style))?
+        .label("Pareto front of the means: nothing right of or above it beats a point on it")
+        .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], front_style));
 
-    for (name, kind, color) in contenders(results) {
-        let mine: Vec<(f64, f64)> = points.iter().filter(|(r, _)| r.name == name).map(|(_, p)| *p).collect();
-        if mine.is_empty() {
-            continue;
-        }
+    let key = RGBColor(110, 110, 110);
+    for (kind, size, text) in [
+        (Kind::Method, 8, "method, geometric mean over the families"),
+        (Kind::Peer, 8, "peer library, the same (over the families it takes)"),
+        (Kind::Method, 3, "one family (faint)"),
+    ] {
         chart
-            .draw_series(mine.into_iter().map(|p| marker::<DB, _>(kind, p, color)))?
-            .label(if kind == Kind::Peer { format!("{name} (peer)") } else { name.to_string() })
-            .legend(move |(x, y)| marker::<DB, _>(kind, (x + 9, y), color));
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())?
+            .label(text)
+            .legend(move |(x, y)| marker::<DB, _>(kind, (x + 9, y), size, key.filled()));
+    }
+
+    // Every large marker, then every name, is a box a name must not cover.
+    let centres: Vec<(i32, i32)> = means.iter().map(|m| chart.backend_coord(&m.at)).collect();
+    let mut taken: Vec<(i32, i32, i32, i32)> = centres.iter().map(|&(x, y)| (x - 12, y - 12, x + 12, y + 12)).collect();
+    for (mean, &(px, py)) in means.iter().zip(&centres) {
+        let color = color_of(mean.name);
+        chart.draw_series([
+            marker::<DB, _>(mean.kind, mean.at, 11, BLACK.filled()),
+            marker::<DB, _>(mean.kind, mean.at, 9, color.filled()),
+        ])?;
+        let label = match mean.kind {
+            Kind::Peer => format!("{} ({} families)", mean.name, mean.families),
+            _ => mean.name.to_string(),
+        };
+        // The nearest place right or left of the point, going out up and
+        // down, where the name covers no marker and no name; a line leads
+        // to it from the point when it had to move.
+        let width = 9 * label.chars().count() as i32;
+        let free = |(x, y): (i32, i32)| {
+            taken.iter().all(|&(x0, y0, x1, y1)| x + width <= x0 || x1 <= x || y + 9 <= y0 || y1 <= y - 9)
+        };
+        let candidates = (0..16).flat_map(|k: i32| {
+            let dy = if k % 2 == 0 { k / 2 * 20 } else { -(k / 2 + 1) * 20 };
+            [(px + 16, py + dy), (px - 16 - width, py + dy)]
+        });
+        let (x, y) = candidates.clone().find(|&at| free(at)).unwrap_or((px + 16, py));
+        taken.push((x, y - 9, x + width, y + 9));
+        if y != py {
+            let end = if x > px { x - 2 } else { x + width + 2 };
+            root.draw(&PathElement::new([(px, py), (end, y)], BLACK.mix(0.5).stroke_width(1)))?;
+        }
+        let text = TextStyle::from((FONT, 16).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
+        root.draw(&Text::new(label, (x, y), text))?;
     }
     draw_legend(&mut chart, SeriesLabelPosition::LowerRight, 15)?;
     Ok(())

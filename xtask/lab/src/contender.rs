@@ -48,6 +48,7 @@ impl Contender {
             Contender::Method(m) => format!("{}; {}", m.info().numeric, m.info().convention.summary),
             Contender::Peer(p) => match p {
                 Peer::TinySkia => "f32 path, 26.6 fixed-point edges; pixel centres".to_string(),
+                Peer::Cairo => "f64 path, 24.8 fixed-point edges; pixel centres".to_string(),
                 Peer::EmbeddedGraphics => "whole-pixel vertices; i32 scanline intersections, edges drawn".to_string(),
             },
         }

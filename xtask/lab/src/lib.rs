@@ -1,8 +1,8 @@
 //! The polygon-fill lab (`cargo xtask lab`): every method of `raster`, the
-//! peers (tiny-skia, embedded-graphics) and two bounds (memset, span write)
-//! on one seeded corpus; accuracy against `raster::reference`, speed in
-//! wall-clock time; results.json, report.md and four charts under the
-//! output directory.
+//! peers (tiny-skia, Cairo, embedded-graphics) and three bounds (memset,
+//! span stores, the dyn-sink replay) on one seeded corpus; accuracy against
+//! `raster::reference`, speed in wall-clock time; results.json, report.md
+//! and the charts under the output directory.
 //!
 //! Speed is measured, never asserted. What fails a run is a missing
 //! results.json or any wrong pixel, overdraw, gap or failure of `exact`.
@@ -39,6 +39,10 @@ use timing::Timing;
 
 /// The method held to zero wrong pixels, overdraw, gaps and failures.
 pub const EXACT: &str = "exact";
+
+/// Error rates (in %) below this count as none where rates are averaged in
+/// logarithms or drawn on a log axis.
+pub const ZERO_FLOOR: f64 = 1e-4;
 
 /// What `cargo xtask lab` asks for.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -8,7 +8,7 @@ use std::fmt::Write;
 use crate::corpus::Group;
 use crate::results::{Kind, Results, Row};
 use crate::stats::pareto_front;
-use crate::EXACT;
+use crate::{EXACT, ZERO_FLOOR};
 
 /// The whole report.
 pub fn markdown(results: &Results) -> String {
@@ -242,16 +242,22 @@ fn measure_table(
 }
 
 fn pareto_list(out: &mut String, results: &Results) {
-    let points = results.speed_accuracy_points(0.0);
-    let coordinates: Vec<(f64, f64)> = points.iter().map(|(_, p)| *p).collect();
+    let means = results.speed_accuracy_means(ZERO_FLOOR);
+    let coordinates: Vec<(f64, f64)> = means.iter().map(|m| m.at).collect();
     let front: Vec<String> = pareto_front(&coordinates)
         .into_iter()
         .map(|i| {
-            let (row, (x, y)) = points[i];
-            format!("{} on {} ({x:.1}× memset, {y:.3}% wrong)", row.name, row.family)
+            let (x, y) = means[i].at;
+            let error = if y <= ZERO_FLOOR { "no wrong pixel".to_string() } else { format!("{y:.3}% wrong") };
+            format!("{} ({x:.1}× memset, {error}, over {} families)", means[i].name, means[i].families)
         })
         .collect();
-    let _ = writeln!(out, "## Pareto front of speed_vs_accuracy\n\n{}\n", front.join("; "));
+    let _ = writeln!(
+        out,
+        "## Pareto front of speed_vs_accuracy\n\nOf the methods' and peers' geometric means over the everyday \
+         families: {}\n",
+        front.join("; ")
+    );
 }
 
 fn group(g: Group) -> &'static str {
