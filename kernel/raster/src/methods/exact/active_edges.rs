@@ -21,7 +21,7 @@ use crate::method::Refusal;
 use crate::sink::{Size, SpanSink};
 
 use super::edge::{first_sample_at_or_after, visible_column, visible_rows, EdgeStepper};
-use super::monotone::span_rows;
+use super::monotone::{columns_fit, span_rows};
 
 /// Fills `polygon` by its fill rule. Refuses only when memory for the edge
 /// tables cannot be had.
@@ -30,15 +30,18 @@ pub(crate) fn fill_active_edges<S: SpanSink + ?Sized>(
     size: Size,
     sink: &mut S,
 ) -> Result<(), Refusal> {
-    let mut edges = edge_table(polygon, size)?;
+    let (mut edges, clip) = edge_table(polygon, size)?;
     edges.sort_unstable_by_key(|edge| edge.rows.start);
     let mut active: Vec<ActiveEdge> = Vec::new();
     active.try_reserve_exact(edges.len()).map_err(|_| Refusal::OutOfMemory)?;
     let mut sorter = Sorter::for_edges(edges.len(), size.width)?;
     let target = Target { color: polygon.color, width: size.width };
-    match polygon.rule {
-        FillRule::EvenOdd => walk::<false, _>(&edges, &mut active, &mut sorter, target, sink),
-        FillRule::NonZero => walk::<true, _>(&edges, &mut active, &mut sorter, target, sink),
+    let (edges, active, sorter) = (&edges[..], &mut active, &mut sorter);
+    match (polygon.rule, clip) {
+        (FillRule::EvenOdd, false) => walk::<false, false, _>(edges, active, sorter, target, sink),
+        (FillRule::EvenOdd, true) => walk::<false, true, _>(edges, active, sorter, target, sink),
+        (FillRule::NonZero, false) => walk::<true, false, _>(edges, active, sorter, target, sink),
+        (FillRule::NonZero, true) => walk::<true, true, _>(edges, active, sorter, target, sink),
     }
     Ok(())
 }
@@ -50,8 +53,9 @@ struct Target {
     width: i32,
 }
 
-/// Walks the rows of the edge table, top down. `NON_ZERO` picks the rule.
-fn walk<const NON_ZERO: bool, S: SpanSink + ?Sized>(
+/// Walks the rows of the edge table, top down. `NON_ZERO` picks the rule;
+/// without `CLIP` every crossing column lies in the target's `0..=width`.
+fn walk<const NON_ZERO: bool, const CLIP: bool, S: SpanSink + ?Sized>(
     edges: &[TableEdge],
     active: &mut Vec<ActiveEdge>,
     sorter: &mut Sorter,
@@ -93,7 +97,7 @@ fn walk<const NON_ZERO: bool, S: SpanSink + ?Sized>(
             // Two crossings, outside right of both: whatever their order
             // (they may cross), the inside is the span between them, as on
             // the monotone path.
-            span_rows::<false, true, _>(row..run_end, &mut a.stepper, &mut b.stepper, target.color, target.width, sink);
+            span_rows::<false, CLIP, _>(row..run_end, &mut a.stepper, &mut b.stepper, target.color, target.width, sink);
             row = run_end;
         }
         let mut sorted = true;
@@ -102,7 +106,7 @@ fn walk<const NON_ZERO: bool, S: SpanSink + ?Sized>(
                 sorter.sort(active, target.width);
                 open_at_end = assign_parts::<NON_ZERO>(active);
             }
-            sorted = emit_and_step(row, active, open_at_end, target, sink);
+            sorted = emit_and_step::<CLIP, _>(row, active, open_at_end, target, sink);
             row += 1;
         }
         // Drop the edges that ended, keeping the order of the rest.
@@ -148,11 +152,14 @@ enum Part {
 }
 
 /// Every edge that meets a visible row and can lie left of a visible pixel
-/// centre. Horizontal edges never meet a row; an edge whose leftmost point
-/// is right of the last centre counts for no visible pixel.
-fn edge_table(polygon: &Polygon, size: Size) -> Result<Vec<TableEdge>, Refusal> {
+/// centre, and whether some crossing column may lie outside the target's
+/// `0..=width` (then columns are clamped). Horizontal edges never meet a
+/// row; an edge whose leftmost point is right of the last centre counts for
+/// no visible pixel.
+fn edge_table(polygon: &Polygon, size: Size) -> Result<(Vec<TableEdge>, bool), Refusal> {
     let mut edges = Vec::new();
     edges.try_reserve_exact(polygon.vertex_count()).map_err(|_| Refusal::OutOfMemory)?;
+    let (mut min_x, mut max_x) = (i32::MAX, i32::MIN);
     for contour in &polygon.contours {
         let following = contour.iter().cycle().skip(1);
         for (&from, &to) in contour.iter().zip(following) {
@@ -161,10 +168,11 @@ fn edge_table(polygon: &Polygon, size: Size) -> Result<Vec<TableEdge>, Refusal> 
             let leftmost_column = first_sample_at_or_after(top.x.min(bottom.x).into());
             if !rows.is_empty() && leftmost_column < i64::from(size.width) {
                 edges.push(TableEdge { top, bottom, winding, rows });
+                (min_x, max_x) = (min_x.min(top.x.min(bottom.x)), max_x.max(top.x.max(bottom.x)));
             }
         }
     }
-    Ok(edges)
+    Ok((edges, !columns_fit(min_x, max_x, size.width)))
 }
 
 /// Sorts the active edges by visible column (the column clamped to the
@@ -285,8 +293,8 @@ fn assign_parts<const NON_ZERO: bool>(active: &mut [ActiveEdge]) -> bool {
 /// maximal runs. A run still open after the last crossing (`open_at_end`)
 /// reaches the right border. Columns are clamped to the target, which
 /// changes no visible pixel's inside test.
-#[inline]
-fn emit_and_step<S: SpanSink + ?Sized>(
+#[inline(always)]
+fn emit_and_step<const CLIP: bool, S: SpanSink + ?Sized>(
     row: i64,
     active: &mut [ActiveEdge],
     open_at_end: bool,
@@ -298,8 +306,10 @@ fn emit_and_step<S: SpanSink + ?Sized>(
     // may touch it. `-1`, left of every visible column, stands for none.
     let (mut start, mut pending) = (0, (-1, -1));
     let (mut sorted, mut previous) = (true, 0);
+    // Without `CLIP`, columns lie in `0..=width` already.
+    let visible = |column: i64| if CLIP { column.clamp(0, width) } else { column };
     for edge in active.iter_mut() {
-        let column = edge.stepper.column.clamp(0, width);
+        let column = visible(edge.stepper.column);
         match edge.part {
             Part::Opens => start = column,
             Part::Closes if pending.1 == start => pending.1 = column,
@@ -310,7 +320,7 @@ fn emit_and_step<S: SpanSink + ?Sized>(
             Part::Neither => {}
         }
         edge.stepper.step();
-        let next = edge.stepper.column.clamp(0, width);
+        let next = visible(edge.stepper.column);
         sorted &= previous <= next;
         previous = next;
     }

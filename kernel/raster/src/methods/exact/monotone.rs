@@ -120,7 +120,7 @@ pub(crate) fn fill_monotone<S: SpanSink + ?Sized>(contour: &[Point], color: u8, 
 /// the target's `0..=width`, so that no column needs clamping: a crossing
 /// lies on its edge, and [`first_sample_at_or_after`] keeps order.
 #[inline(always)]
-fn columns_fit(min_x: i32, max_x: i32, width: i32) -> bool {
+pub(super) fn columns_fit(min_x: i32, max_x: i32, width: i32) -> bool {
     first_sample_at_or_after(min_x.into()) >= 0 && first_sample_at_or_after(max_x.into()) <= i64::from(width)
 }
 
