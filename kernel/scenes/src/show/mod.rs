@@ -257,6 +257,32 @@ impl Stage {
         }
     }
 
+    /// Draws frame `frame` of a shaded entry with `method`, modelling what
+    /// `modelling` asks; `None` for an entry that is not shaded. With
+    /// [`Modelling::Needed`] it is [`Stage::draw`]; with
+    /// [`Modelling::Forced`] the same picture costs four interpolated
+    /// attributes and a depth buffer (see the `shaded` module).
+    pub fn draw_modelled(
+        &mut self,
+        entry: &Entry,
+        frame: u32,
+        method: &dyn Method,
+        modelling: Modelling,
+    ) -> Option<DrawReport> {
+        let shaded = match entry.kind {
+            Kind::WgtGouraud => shaded::Shaded::Gouraud,
+            Kind::WgtTexture => shaded::Shaded::Texture,
+            Kind::PendletonDepth => shaded::Shaded::Depth,
+            Kind::Still(_) | Kind::LamotheRotate | Kind::Race => return None,
+        };
+        if modelling == Modelling::Needed {
+            return Some(self.draw(entry, frame, method));
+        }
+        sink::clear(&mut self.target, 0);
+        let (scratch, depth, target) = (&mut self.scratch, &mut self.depth, &mut self.target);
+        Some(shaded::overmodelled(shaded, entry.wrap(frame), method, scratch, depth, target))
+    }
+
     /// Draws the labels over the frame: the entry and frame number at the
     /// top, the method and the cycles its draw took at the bottom.
     pub fn label(&mut self, entry: &Entry, frame: u32, method: &dyn Method, cycles: u64) {
@@ -273,6 +299,17 @@ impl Stage {
     pub fn stray_spans(&self) -> usize {
         self.target.stray_spans()
     }
+}
+
+/// How much a shaded frame models ("model no more than a scene needs",
+/// measured by the lab).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Modelling {
+    /// What the entry needs: flat shading one attribute, texture two, the
+    /// Z-buffered scene two and its depth buffer.
+    Needed,
+    /// Four interpolated attributes and a depth buffer, whatever it needs.
+    Forced,
 }
 
 /// What one animation's `draw` puts on a fresh screen with fresh scratch.

@@ -198,16 +198,26 @@ fn solids(frame: u32) -> [Solid; 3] {
     [wide, tall, sloping]
 }
 
+/// The Z test at pixel `(x, y)` of `depth`, a row-major buffer `width`
+/// values a row: whether `z` is nearer than what is there, which it then
+/// replaces. Pixels beyond the buffer's end never pass.
+fn nearer(depth: &mut [i32], width: i32, x: i32, y: i32, z: i32) -> bool {
+    let Some(nearest) = usize::try_from(y * width + x).ok().and_then(|i| depth.get_mut(i)) else {
+        return false;
+    };
+    let passes = z < *nearest;
+    if passes {
+        *nearest = z;
+    }
+    passes
+}
+
 /// Draws `solids` with the Z test against `depth`, a row-major buffer
 /// `width` values a row (pixels beyond its end are left alone).
 fn draw_solids(solids: &[Solid], painter: &mut Painter, depth: &mut [i32], width: i32) {
     for solid in solids {
         let mut shade = |x: i32, y: i32, &[z, level]: &[i32; 2]| {
-            let nearest = depth.get_mut(usize::try_from(y * width + x).ok()?)?;
-            (z < *nearest).then(|| {
-                *nearest = z;
-                solid.ramp.color(level >> LEVEL_BITS)
-            })
+            nearer(depth, width, x, y, z).then(|| solid.ramp.color(level >> LEVEL_BITS))
         };
         match &solid.shape {
             Shape::Triangle(corners) => painter.triangle(corners, &mut shade),
@@ -232,13 +242,75 @@ pub(super) fn depth(
     painter.report()
 }
 
+/// Attributes a frame carries when more is modelled than it needs.
+const OVERMODELLED: usize = 4;
+
+/// `v` with its attributes followed by zeros, up to [`OVERMODELLED`].
+fn padded<const N: usize>(v: Vertex<N>) -> Vertex<OVERMODELLED> {
+    let mut attrs = [0; OVERMODELLED];
+    attrs[..N].copy_from_slice(&v.attrs);
+    Vertex::new(v.at, attrs)
+}
+
+/// Frame `frame` of a shaded entry drawn with more modelled than it needs,
+/// to measure what that costs: four interpolated attributes where it uses
+/// one or two, and a depth buffer, reset and tested at every pixel, where
+/// it has none (the Gouraud and texture entries take depth 0 everywhere,
+/// so every pixel passes and the picture is the one they draw without).
+pub(super) fn overmodelled(
+    entry: Shaded,
+    frame: u32,
+    method: &dyn Method,
+    scratch: &mut Scratch,
+    depth: &mut [i32],
+    target: &mut Framebuffer,
+) -> DrawReport {
+    depth.fill(i32::MAX);
+    let width = target.size().width;
+    let mut painter = Painter::new(method, scratch, target);
+    match entry {
+        Shaded::Gouraud => {
+            let corners = gouraud_triangle(frame).map(padded);
+            painter.triangle(&corners, &mut |x, y, &[level, z, _, _]: &[i32; OVERMODELLED]| {
+                nearer(depth, width, x, y, z).then(|| Ramp::Gold.color(level >> LEVEL_BITS))
+            });
+        }
+        Shaded::Texture => {
+            let corners = texture_quad(frame).map(padded);
+            painter.quad(&corners, &mut |x, y, &[u, v, z, _]: &[i32; OVERMODELLED]| {
+                nearer(depth, width, x, y, z).then(|| texel(u >> TEXEL_BITS, v >> TEXEL_BITS))
+            });
+        }
+        Shaded::Depth => {
+            for solid in solids(frame) {
+                let mut shade = |x: i32, y: i32, &[z, level, _, _]: &[i32; OVERMODELLED]| {
+                    nearer(depth, width, x, y, z).then(|| solid.ramp.color(level >> LEVEL_BITS))
+                };
+                match &solid.shape {
+                    Shape::Triangle(corners) => painter.triangle(&corners.map(padded), &mut shade),
+                    Shape::Quad(corners) => painter.quad(&corners.map(padded), &mut shade),
+                }
+            }
+        }
+    }
+    painter.report()
+}
+
+/// The shaded entries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Shaded {
+    Gouraud,
+    Texture,
+    Depth,
+}
+
 #[cfg(test)]
 mod tests {
     use alloc::vec;
     use alloc::vec::Vec;
 
     use super::*;
-    use crate::show::{entry, Entry, Stage, RAMP_BASE, RAMP_LEVELS};
+    use crate::show::{entry, Entry, Modelling, Stage, RAMP_BASE, RAMP_LEVELS};
     use raster::coverage::CoverageSink;
     use raster::geometry::Polygon;
     use raster::methods::exact::Exact;
@@ -255,6 +327,23 @@ mod tests {
         let report = stage.draw(entry, frame, method);
         assert_eq!(report.refused, 0, "{} frame {frame}: {report:?}", entry.name);
         stage.pixels().to_vec()
+    }
+
+    /// Modelling more than needed costs time, not pixels: four attributes
+    /// and a depth buffer draw each shaded frame as it is drawn without.
+    #[test]
+    fn overmodelled_frames_are_the_frames_they_overmodel() {
+        let mut stage = Stage::new();
+        for entry in entries() {
+            for frame in [0, 37, entry.frames - 1] {
+                let needed = frame_of(&mut stage, entry, frame, &Exact);
+                let report = stage.draw_modelled(entry, frame, &Exact, Modelling::Forced).unwrap();
+                assert_eq!(report.refused, 0, "{} frame {frame}", entry.name);
+                assert!(stage.pixels() == needed.as_slice(), "{} frame {frame} differs", entry.name);
+            }
+        }
+        let still = entry("abrash38-1").unwrap();
+        assert_eq!(stage.draw_modelled(still, 0, &Exact, Modelling::Forced), None);
     }
 
     /// The ramp a palette index belongs to, if any.
