@@ -101,6 +101,9 @@ pub enum Refusal {
     /// Memory for the method's tables could not be had (Abrash's `malloc`
     /// failure path).
     OutOfMemory,
+    /// The polygon is not of the class a path of a method fills (one of
+    /// `exact`'s [`Path`](crate::methods::exact::Path)s asked for alone).
+    OutsideClass,
 }
 
 impl Refusal {
@@ -110,6 +113,7 @@ impl Refusal {
             Refusal::OutOfRange => "coordinates out of the method's range",
             Refusal::TooManyVertices => "too many vertices",
             Refusal::OutOfMemory => "out of memory",
+            Refusal::OutsideClass => "outside the path's class",
         }
     }
 }
