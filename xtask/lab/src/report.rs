@@ -25,6 +25,7 @@ pub fn markdown(results: &Results) -> String {
     corpus_table(&mut out, results);
     contender_table(&mut out, results);
     exact_goals(&mut out, results);
+    modelling_tables(&mut out, results);
     classic_failures(&mut out, results);
     measure_table(&mut out, results, "Speed: ns per polygon", true, |r| r.ns_per_polygon.map(duration));
     measure_table(&mut out, results, "Speed: time over the memset bound's", false, |r| {
@@ -156,6 +157,82 @@ impl std::fmt::Display for Goal {
             Goal::AtMost(goal) => write!(f, "≤ {goal:.1}×"),
         }
     }
+}
+
+/// What modelling costs: each family through each of exact's paths, fill_auto
+/// and classification alone; then the show's shaded entries.
+fn modelling_tables(out: &mut String, results: &Results) {
+    let _ = writeln!(
+        out,
+        "## What modelling costs\n\nEach family drawn by `{EXACT}` through each of its paths alone (a path refuses \
+         polygons outside its class), by `fill_auto` (its classification, then the path it picks), and classified \
+         alone: `dispatch` is `fill_auto`'s own classification, `classify` is `raster::classify` (every class, \
+         simplicity included). Cells: time per polygon, time over the cheapest path's that takes the whole family, \
+         heap allocations per polygon; ← marks the path `fill_auto` picks, with how many polygons.\n"
+    );
+    let lanes = crate::modelling::Lane::ALL.map(|lane| lane.name());
+    let _ = writeln!(out, "| family | {} |\n|---|{}", lanes.join(" | "), "---:|".repeat(lanes.len()));
+    let mut slower = Vec::new();
+    for f in &results.families {
+        let row = |lane: &str| results.modelling.iter().find(|r| r.family == f.name && r.lane == lane);
+        let auto = row("fill_auto");
+        let cells: Vec<String> = lanes
+            .iter()
+            .map(|&lane| {
+                let Some(r) = row(lane) else { return "–".to_string() };
+                let mut cell = match (r.ns_per_polygon, r.refusals) {
+                    (None, Some(refused)) => format!("refuses {}", count(refused)),
+                    (None, None) => "–".to_string(),
+                    (Some(ns), _) => duration(ns),
+                };
+                if let Some(ratio) = r.time_vs_cheapest {
+                    let _ = write!(cell, " ({ratio:.2}×)");
+                }
+                if lane == "dispatch" {
+                    if let (Some(ns), Some(total)) = (r.ns_per_polygon, auto.and_then(|a| a.ns_per_polygon)) {
+                        let _ = write!(cell, " ({:.0}% of fill_auto)", 100.0 * ns / total);
+                    }
+                }
+                if let Some(allocations) = r.allocations_per_polygon {
+                    let _ = write!(cell, ", {allocations:.1} alloc");
+                }
+                if let Some(chosen) = r.chosen_by_fill_auto.filter(|&n| n > 0) {
+                    let _ = write!(cell, " ← {}", count(chosen));
+                }
+                cell
+            })
+            .collect();
+        let _ = writeln!(out, "| {} | {} |", f.name, cells.join(" | "));
+        if let Some(ratio) = auto.and_then(|a| a.time_vs_cheapest).filter(|&r| r > 1.05) {
+            slower.push(format!("{} ({ratio:.2}×)", f.name));
+        }
+    }
+    if slower.is_empty() {
+        let _ = writeln!(out, "\n`fill_auto` is within 5% of the cheapest path on every family.\n");
+    } else {
+        let _ =
+            writeln!(out, "\n`fill_auto` is more than 5% slower than the cheapest path on: {}.\n", slower.join(", "));
+    }
+    let _ = writeln!(
+        out,
+        "The show's shaded entries, every frame drawn by `{EXACT}`: as they need (one interpolated attribute for \
+         Gouraud, two for the texture, two and a depth buffer for the Z-buffer), and with four attributes and a \
+         depth buffer forced on (the same pictures).\n\n| entry | as needed, per frame | over-modelled, per frame | \
+         over-modelled / needed |\n|---|---:|---:|---:|"
+    );
+    let entries: Vec<&str> = results.show_modelling.iter().map(|r| r.entry).fold(Vec::new(), |mut seen, e| {
+        if !seen.contains(&e) {
+            seen.push(e);
+        }
+        seen
+    });
+    for entry in entries {
+        let row = |m: &str| results.show_modelling.iter().find(|r| r.entry == entry && r.modelling == m);
+        let time = |m: &str| row(m).and_then(|r| r.ns_per_frame).map_or("–".to_string(), duration);
+        let ratio = row("forced").and_then(|r| r.time_vs_needed).map_or("–".to_string(), |x| format!("{x:.2}×"));
+        let _ = writeln!(out, "| {entry} | {} | {} | {ratio} |", time("needed"), time("forced"));
+    }
+    out.push('\n');
 }
 
 /// One sentence per classic method: how far it is from exact under our

@@ -8,6 +8,7 @@ use serde::Serialize;
 use crate::contender::Contender;
 use crate::corpus::{Axis, Family, Group};
 use crate::measure::{Judged, Tally};
+use crate::modelling::{PathRow, ShowRow};
 use crate::spans;
 use crate::timing::{Bound, Speeds};
 
@@ -27,6 +28,11 @@ pub struct Results {
     pub contenders: Vec<ContenderInfo>,
     pub rows: Vec<Row>,
     pub sweeps: Vec<SweepPoint>,
+    /// What modelling costs: exact's paths, fill_auto and classification
+    /// alone, per family.
+    pub modelling: Vec<PathRow>,
+    /// The show's shaded entries as they need and over-modelled.
+    pub show_modelling: Vec<ShowRow>,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -140,7 +146,16 @@ impl Results {
             summary: String::new(),
             sample: None,
         }));
-        Self { seed, quick, families: vec![], contenders: infos, rows: vec![], sweeps: vec![] }
+        Self {
+            seed,
+            quick,
+            families: vec![],
+            contenders: infos,
+            rows: vec![],
+            sweeps: vec![],
+            modelling: vec![],
+            show_modelling: vec![],
+        }
     }
 
     /// Adds what was measured on `family`.
