@@ -3,7 +3,7 @@
 
 mod exact_support;
 
-use exact_support::{any_polygon, polygon_of, prop_assert_matches_reference, Kind, PX, TARGET};
+use exact_support::{any_polygon, nearby_point, polygon_of, prop_assert_matches_reference, Kind, PX, TARGET};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
@@ -76,6 +76,20 @@ proptest! {
         if let Some(path) = choose_path(&polygon) {
             prop_assert!(path.takes(&polygon), "fill_auto chose {} for a polygon outside it", path.name());
         }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// Scribbles of 40 to 120 edges on the small target: rows with a
+    /// crossing for every four columns or more, whose crossings the edge
+    /// table sums per column instead of sorting them.
+    #[test]
+    fn dense_scribbles_match_reference(contour in prop::collection::vec(nearby_point(), 40..120), non_zero: bool) {
+        let rule = if non_zero { raster::FillRule::NonZero } else { raster::FillRule::EvenOdd };
+        let polygon = Polygon { contours: vec![contour], color: 1, rule };
+        prop_assert_matches_reference(exact, &polygon, TARGET)?;
     }
 }
 

@@ -87,28 +87,19 @@ fn walk<const NON_ZERO: bool, const CLIP: bool, S: SpanSink + ?Sized>(
             });
             next += 1;
         }
+        if sorter.tallies(active.len()) {
+            // So many crossings for the width that summing them per column
+            // is cheaper than keeping them sorted; and edges start and end
+            // on most rows, so this goes a row at a time.
+            emit_by_columns::<NON_ZERO, _>(row, active, &mut sorter.windings, target, sink);
+            row += 1;
+            continue;
+        }
         // Every active edge meets `row` and every pending one starts below
         // it, so the run has at least this row.
         let starts = edges.get(next).map_or(i64::MAX, |edge| edge.rows.start);
         let run_end = active.iter().map(|edge| i64::from(edge.end_row)).fold(starts, i64::min);
-        sorter.sort(active, target.width);
-        let mut open_at_end = assign_parts::<NON_ZERO>(active);
-        if let ([a, b], false) = (active.as_mut_slice(), open_at_end) {
-            // Two crossings, outside right of both: whatever their order
-            // (they may cross), the inside is the span between them, as on
-            // the monotone path.
-            span_rows::<false, CLIP, _>(row..run_end, &mut a.stepper, &mut b.stepper, target.color, target.width, sink);
-            row = run_end;
-        }
-        let mut sorted = true;
-        while row < run_end {
-            if !sorted {
-                sorter.sort(active, target.width);
-                open_at_end = assign_parts::<NON_ZERO>(active);
-            }
-            sorted = emit_and_step::<CLIP, _>(row, active, open_at_end, target, sink);
-            row += 1;
-        }
+        row = sorted_run::<NON_ZERO, CLIP, _>(row, run_end, active, sorter, target, sink);
         // Drop the edges that ended, keeping the order of the rest.
         let mut kept = 0;
         for i in 0..active.len() {
@@ -118,6 +109,93 @@ fn walk<const NON_ZERO: bool, const CLIP: bool, S: SpanSink + ?Sized>(
             }
         }
         active.truncate(kept);
+    }
+}
+
+/// Fills the rows `row..run_end`, over which no edge starts or ends, with
+/// the crossings kept sorted; returns `run_end`.
+fn sorted_run<const NON_ZERO: bool, const CLIP: bool, S: SpanSink + ?Sized>(
+    mut row: i64,
+    run_end: i64,
+    active: &mut Vec<ActiveEdge>,
+    sorter: &mut Sorter,
+    target: Target,
+    sink: &mut S,
+) -> i64 {
+    sorter.sort(active, target.width);
+    let mut open_at_end = assign_parts::<NON_ZERO>(active);
+    if let ([a, b], false) = (active.as_mut_slice(), open_at_end) {
+        // Two crossings, outside right of both: whatever their order
+        // (they may cross), the inside is the span between them, as on
+        // the monotone path.
+        span_rows::<false, CLIP, _>(row..run_end, &mut a.stepper, &mut b.stepper, target.color, target.width, sink);
+        row = run_end;
+    }
+    let mut sorted = true;
+    while row < run_end {
+        if !sorted {
+            sorter.sort(active, target.width);
+            open_at_end = assign_parts::<NON_ZERO>(active);
+        }
+        sorted = emit_and_step::<CLIP, _>(row, active, open_at_end, target, sink);
+        row += 1;
+    }
+    row
+}
+
+/// Emits the inside runs of `row` without sorting the crossings, steps
+/// every edge to the next row and drops the ones that end (out of order:
+/// the sorted path sorts whatever it is given): each crossing's winding is
+/// added at its visible column in `windings` (`width + 1` of them), and the
+/// running sum from the left is each pixel's winding number.
+/// `O(edges + width)` a row; the runs are the maximal ones, left to right,
+/// as [`emit_and_step`]'s.
+fn emit_by_columns<const NON_ZERO: bool, S: SpanSink + ?Sized>(
+    row: i64,
+    active: &mut Vec<ActiveEdge>,
+    windings: &mut [i32],
+    target: Target,
+    sink: &mut S,
+) {
+    windings.fill(0);
+    let mut i = 0;
+    while let Some(edge) = active.get_mut(i) {
+        windings[visible_column(edge.stepper.column, target.width) as usize] += i32::from(edge.winding);
+        if i64::from(edge.end_row) > row + 1 {
+            edge.stepper.step();
+            i += 1;
+        } else {
+            // The last edge takes its place and is seen next.
+            active.swap_remove(i);
+        }
+    }
+    // Which pixels are inside, 64 a word, without a branch per pixel; then
+    // one step per change of state, where a run opens or closes.
+    let (mut sum, mut inside, mut start) = (0i32, false, 0i64);
+    for (word, chunk) in windings[..target.width as usize].chunks(64).enumerate() {
+        let mut bits = 0u64;
+        for (i, &winding) in chunk.iter().enumerate() {
+            sum += winding;
+            bits |= u64::from(is_inside::<NON_ZERO>(i64::from(sum))) << i;
+        }
+        // Bit `i` set where pixel `i` differs from the one before it.
+        let mut changes = bits ^ (bits << 1 | u64::from(inside));
+        if chunk.len() < 64 {
+            changes &= (1 << chunk.len()) - 1;
+        }
+        while changes != 0 {
+            let x = (word * 64) as i64 + i64::from(changes.trailing_zeros());
+            if inside {
+                emit(row, (start, x), target, sink);
+            } else {
+                start = x;
+            }
+            inside = !inside;
+            changes &= changes - 1;
+        }
+    }
+    if inside {
+        emit(row, (start, i64::from(target.width)), target, sink);
     }
 }
 
@@ -190,8 +268,19 @@ fn edge_table(polygon: &Polygon, size: Size) -> Result<(Vec<TableEdge>, bool), R
 struct Sorter {
     /// Per visible column, edges at it, then where the next of them goes.
     counts: Vec<u32>,
+    /// Per visible column, the windings of the crossings at it, for rows
+    /// with so many crossings that they are summed rather than sorted.
+    windings: Vec<i32>,
     keys: Vec<u64>,
     scratch: Vec<ActiveEdge>,
+}
+
+/// A table of `columns` zeros, or a refusal when memory cannot be had.
+fn per_column<T: Default + Clone>(columns: usize) -> Result<Vec<T>, Refusal> {
+    let mut table = Vec::new();
+    table.try_reserve_exact(columns).map_err(|_| Refusal::OutOfMemory)?;
+    table.resize(columns, T::default());
+    Ok(table)
 }
 
 /// The longest active list sorted by insertion.
@@ -202,18 +291,25 @@ impl Sorter {
     /// sorting never allocates: a count per visible column when there are
     /// at most four per edge, or a key per edge.
     fn for_edges(edges: usize, width: i32) -> Result<Self, Refusal> {
-        let (mut counts, mut keys, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
-        if edges > SHORT && u32::try_from(edges).is_ok() {
+        let (mut counts, mut windings, mut keys, mut scratch) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        // Every winding sum stays within `±edges`, an `i32`.
+        if edges > SHORT && i32::try_from(edges).is_ok() {
             scratch.try_reserve_exact(edges).map_err(|_| Refusal::OutOfMemory)?;
             let columns = width.max(0) as usize + 1;
             if columns / 4 <= edges {
-                counts.try_reserve_exact(columns).map_err(|_| Refusal::OutOfMemory)?;
-                counts.resize(columns, 0);
+                (counts, windings) = (per_column(columns)?, per_column(columns)?);
             } else {
                 keys.try_reserve_exact(edges).map_err(|_| Refusal::OutOfMemory)?;
             }
         }
-        Ok(Self { counts, keys, scratch })
+        Ok(Self { counts, windings, keys, scratch })
+    }
+
+    /// Whether a run of `active` crossings is cheaper summed per column
+    /// ([`emit_by_columns`]) than kept sorted: where there are per-column
+    /// tables and at least a crossing for every four columns.
+    fn tallies(&self, active: usize) -> bool {
+        !self.windings.is_empty() && self.windings.len() / 4 <= active
     }
 
     fn sort(&mut self, active: &mut Vec<ActiveEdge>, width: i32) {
