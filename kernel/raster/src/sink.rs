@@ -150,15 +150,15 @@ pub fn set_bytes(bytes: &mut [u8], color: u8) {
 #[inline(never)]
 fn set_long(bytes: &mut [u8], color: u8) {
     let n = bytes.len();
-    let mut wide = bytes.chunks_exact_mut(64);
-    for chunk in &mut wide {
-        chunk.copy_from_slice(&[color; 64]);
+    let (wide, rest) = bytes.as_chunks_mut::<64>();
+    for chunk in wide {
+        *chunk = [color; 64];
     }
-    let mut narrow = wide.into_remainder().chunks_exact_mut(16);
-    for chunk in &mut narrow {
-        chunk.copy_from_slice(&[color; 16]);
+    let (narrow, tail) = rest.as_chunks_mut::<16>();
+    for chunk in narrow {
+        *chunk = [color; 16];
     }
-    if !narrow.into_remainder().is_empty() {
+    if !tail.is_empty() {
         bytes[n - 16..].copy_from_slice(&[color; 16]);
     }
 }
