@@ -252,7 +252,10 @@ impl Stage {
             Kind::LamotheRotate => lamothe::draw(frame, method, &mut self.scratch, &mut self.target),
             Kind::WgtGouraud => shaded::gouraud(frame, method, &mut self.scratch, &mut self.target),
             Kind::WgtTexture => shaded::texture(frame, method, &mut self.scratch, &mut self.target),
-            Kind::PendletonDepth => shaded::depth(frame, method, &mut self.scratch, &mut self.depth, &mut self.target),
+            Kind::PendletonDepth => {
+                let (scratch, depth, target) = (&mut self.scratch, &mut self.depth, &mut self.target);
+                shaded::draw(shaded::Shaded::Depth, Modelling::Needed, frame, method, scratch, depth, target)
+            }
             Kind::Race => race::draw(frame, method, &mut self.scratch, &mut self.target),
         }
     }
@@ -261,7 +264,7 @@ impl Stage {
     /// `modelling` asks; `None` for an entry that is not shaded. With
     /// [`Modelling::Needed`] it is [`Stage::draw`]; with
     /// [`Modelling::Forced`] the same picture costs four interpolated
-    /// attributes and a depth buffer (see the `shaded` module).
+    /// attributes and a depth buffer.
     pub fn draw_modelled(
         &mut self,
         entry: &Entry,
@@ -275,12 +278,9 @@ impl Stage {
             Kind::PendletonDepth => shaded::Shaded::Depth,
             Kind::Still(_) | Kind::LamotheRotate | Kind::Race => return None,
         };
-        if modelling == Modelling::Needed {
-            return Some(self.draw(entry, frame, method));
-        }
         sink::clear(&mut self.target, 0);
         let (scratch, depth, target) = (&mut self.scratch, &mut self.depth, &mut self.target);
-        Some(shaded::overmodelled(shaded, entry.wrap(frame), method, scratch, depth, target))
+        Some(shaded::draw(shaded, modelling, entry.wrap(frame), method, scratch, depth, target))
     }
 
     /// Draws the labels over the frame: the entry and frame number at the

@@ -20,7 +20,7 @@
 
 use super::interp::{Painter, Vertex};
 use super::trig::{angle_at, div_round, offset, rotate, sin_cos, unscale, TURN};
-use super::{Ramp, Scratch};
+use super::{Modelling, Ramp, Scratch};
 use crate::scene::DrawReport;
 use raster::geometry::{Point, SUBPIXEL_BITS};
 use raster::method::Method;
@@ -226,22 +226,6 @@ fn draw_solids(solids: &[Solid], painter: &mut Painter, depth: &mut [i32], width
     }
 }
 
-/// Draws frame `frame` of `pendleton-zbuffer`; `depth` holds one value per
-/// pixel of `target` and is reset first.
-pub(super) fn depth(
-    frame: u32,
-    method: &dyn Method,
-    scratch: &mut Scratch,
-    depth: &mut [i32],
-    target: &mut Framebuffer,
-) -> DrawReport {
-    depth.fill(i32::MAX);
-    let width = target.size().width;
-    let mut painter = Painter::new(method, scratch, target);
-    draw_solids(&solids(frame), &mut painter, depth, width);
-    painter.report()
-}
-
 /// Attributes a frame carries when more is modelled than it needs.
 const OVERMODELLED: usize = 4;
 
@@ -252,19 +236,26 @@ fn padded<const N: usize>(v: Vertex<N>) -> Vertex<OVERMODELLED> {
     Vertex::new(v.at, attrs)
 }
 
-/// Frame `frame` of a shaded entry drawn with more modelled than it needs,
-/// to measure what that costs: four interpolated attributes where it uses
-/// one or two, and a depth buffer, reset and tested at every pixel, where
-/// it has none (the Gouraud and texture entries take depth 0 everywhere,
-/// so every pixel passes and the picture is the one they draw without).
-pub(super) fn overmodelled(
+/// Draws frame `frame` of a shaded entry as `modelling` asks; `depth` holds
+/// one value per pixel of `target` and is reset first where it is used.
+/// [`Modelling::Forced`] costs more for the same picture: four interpolated
+/// attributes where the entry uses one or two, and a depth buffer, reset
+/// and tested at every pixel, where it has none (the Gouraud and texture
+/// entries take depth 0 everywhere, so every pixel passes).
+pub(super) fn draw(
     entry: Shaded,
+    modelling: Modelling,
     frame: u32,
     method: &dyn Method,
     scratch: &mut Scratch,
     depth: &mut [i32],
     target: &mut Framebuffer,
 ) -> DrawReport {
+    match (entry, modelling) {
+        (Shaded::Gouraud, Modelling::Needed) => return gouraud(frame, method, scratch, target),
+        (Shaded::Texture, Modelling::Needed) => return texture(frame, method, scratch, target),
+        _ => {}
+    }
     depth.fill(i32::MAX);
     let width = target.size().width;
     let mut painter = Painter::new(method, scratch, target);
@@ -280,6 +271,9 @@ pub(super) fn overmodelled(
             painter.quad(&corners, &mut |x, y, &[u, v, z, _]: &[i32; OVERMODELLED]| {
                 nearer(depth, width, x, y, z).then(|| texel(u >> TEXEL_BITS, v >> TEXEL_BITS))
             });
+        }
+        Shaded::Depth if modelling == Modelling::Needed => {
+            draw_solids(&solids(frame), &mut painter, depth, width);
         }
         Shaded::Depth => {
             for solid in solids(frame) {
