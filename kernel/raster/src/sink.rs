@@ -114,11 +114,13 @@ impl Framebuffer {
 }
 
 /// Sets every byte of `bytes` to `color`, as a span store: a span of up
-/// to 32 bytes is two stores of its width class (1, 4, 8 or 16 bytes),
-/// overlapping in the middle, with no loop and no call; a longer one is 16
-/// bytes a store and one overlapping store for the rest. A library
-/// `memset` call costs more than the whole store on the short spans that
-/// most polygons are made of.
+/// to 64 bytes is two stores of its width class (1, 4, 8, 16 or 32 bytes;
+/// the wide ones may be split into 16-byte stores on the baseline target),
+/// overlapping in the middle, with no loop and no call; a longer one is one
+/// `memset`, whose library version picks the widest stores the machine
+/// has. A `memset` call costs more than the whole store on the short spans
+/// that most polygons are made of, and less than a loop of 16-byte stores
+/// on long ones (whose exit is mispredicted once a span).
 #[inline(always)]
 pub fn set_bytes(bytes: &mut [u8], color: u8) {
     let n = bytes.len();
@@ -138,28 +140,11 @@ pub fn set_bytes(bytes: &mut [u8], color: u8) {
     } else if n <= 32 {
         bytes[..16].copy_from_slice(&[color; 16]);
         bytes[n - 16..].copy_from_slice(&[color; 16]);
+    } else if n <= 64 {
+        bytes[..32].copy_from_slice(&[color; 32]);
+        bytes[n - 32..].copy_from_slice(&[color; 32]);
     } else {
-        set_long(bytes, color);
-    }
-}
-
-/// [`set_bytes`] for more than 32 bytes: 64 bytes a step (one store
-/// where the target has 64-byte registers, four 16-byte ones on the
-/// baseline), then 16 bytes a step, then one overlapping 16-byte store
-/// for the rest.
-#[inline(never)]
-fn set_long(bytes: &mut [u8], color: u8) {
-    let n = bytes.len();
-    let (wide, rest) = bytes.as_chunks_mut::<64>();
-    for chunk in wide {
-        *chunk = [color; 64];
-    }
-    let (narrow, tail) = rest.as_chunks_mut::<16>();
-    for chunk in narrow {
-        *chunk = [color; 16];
-    }
-    if !tail.is_empty() {
-        bytes[n - 16..].copy_from_slice(&[color; 16]);
+        bytes.fill(color);
     }
 }
 

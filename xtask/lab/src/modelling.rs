@@ -123,16 +123,33 @@ pub fn measure(family: &Family, timing: Timing, progress: &(dyn Fn() + Sync)) ->
     for path in polygons.iter().filter_map(|p| choose_path(p)) {
         chosen[path as usize] += 1;
     }
-    let mut rows: Vec<PathRow> = Lane::ALL
+    let lanes: Vec<(Lane, Option<&Contender>, Option<&Tally>)> = Lane::ALL
         .iter()
         .map(|&lane| {
             let c = contenders.iter().position(|c| Some(c.name()) == lane.contender().map(|l| l.name()));
-            let tally: Option<&Tally> = c.and_then(|c| judged.tallies[c].as_ref());
-            // Timed only on what it all takes, and only if it never failed.
-            let takes_all = tally.is_none_or(|t| t.refusals == 0 && t.failures == 0);
-            let contender = c.map(|c| &contenders[c]);
-            let ns = takes_all.then(|| timing.ns_per_polygon(&mut *lane.run(&polygons, contender), polygons.len()));
-            progress();
+            (lane, c.map(|c| &contenders[c]), c.and_then(|c| judged.tallies[c].as_ref()))
+        })
+        .collect();
+    // Timed, in turn, only on what it all takes, and only if it never failed.
+    let takes_all: Vec<bool> =
+        lanes.iter().map(|(_, _, tally)| tally.is_none_or(|t| t.refusals == 0 && t.failures == 0)).collect();
+    let mut passes: Vec<Box<dyn FnMut() + '_>> = lanes
+        .iter()
+        .zip(&takes_all)
+        .filter(|(_, &takes)| takes)
+        .map(|((lane, contender, _), _)| lane.run(&polygons, *contender))
+        .collect();
+    let mut times =
+        timing.ns_per_polygon_each(passes.iter_mut().map(|p| (&mut **p as &mut dyn FnMut(), polygons.len())).collect());
+    for _ in 0..JOBS {
+        progress();
+    }
+    times.reverse();
+    let mut rows: Vec<PathRow> = lanes
+        .iter()
+        .zip(&takes_all)
+        .map(|(&(lane, contender, tally), &takes)| {
+            let ns = if takes { times.pop().flatten() } else { None };
             // The pass is made first: only the fills' own allocations count.
             let pass = lane.run(&polygons, contender);
             let allocations = heap::per_item(polygons.len(), pass);
@@ -146,8 +163,8 @@ pub fn measure(family: &Family, timing: Timing, progress: &(dyn Fn() + Sync)) ->
                 // Pixels of refused tiles are gaps of the tiling, not faults.
                 gaps: tally.filter(|t| tiled && t.refusals == 0).map(|t| t.gaps),
                 failures: tally.map(|t| t.failures),
-                ns_per_polygon: ns.flatten(),
-                allocations_per_polygon: if takes_all { allocations } else { None },
+                ns_per_polygon: ns,
+                allocations_per_polygon: if takes { allocations } else { None },
                 chosen_by_fill_auto: match lane {
                     Lane::Path(path) => Some(chosen[path as usize]),
                     _ => None,
@@ -182,30 +199,31 @@ pub struct ShowRow {
 }
 
 /// Every shaded entry of the show, every frame, drawn by `exact` as the
-/// entry needs and over-modelled.
+/// entry needs and over-modelled, the two timed in turn.
 pub fn measure_show(timing: Timing) -> Vec<ShowRow> {
-    let mut stage = Stage::new();
     let method = MethodId::Exact.method();
+    let (mut as_needed, mut forced) = (Stage::new(), Stage::new());
     let mut rows = Vec::new();
     for entry in ENTRIES_IN_ORDER {
-        let mut needed = None;
-        for (modelling, name) in [(Modelling::Needed, "needed"), (Modelling::Forced, "forced")] {
-            if stage.draw_modelled(entry, 0, method, modelling).is_none() {
-                break;
+        if as_needed.draw_modelled(entry, 0, method, Modelling::Needed).is_none() {
+            continue;
+        }
+        let every_frame = |stage: &mut Stage, modelling: Modelling| {
+            for frame in 0..entry.frames {
+                black_box(stage.draw_modelled(entry, frame, method, modelling));
             }
-            let mut pass = || {
-                for frame in 0..entry.frames {
-                    black_box(stage.draw_modelled(entry, frame, method, modelling));
-                }
-            };
-            let ns = timing.ns_per_polygon(&mut pass, entry.frames as usize);
-            needed = needed.or(ns);
-            let time_vs_needed = ns.zip(needed).map(|(ns, needed)| ns / needed);
+        };
+        let mut pass_needed = || every_frame(&mut as_needed, Modelling::Needed);
+        let mut pass_forced = || every_frame(&mut forced, Modelling::Forced);
+        let frames = entry.frames as usize;
+        let times = timing.ns_per_polygon_each(vec![(&mut pass_needed, frames), (&mut pass_forced, frames)]);
+        for (name, ns) in ["needed", "forced"].into_iter().zip(&times) {
+            let time_vs_needed = ns.zip(times[0]).map(|(ns, needed)| ns / needed);
             rows.push(ShowRow {
                 entry: entry.name,
                 modelling: name,
                 frames: entry.frames,
-                ns_per_frame: ns,
+                ns_per_frame: *ns,
                 time_vs_needed,
             });
         }

@@ -31,23 +31,35 @@ impl Timing {
     /// one warm-up pass, then the median of the repeats. `None` for no
     /// polygons.
     pub fn ns_per_polygon(&self, pass: &mut dyn FnMut(), polygons: usize) -> Option<f64> {
-        if polygons == 0 {
-            return None;
-        }
-        let start = Instant::now();
-        pass();
-        let once = start.elapsed().max(Duration::from_nanos(1));
-        let passes = (self.min_repeat.as_nanos() / once.as_nanos()).clamp(1, 1 << 20) as u32;
-        let samples: Vec<f64> = (0..self.repeats)
-            .map(|_| {
+        self.ns_per_polygon_each(vec![(pass, polygons)]).remove(0)
+    }
+
+    /// [`Timing::ns_per_polygon`] of each of `passes` (a pass and the
+    /// polygons it fills), timed in turn within every repeat, so that a
+    /// change in the machine's load falls on all of them alike and the
+    /// ratios between them hold.
+    pub fn ns_per_polygon_each(&self, mut passes: Vec<(&mut dyn FnMut(), usize)>) -> Vec<Option<f64>> {
+        // Each pass runs as often as it takes to last `min_repeat`.
+        let counts: Vec<u32> = passes
+            .iter_mut()
+            .map(|(pass, _)| {
                 let start = Instant::now();
-                for _ in 0..passes {
-                    pass();
-                }
-                start.elapsed().as_nanos() as f64 / f64::from(passes) / polygons as f64
+                pass();
+                let once = start.elapsed().max(Duration::from_nanos(1));
+                (self.min_repeat.as_nanos() / once.as_nanos()).clamp(1, 1 << 20) as u32
             })
             .collect();
-        median(&samples)
+        let mut samples = vec![Vec::with_capacity(self.repeats); passes.len()];
+        for _ in 0..self.repeats {
+            for (((pass, polygons), &count), samples) in passes.iter_mut().zip(&counts).zip(&mut samples) {
+                let start = Instant::now();
+                for _ in 0..count {
+                    pass();
+                }
+                samples.push(start.elapsed().as_nanos() as f64 / f64::from(count) / (*polygons).max(1) as f64);
+            }
+        }
+        passes.iter().zip(&samples).map(|((_, polygons), samples)| median(samples).filter(|_| *polygons > 0)).collect()
     }
 }
 
@@ -198,28 +210,25 @@ fn time_range(
     range: Range<usize>,
     progress: &dyn Fn(),
 ) -> Speeds {
-    let contender_speeds = contenders
-        .iter()
-        .enumerate()
-        .map(|(c, contender)| {
-            let polygons: Vec<&Polygon> =
-                judged.timed[c].iter().filter(|i| range.contains(i)).map(|&i| &family.polygons[i]).collect();
-            let ns = judged.tallies[c]
-                .as_ref()
-                .and_then(|_| timing.ns_per_polygon(&mut *contender.pass(&polygons), polygons.len()));
-            progress();
-            ns
-        })
+    // Every contender that takes the family and every bound, timed in turn.
+    let polygons: Vec<Vec<&Polygon>> = (0..contenders.len())
+        .map(|c| judged.timed[c].iter().filter(|i| range.contains(i)).map(|&i| &family.polygons[i]).collect())
         .collect();
     let exact: Vec<&[Span]> = judged.exact[range.clone()].iter().map(Vec::as_slice).collect();
-    let bound_speeds = Bound::ALL
-        .iter()
-        .map(|bound| {
-            let ns = timing.ns_per_polygon(&mut *bound.pass(&exact), exact.len());
-            progress();
-            ns
-        })
-        .collect();
+    let timed: Vec<usize> = (0..contenders.len()).filter(|&c| judged.tallies[c].is_some()).collect();
+    let mut passes: Vec<(Box<dyn FnMut() + '_>, usize)> =
+        timed.iter().map(|&c| (contenders[c].pass(&polygons[c]), polygons[c].len())).collect();
+    passes.extend(Bound::ALL.iter().map(|bound| (bound.pass(&exact), exact.len())));
+    let mut speeds =
+        timing.ns_per_polygon_each(passes.iter_mut().map(|(p, n)| (&mut **p as &mut dyn FnMut(), *n)).collect());
+    for _ in 0..contenders.len() + Bound::ALL.len() {
+        progress();
+    }
+    let bound_speeds = speeds.split_off(timed.len());
+    let mut contender_speeds = vec![None; contenders.len()];
+    for (&c, ns) in timed.iter().zip(speeds) {
+        contender_speeds[c] = ns;
+    }
     Speeds { contenders: contender_speeds, bounds: bound_speeds, runs: vec![] }
 }
 
@@ -230,6 +239,17 @@ mod tests {
     #[test]
     fn no_polygons_take_no_time() {
         assert_eq!(Timing::QUICK.ns_per_polygon(&mut || {}, 0), None);
+    }
+
+    #[test]
+    fn passes_timed_in_turn_each_run_every_repeat() {
+        let (mut a, mut b) = (0, 0);
+        let timing = Timing { repeats: 3, min_repeat: Duration::ZERO };
+        let (mut pass_a, mut pass_b) = (|| a += 1, || b += 1);
+        let times = timing.ns_per_polygon_each(vec![(&mut pass_a, 5), (&mut pass_b, 0)]);
+        assert!(times[0].is_some());
+        assert_eq!(times[1], None);
+        assert_eq!((a, b), (4, 4));
     }
 
     #[test]
