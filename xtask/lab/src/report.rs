@@ -19,7 +19,7 @@ pub fn markdown(results: &Results) -> String {
         out,
         "Run: {mode}; corpus seed `{:#x}`. Host wall-clock times in release, median of repeats, \
          filling into a 320x200 framebuffer; accuracy against `raster::reference`. \
-         Charts: speed_vs_accuracy, stability, rotation, scaling (.svg and .png beside this file).\n",
+         Charts: speed_vs_accuracy, stability, rotation, scaling, modelling_cost (.svg and .png beside this file).\n",
         results.seed
     );
     corpus_table(&mut out, results);
