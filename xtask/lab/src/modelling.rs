@@ -108,7 +108,7 @@ pub struct PathRow {
     pub time_vs_cheapest: Option<f64>,
 }
 
-/// Timing jobs [`measure`] runs on a family, for progress.
+/// Timing jobs [`measure()`] runs on a family, for progress.
 pub const JOBS: u64 = Lane::ALL.len() as u64;
 
 /// Every lane on `family`: judged on every core, then timed and its
