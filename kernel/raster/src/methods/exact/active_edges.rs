@@ -12,7 +12,10 @@
 //! emits, steps and checks the order at once; only a row where the order
 //! changed sorts again and works the parts out again. A run of two edges
 //! with the inside between them (most rows of most simple polygons) takes
-//! the monotone path's two-edge loop instead.
+//! the monotone path's two-edge loop instead. Where there is a crossing for
+//! every four columns or more (scribbles of thousands of edges), keeping
+//! them sorted costs more than summing their windings per column, which a
+//! row then does instead (`emit_by_columns`).
 
 use alloc::vec::Vec;
 

@@ -22,7 +22,8 @@
 //!
 //! - Speed: triangles and monotone polygons allocate nothing and cost two
 //!   edge steps and one span per row; the rest cost one pass over the
-//!   crossings per row, sorting only where edges cross.
+//!   crossings per row, sorting only where edges cross (or, where there is
+//!   a crossing for every four columns, summing them per column instead).
 //!
 //! Stages, one file each: `edge` (scan lines and exact crossing columns),
 //! `monotone` (the triangle fill and the two-chain path for monotone
