@@ -1,6 +1,7 @@
 //! Installing what the build and the runs need when it is missing: the
-//! pinned nightly with its components and target, and QEMU. Machines here
-//! set `RUSTUP_AUTO_INSTALL=0`, so nothing installs itself.
+//! pinned nightly with its components and target, QEMU, and the Cairo
+//! headers the lab's Cairo peer builds against. Machines here set
+//! `RUSTUP_AUTO_INSTALL=0`, so nothing installs itself.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -21,6 +22,11 @@ const COMPONENTS: [(&str, &str); 2] = [("rust-src", "rust-src"), ("llvm-tools-pr
 /// The QEMU binary the harness runs, and the Debian package that has it.
 pub const QEMU: &str = "qemu-system-x86_64";
 const QEMU_PACKAGE: &str = "qemu-system-x86";
+
+/// The Debian packages the lab's Cairo peer (`cairo-rs` over the system
+/// libcairo) builds with: the headers and `.pc` file, and pkg-config, which
+/// finds them.
+const CAIRO_PACKAGES: [&str; 2] = ["libcairo2-dev", "pkg-config"];
 
 /// Makes sure the pinned nightly, its components and the kernel target are
 /// installed, installing what is missing (and saying so). Costs two quick
@@ -88,7 +94,7 @@ fn install_commands(installed: Option<&str>) -> Vec<Command> {
 /// with the exact command to run.
 pub fn ensure_qemu() -> Result<()> {
     static DONE: OnceLock<Result<(), String>> = OnceLock::new();
-    once_per_process(&DONE, || ensure_programs(&[QEMU], &[QEMU_PACKAGE]))
+    once_per_process(&DONE, || ensure_debian_packages(QEMU, &[QEMU_PACKAGE], || on_path(&[QEMU])))
 }
 
 /// The browser the explorer's tests drive, its WebDriver server, and the
@@ -101,38 +107,53 @@ const CHROMIUM_PACKAGES: [&str; 2] = ["chromium", "chromium-driver"];
 /// Debian's `chromium` and `chromium-driver` as [`ensure_qemu`] installs QEMU.
 pub fn ensure_chromium() -> Result<()> {
     static DONE: OnceLock<Result<(), String>> = OnceLock::new();
-    once_per_process(&DONE, || ensure_programs(&[CHROMIUM, CHROMEDRIVER], &CHROMIUM_PACKAGES))
+    once_per_process(&DONE, || {
+        ensure_debian_packages("chromium and chromedriver", &CHROMIUM_PACKAGES, || on_path(&[CHROMIUM, CHROMEDRIVER]))
+    })
 }
 
-/// Installs `packages` with apt-get when one of `programs` is not on the
-/// `PATH` and we are root; otherwise fails with the command to run.
-fn ensure_programs(programs: &[&str], packages: &[&str]) -> Result<()> {
-    let missing: Vec<&str> = programs.iter().copied().filter(|program| find_in_path(program).is_none()).collect();
-    if missing.is_empty() {
+/// Makes sure libcairo's headers are there for `pkg-config --exists cairo`,
+/// as the lab's Cairo peer needs to build: installs Debian's
+/// `libcairo2-dev` (and `pkg-config`) with apt-get when running as root,
+/// otherwise fails with the exact command to run.
+pub fn ensure_cairo() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || {
+        let found = || Command::new("pkg-config").args(["--exists", "cairo"]).status().is_ok_and(|s| s.success());
+        ensure_debian_packages("libcairo (for the lab's Cairo peer)", &CAIRO_PACKAGES, found)
+    })
+}
+
+/// Installs `packages` with apt-get unless `present` says `what` is there
+/// already; without root (or apt-get) fails with the command to run.
+fn ensure_debian_packages(what: &str, packages: &[&str], present: impl Fn() -> bool) -> Result<()> {
+    if present() {
         return Ok(());
     }
-    let packages_line = packages.join(" ");
+    let packages = packages.join(" ");
     let as_root = output_of(Command::new("id").arg("-u")).is_ok_and(|uid| uid.trim() == "0");
     if !as_root || find_in_path("apt-get").is_none() {
         bail!(
-            "{} not installed; install with:\n    \
-             sudo apt-get update && sudo apt-get install -y {packages_line}",
-            missing.join(" and ")
+            "{what} is not installed; install it with:\n    sudo apt-get update && sudo apt-get install -y {packages}"
         );
     }
-    eprintln!(
-        "harness: {} missing; installing the Debian packages {packages_line} with apt-get",
-        missing.join(" and ")
-    );
+    eprintln!("harness: {what} is missing; installing the Debian packages {packages} with apt-get");
     run_streaming(Command::new("apt-get").arg("update"))?;
     run_streaming(
-        Command::new("apt-get").args(["install", "-y"]).args(packages).env("DEBIAN_FRONTEND", "noninteractive"),
+        Command::new("apt-get")
+            .args(["install", "-y"])
+            .args(packages.split(' '))
+            .env("DEBIAN_FRONTEND", "noninteractive"),
     )?;
-    for program in missing {
-        find_in_path(program)
-            .with_context(|| format!("{packages_line} installed but {program} is still not on the PATH"))?;
+    if !present() {
+        bail!("{packages} installed, but {what} is still not found");
     }
     Ok(())
+}
+
+/// Whether every one of `programs` is on the `PATH`.
+fn on_path(programs: &[&str]) -> bool {
+    programs.iter().all(|program| find_in_path(program).is_some())
 }
 
 /// The target the explorer's engine is built for.

@@ -6,7 +6,7 @@ use anyhow::Result;
 use harness::build_image;
 use harness::cargo::NIGHTLY_ONLY;
 use harness::image::IMAGE_ENV;
-use harness::prerequisites::{ensure_chromium, ensure_qemu, ensure_toolchain, ensure_wasm_target};
+use harness::prerequisites::{ensure_cairo, ensure_chromium, ensure_qemu, ensure_toolchain, ensure_wasm_target};
 use harness::process::run_streaming;
 
 use crate::opt::TestOpt;
@@ -18,6 +18,8 @@ pub fn test(opt: &TestOpt) -> Result<()> {
     // headless Chromium.
     ensure_wasm_target()?;
     ensure_chromium()?;
+    // The lab, a workspace member, builds its Cairo peer against libcairo.
+    ensure_cairo()?;
     let image = build_image()?;
     run_streaming(test_command(&opt.cargo_args).env(IMAGE_ENV, image))
 }

@@ -1,6 +1,6 @@
 //! Polygon classes ("model no more than a scene needs": `docs/conventions.md`).
 //! The exact method's automatic fill ([`fill_auto`](crate::methods::exact::fill_auto))
-//! asks [`Shape`] (the linear-time part of [`classify`]) which path to take.
+//! asks `Shape` (the linear-time part of [`classify`]) which path to take.
 //!
 //! Contours whose vertices all lie on one line enclose nothing and are left
 //! out of every class: walking such a contour, a scan line is crossed as often

@@ -3,12 +3,12 @@
 
 mod exact_support;
 
-use exact_support::{any_polygon, polygon_of, prop_assert_matches_reference, Kind, PX, TARGET};
+use exact_support::{any_polygon, nearby_point, polygon_of, prop_assert_matches_reference, Kind, PX, TARGET};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
-use raster::methods::exact::Exact;
-use raster::{classify, fill_auto, Class, Method, MethodId, Point, Polygon};
+use raster::methods::exact::{choose_path, Exact, Path};
+use raster::{classify, fill_auto, Class, CoverageSink, Method, MethodId, Point, Polygon, Refusal};
 
 fn exact(polygon: &Polygon, sink: &mut dyn raster::SpanSink) -> Result<(), raster::Refusal> {
     Exact.fill(polygon, sink)
@@ -48,12 +48,72 @@ proptest! {
             _ => &[Class::Degenerate, Class::Triangle, Class::Convex, Class::Simple, Class::Complex],
         };
         prop_assert!(expected_classes.contains(&class), "{kind:?} classified {class:?}");
-        prop_assert_matches_reference(fill_auto, &polygon, TARGET)?;
+        prop_assert_matches_reference(|p, s| fill_auto(p, s), &polygon, TARGET)?;
 
         let mut with_far_triangle = polygon.clone();
         with_far_triangle.contours.push(vec![Point::new(-1000 * PX, 0), Point::new(-999 * PX, 30 * PX), Point::new(-1001 * PX, 60 * PX)]);
-        prop_assert_matches_reference(fill_auto, &with_far_triangle, TARGET)?;
+        prop_assert_matches_reference(|p, s| fill_auto(p, s), &with_far_triangle, TARGET)?;
     }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(500))]
+
+    /// Each of exact's paths, asked for alone, fills exactly what it takes
+    /// and refuses the rest without drawing; fill_auto's choice is a path
+    /// that takes the polygon.
+    #[test]
+    fn every_path_is_exact_on_its_class_and_refuses_the_rest((_kind, polygon) in any_polygon()) {
+        for path in Path::ALL {
+            if path.takes(&polygon) {
+                prop_assert_matches_reference(|p, s| path.fill(p, s), &polygon, TARGET)?;
+            } else {
+                let mut drawn = CoverageSink::new(TARGET);
+                prop_assert_eq!(path.fill(&polygon, &mut drawn), Err(Refusal::OutsideClass));
+                prop_assert_eq!(drawn, CoverageSink::new(TARGET), "{} drew while refusing", path.name());
+            }
+        }
+        if let Some(path) = choose_path(&polygon) {
+            prop_assert!(path.takes(&polygon), "fill_auto chose {} for a polygon outside it", path.name());
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// Scribbles of 40 to 120 edges on the small target: rows with a
+    /// crossing for every four columns or more, whose crossings the edge
+    /// table sums per column instead of sorting them.
+    #[test]
+    fn dense_scribbles_match_reference(contour in prop::collection::vec(nearby_point(), 40..120), non_zero: bool) {
+        let rule = if non_zero { raster::FillRule::NonZero } else { raster::FillRule::EvenOdd };
+        let polygon = Polygon { contours: vec![contour], color: 1, rule };
+        prop_assert_matches_reference(exact, &polygon, TARGET)?;
+    }
+}
+
+/// Each path's class, on one polygon of each kind.
+#[test]
+fn paths_take_their_classes() {
+    let px = |x: i32, y: i32| Point::new(x * PX, y * PX);
+    let triangle = Polygon::new(vec![px(0, 0), px(9, 2), px(3, 8)], 1);
+    let monotone = Polygon::new(vec![px(0, 0), px(9, 0), px(4, 4), px(9, 8), px(0, 8)], 1);
+    let notched = Polygon::new(vec![px(0, 0), px(9, 0), px(9, 8), px(4, 3), px(0, 8)], 1);
+    let mut two = triangle.clone();
+    two.contours.push(vec![px(20, 0), px(29, 2), px(23, 8)]);
+    let takes = |p: &Polygon| Path::ALL.map(|path| path.takes(p));
+    assert_eq!(takes(&triangle), [true, true, true]);
+    assert_eq!(takes(&monotone), [false, true, true]);
+    assert_eq!(takes(&notched), [false, false, true]);
+    assert_eq!(takes(&two), [false, false, true]);
+    let chosen = [&triangle, &monotone, &notched, &two].map(choose_path);
+    assert_eq!(chosen, [Some(Path::Triangle), Some(Path::Monotone), Some(Path::ActiveEdges), Some(Path::ActiveEdges)]);
+    // A collinear contour that doubles back: nothing to draw, but telling
+    // that needs the collinearity test, which the common case skips.
+    let zigzag = Polygon::new(vec![px(0, 0), px(5, 5), px(2, 2), px(9, 9), px(1, 1)], 1);
+    assert_eq!(choose_path(&zigzag), Some(Path::ActiveEdges));
+    assert_eq!(choose_path(&Polygon::default()), None);
 }
 
 /// The generators feed the dispatch test every class.

@@ -49,13 +49,15 @@ impl DrawReport {
 
 impl Scene {
     /// Draws every operation with `method`. A refused polygon is counted and
-    /// skipped; the rest of the scene is still drawn.
-    pub fn draw(&self, method: &dyn Method, sink: &mut dyn SpanSink) -> DrawReport {
+    /// skipped; the rest of the scene is still drawn. The sink's type is
+    /// known here, so `method` fills with its store inlined
+    /// ([`Method::fill_into`](raster::Method)).
+    pub fn draw<S: SpanSink>(&self, method: &dyn Method, sink: &mut S) -> DrawReport {
         let mut report = DrawReport::default();
         for op in &self.ops {
             match op {
                 Op::Clear(color) => sink::clear(sink, *color),
-                Op::Fill(polygon) => report.record(method.fill(polygon, sink)),
+                Op::Fill(polygon) => report.record(method.fill_into(polygon, sink)),
             }
         }
         report

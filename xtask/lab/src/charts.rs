@@ -1,6 +1,6 @@
-//! The four charts, each drawn once as SVG and once as PNG from the same
-//! code: speed against accuracy, the stability map, the rotation sweep and
-//! the scaling of cost with area and vertex count.
+//! The charts, each drawn once as SVG and once as PNG from the same code:
+//! speed against accuracy, the stability map, the rotation sweep, the
+//! scaling of cost with area and vertex count, and what modelling costs.
 
 use std::fs::File;
 use std::io::BufWriter;
@@ -8,19 +8,18 @@ use std::path::Path;
 use std::sync::OnceLock;
 
 use anyhow::{anyhow, Context, Result};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
+use plotters::style::FontTransform;
 
 use crate::corpus::{Axis, Group};
 use crate::results::{Kind, Results};
 use crate::stats::pareto_front;
-use crate::EXACT;
+use crate::{EXACT, ZERO_FLOOR};
 
 const FONT: &str = "sans-serif";
-
-/// Error rates below this are drawn on the floor of the log axis, as 0.
-const ZERO_FLOOR: f64 = 1e-4;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Chart {
@@ -28,10 +27,12 @@ pub enum Chart {
     Stability,
     Rotation,
     Scaling,
+    ModellingCost,
 }
 
 impl Chart {
-    pub const ALL: [Chart; 4] = [Chart::SpeedVsAccuracy, Chart::Stability, Chart::Rotation, Chart::Scaling];
+    pub const ALL: [Chart; 5] =
+        [Chart::SpeedVsAccuracy, Chart::Stability, Chart::Rotation, Chart::Scaling, Chart::ModellingCost];
 
     /// The file name, without extension.
     pub const fn name(self) -> &'static str {
@@ -40,6 +41,7 @@ impl Chart {
             Chart::Stability => "stability",
             Chart::Rotation => "rotation",
             Chart::Scaling => "scaling",
+            Chart::ModellingCost => "modelling_cost",
         }
     }
 
@@ -49,6 +51,7 @@ impl Chart {
             Chart::Stability => (1300, 640),
             Chart::Rotation => (1200, 900),
             Chart::Scaling => (1400, 700),
+            Chart::ModellingCost => (1600, 760),
         }
     }
 
@@ -62,6 +65,7 @@ impl Chart {
             Chart::Stability => stability(root, results),
             Chart::Rotation => rotation(root, results),
             Chart::Scaling => scaling(root, results),
+            Chart::ModellingCost => modelling_cost(root, results),
         }
     }
 }
@@ -136,11 +140,17 @@ fn contenders(results: &Results) -> Vec<(&'static str, Kind, RGBColor)> {
         .collect()
 }
 
-/// A marker for a point of `kind`: circles for methods, triangles for peers.
-fn marker<DB: DrawingBackend, C: Clone + 'static>(kind: Kind, at: C, color: RGBColor) -> DynElement<'static, DB, C> {
+/// A marker for a point of `kind`, `size` pixels: circles for methods,
+/// triangles for peers.
+fn marker<DB: DrawingBackend, C: Clone + 'static>(
+    kind: Kind,
+    at: C,
+    size: i32,
+    style: ShapeStyle,
+) -> DynElement<'static, DB, C> {
     match kind {
-        Kind::Peer => TriangleMarker::new(at, 7, color.filled()).into_dyn(),
-        _ => Circle::new(at, 5, color.filled()).into_dyn(),
+        Kind::Peer => TriangleMarker::new(at, size + size / 3, style).into_dyn(),
+        _ => Circle::new(at, size, style).into_dyn(),
     }
 }
 
@@ -176,17 +186,21 @@ where
     DB::ErrorType: 'static,
 {
     let points = results.speed_accuracy_points(ZERO_FLOOR);
+    let means = results.speed_accuracy_means(ZERO_FLOOR);
     let x_range = log_range(points.iter().map(|(_, p)| p.0).chain([1.0]), 1e-3);
     let y_range = log_range(points.iter().map(|(_, p)| p.1), ZERO_FLOOR / 2.0);
     let mut chart = ChartBuilder::on(root)
-        .caption("Speed against accuracy: one point per method per family", (FONT, 26))
+        .caption(
+            "Speed against accuracy: large points are each method's geometric mean over the families, small ones the families",
+            (FONT, 22),
+        )
         .margin(20)
         .x_label_area_size(55)
         .y_label_area_size(80)
         .build_cartesian_2d(x_range.clone().log_scale(), y_range.clone().log_scale())?;
     chart
         .configure_mesh()
-        .x_desc("time per polygon ÷ memset bound's time (log; 1 = writing the pixels alone)")
+        .x_desc("time per polygon ÷ memset bound's time (log; 1 = writing the pixels as one run)")
         .y_desc("wrong pixels, % of exact pixels (log; bottom row = none)")
         .x_label_formatter(&|v| compact(*v))
         .y_label_formatter(&|v| if *v <= ZERO_FLOOR * 1.01 { "0".to_string() } else { compact(*v) })
@@ -199,29 +213,77 @@ where
         .label("memset bound (x = 1)")
         .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], BLACK.stroke_width(2)));
 
-    let coordinates: Vec<(f64, f64)> = points.iter().map(|(_, p)| *p).collect();
+    let colors = contenders(results);
+    let color_of = |name: &str| colors.iter().find(|c| c.0 == name).map_or(BLACK, |c| c.2);
+    // Families first, small and faint, under everything else.
+    for (row, p) in &points {
+        chart.draw_series([marker::<DB, _>(row.kind, *p, 3, color_of(row.name).mix(0.3).filled())])?;
+    }
+
+    // The front is the edge of the region its points dominate: down from
+    // the top to the first, across and down point by point, on to the right.
+    let coordinates: Vec<(f64, f64)> = means.iter().map(|m| m.at).collect();
     let front: Vec<(f64, f64)> = pareto_front(&coordinates).into_iter().map(|i| coordinates[i]).collect();
     let mut staircase = Vec::new();
-    for (i, &(x, y)) in front.iter().enumerate() {
-        staircase.push((x, y));
-        if let Some(&(next_x, _)) = front.get(i + 1) {
+    if let (Some(first), Some(last)) = (front.first(), front.last()) {
+        staircase.push((first.0, y_range.end));
+        for (i, &(x, y)) in front.iter().enumerate() {
+            staircase.push((x, y));
+            let next_x = front.get(i + 1).map_or(x_range.end, |next| next.0);
             staircase.push((next_x, y));
         }
+        staircase.push((x_range.end, last.1));
     }
+    let front_style = RGBColor(90, 90, 90).stroke_width(3);
     chart
-        .draw_series(LineSeries::new(staircase, RGBColor(120, 120, 120).stroke_width(2)))?
-        .label("Pareto front")
-        .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], RGBColor(120, 120, 120).stroke_width(2)));
+        .draw_series(DashedLineSeries::new(staircase, 12, 6, front_style))?
+        .label("Pareto front of the means: nothing right of or above it beats a point on it")
+        .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], front_style));
 
-    for (name, kind, color) in contenders(results) {
-        let mine: Vec<(f64, f64)> = points.iter().filter(|(r, _)| r.name == name).map(|(_, p)| *p).collect();
-        if mine.is_empty() {
-            continue;
-        }
+    let key = RGBColor(110, 110, 110);
+    for (kind, size, text) in [
+        (Kind::Method, 8, "method, geometric mean over the families"),
+        (Kind::Peer, 8, "peer library, the same (over the families it takes)"),
+        (Kind::Method, 3, "one family (faint)"),
+    ] {
         chart
-            .draw_series(mine.into_iter().map(|p| marker::<DB, _>(kind, p, color)))?
-            .label(if kind == Kind::Peer { format!("{name} (peer)") } else { name.to_string() })
-            .legend(move |(x, y)| marker::<DB, _>(kind, (x + 9, y), color));
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())?
+            .label(text)
+            .legend(move |(x, y)| marker::<DB, _>(kind, (x + 9, y), size, key.filled()));
+    }
+
+    // Every large marker, then every name, is a box a name must not cover.
+    let centres: Vec<(i32, i32)> = means.iter().map(|m| chart.backend_coord(&m.at)).collect();
+    let mut taken: Vec<(i32, i32, i32, i32)> = centres.iter().map(|&(x, y)| (x - 12, y - 12, x + 12, y + 12)).collect();
+    for (mean, &(px, py)) in means.iter().zip(&centres) {
+        let color = color_of(mean.name);
+        chart.draw_series([
+            marker::<DB, _>(mean.kind, mean.at, 11, BLACK.filled()),
+            marker::<DB, _>(mean.kind, mean.at, 9, color.filled()),
+        ])?;
+        let label = match mean.kind {
+            Kind::Peer => format!("{} ({} families)", mean.name, mean.families),
+            _ => mean.name.to_string(),
+        };
+        // The nearest place right or left of the point, going out up and
+        // down, where the name covers no marker and no name; a line leads
+        // to it from the point when it had to move.
+        let width = 9 * label.chars().count() as i32;
+        let free = |(x, y): (i32, i32)| {
+            taken.iter().all(|&(x0, y0, x1, y1)| x + width <= x0 || x1 <= x || y + 9 <= y0 || y1 <= y - 9)
+        };
+        let candidates = (0..16).flat_map(|k: i32| {
+            let dy = if k % 2 == 0 { k / 2 * 20 } else { -(k / 2 + 1) * 20 };
+            [(px + 16, py + dy), (px - 16 - width, py + dy)]
+        });
+        let (x, y) = candidates.clone().find(|&at| free(at)).unwrap_or((px + 16, py));
+        taken.push((x, y - 9, x + width, y + 9));
+        if y != py {
+            let end = if x > px { x - 2 } else { x + width + 2 };
+            root.draw(&PathElement::new([(px, py), (end, y)], BLACK.mix(0.5).stroke_width(1)))?;
+        }
+        let text = TextStyle::from((FONT, 16).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
+        root.draw(&Text::new(label, (x, y), text))?;
     }
     draw_legend(&mut chart, SeriesLabelPosition::LowerRight, 15)?;
     Ok(())
@@ -470,6 +532,140 @@ where
         }
         draw_legend(&mut chart, SeriesLabelPosition::UpperLeft, 13)?;
     }
+    Ok(())
+}
+
+/// Writes `names` under a chart whose x axis has one unit per name, each
+/// turned to read downwards from under the middle of its unit.
+fn category_labels<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    chart: &ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    names: &[&str],
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let style = TextStyle::from((FONT, 14).into_font()).transform(FontTransform::Rotate90);
+    let (left, top) = area.get_base_pixel();
+    for (i, name) in names.iter().enumerate() {
+        let (x, y) = chart.backend_coord(&(i as f64 + 0.5, 0.0));
+        area.draw(&Text::new(name.to_string(), (x - left + 7, y - top + 8), style.clone()))?;
+    }
+    Ok(())
+}
+
+/// What modelling costs: per family, each of exact's paths and fill_auto
+/// against the cheapest path that takes the whole family, fill_auto's
+/// choice marked and its classification's share shaded; beside it, the
+/// show's shaded entries as they need and over-modelled.
+fn modelling_cost<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, results: &Results) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    const LANES: [(&str, RGBColor); 4] = [
+        ("triangle", RGBColor(44, 160, 44)),
+        ("monotone", RGBColor(31, 119, 180)),
+        ("active edges", RGBColor(214, 39, 40)),
+        ("fill_auto", RGBColor(60, 60, 60)),
+    ];
+    const TOP: f64 = 3.0;
+    let (families_area, show_area) = root.split_horizontally(1240);
+    let families: Vec<&str> = results.families.iter().map(|f| f.name).collect();
+    let row = |family: &str, lane: &str| results.modelling.iter().find(|r| r.family == family && r.lane == lane);
+    let mut chart = ChartBuilder::on(&families_area)
+        .caption(
+            "What modelling costs: time of each path of exact ÷ the cheapest path that takes the family",
+            (FONT, 21),
+        )
+        .margin(15)
+        .x_label_area_size(150)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0.0..families.len() as f64, 0.0..TOP + 0.3)?;
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_labels(0)
+        .y_desc("time ÷ the cheapest path's (1 = the cheapest; bars stop at 3)")
+        .label_style((FONT, 14))
+        .axis_desc_style((FONT, 16))
+        .draw()?;
+    category_labels(&families_area, &chart, &families)?;
+    let width = 0.8 / LANES.len() as f64;
+    for (i, family) in families.iter().enumerate() {
+        for (k, (lane, color)) in LANES.iter().enumerate() {
+            let x0 = i as f64 + 0.1 + k as f64 * width;
+            let Some(r) = row(family, lane) else { continue };
+            let Some(ratio) = r.time_vs_cheapest else {
+                // Refused some polygon: no time on this family.
+                let style = TextStyle::from((FONT, 13).into_font()).pos(Pos::new(HPos::Center, VPos::Bottom));
+                chart.draw_series([Text::new("×", (x0 + width / 2.0, 0.02), style)])?;
+                continue;
+            };
+            let top = ratio.min(TOP);
+            chart.draw_series([Rectangle::new([(x0, 0.0), (x0 + width * 0.9, top)], color.mix(0.75).filled())])?;
+            if *lane == "fill_auto" {
+                // The share of its time spent classifying, from the bottom.
+                let dispatch = row(family, "dispatch").and_then(|d| d.ns_per_polygon);
+                if let (Some(dispatch), Some(total)) = (dispatch, r.ns_per_polygon) {
+                    let share = top * (dispatch / total).min(1.0);
+                    chart.draw_series([Rectangle::new([(x0, 0.0), (x0 + width * 0.9, share)], BLACK.filled())])?;
+                }
+            }
+            if r.chosen_by_fill_auto.unwrap_or(0) > 0 {
+                chart.draw_series([TriangleMarker::new((x0 + width * 0.45, top + 0.12), 6, BLACK.filled())])?;
+            }
+        }
+    }
+    chart
+        .draw_series(DashedLineSeries::new([(0.0, 1.0), (families.len() as f64, 1.0)], 6, 4, BLACK.stroke_width(1)))?
+        .label("the cheapest path")
+        .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], BLACK.stroke_width(1)));
+    for (lane, color) in LANES {
+        chart
+            .draw_series(std::iter::empty::<Rectangle<(f64, f64)>>())?
+            .label(if lane == "fill_auto" { "fill_auto (black: its classification)" } else { lane })
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 14, y + 5)], color.mix(0.75).filled()));
+    }
+    chart
+        .draw_series(std::iter::empty::<Rectangle<(f64, f64)>>())?
+        .label("▲ the path fill_auto picks (for some polygon); × refuses part of the family")
+        .legend(|(x, y)| TriangleMarker::new((x + 7, y), 6, BLACK.filled()));
+    draw_legend(&mut chart, SeriesLabelPosition::UpperLeft, 14)?;
+
+    let entries: Vec<&str> =
+        results.show_modelling.iter().filter(|r| r.modelling == "needed").map(|r| r.entry).collect();
+    let most = results.show_modelling.iter().filter_map(|r| r.time_vs_needed).fold(1.0, f64::max);
+    let mut show = ChartBuilder::on(&show_area)
+        .caption("The show: over-modelled ÷ as needed", (FONT, 18))
+        .margin(15)
+        .x_label_area_size(150)
+        .y_label_area_size(45)
+        .build_cartesian_2d(0.0..entries.len().max(1) as f64, 0.0..most * 1.15)?;
+    show.configure_mesh().disable_x_mesh().x_labels(0).label_style((FONT, 14)).draw()?;
+    category_labels(&show_area, &show, &entries)?;
+    for (i, entry) in entries.iter().enumerate() {
+        let forced = results.show_modelling.iter().find(|r| r.entry == *entry && r.modelling == "forced");
+        for (k, (ratio, color)) in
+            [(Some(1.0), RGBColor(31, 119, 180)), (forced.and_then(|r| r.time_vs_needed), RGBColor(214, 39, 40))]
+                .into_iter()
+                .enumerate()
+        {
+            let Some(ratio) = ratio else { continue };
+            let x0 = i as f64 + 0.15 + k as f64 * 0.35;
+            show.draw_series([Rectangle::new([(x0, 0.0), (x0 + 0.32, ratio)], color.mix(0.75).filled())])?;
+            let style = TextStyle::from((FONT, 13).into_font()).pos(Pos::new(HPos::Center, VPos::Bottom));
+            show.draw_series([Text::new(format!("{ratio:.1}×"), (x0 + 0.16, ratio + most * 0.01), style)])?;
+        }
+    }
+    let blue = RGBColor(31, 119, 180).mix(0.75);
+    let red = RGBColor(214, 39, 40).mix(0.75);
+    show.draw_series(std::iter::empty::<Rectangle<(f64, f64)>>())?
+        .label("as needed")
+        .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 14, y + 5)], blue.filled()));
+    show.draw_series(std::iter::empty::<Rectangle<(f64, f64)>>())?
+        .label("4 attributes + depth buffer")
+        .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 14, y + 5)], red.filled()));
+    draw_legend(&mut show, SeriesLabelPosition::UpperLeft, 13)?;
     Ok(())
 }
 

@@ -3,17 +3,20 @@
 
 use std::hint::black_box;
 
+use raster::methods::exact::Path;
 use raster::reference::SampleOffset;
 use raster::{Framebuffer, Method, Polygon, SpanSink, SCREEN};
 
 use crate::corpus::Family;
 use crate::peers::Peer;
 
-/// A method of `raster` or a peer library.
+/// A method of `raster`, a peer library, or one of `exact`'s paths asked
+/// for alone (only in "what modelling costs": not one of [`Contender::all`]).
 #[derive(Clone, Copy)]
 pub enum Contender {
     Method(&'static dyn Method),
     Peer(Peer),
+    Path(Path),
 }
 
 impl Contender {
@@ -27,6 +30,7 @@ impl Contender {
         match self {
             Contender::Method(m) => m.info().name,
             Contender::Peer(p) => p.name(),
+            Contender::Path(path) => path.name(),
         }
     }
 
@@ -40,6 +44,7 @@ impl Contender {
         match self {
             Contender::Method(m) => m.info().source,
             Contender::Peer(p) => p.source(),
+            Contender::Path(_) => "ours: one of exact's paths alone",
         }
     }
 
@@ -49,8 +54,10 @@ impl Contender {
             Contender::Method(m) => format!("{}; {}", m.info().numeric, m.info().convention.summary),
             Contender::Peer(p) => match p {
                 Peer::TinySkia => "f32 path, 26.6 fixed-point edges; pixel centres".to_string(),
+                Peer::Cairo => "f64 path, 24.8 fixed-point edges; pixel centres".to_string(),
                 Peer::EmbeddedGraphics => "whole-pixel vertices; i32 scanline intersections, edges drawn".to_string(),
             },
+            Contender::Path(path) => format!("exact's {} path; refuses polygons outside its class", path.name()),
         }
     }
 
@@ -59,13 +66,15 @@ impl Contender {
         match self {
             Contender::Method(m) => SampleOffset::of(&m.info().convention),
             Contender::Peer(p) => p.sample(),
+            Contender::Path(_) => SampleOffset::CENTRE,
         }
     }
 
     /// Whether it runs on `family` at all (a peer must take every polygon).
     pub fn accepts(&self, family: &Family) -> bool {
         match self {
-            Contender::Method(_) => true,
+            // A path is given every polygon: it must refuse what it cannot fill.
+            Contender::Method(_) | Contender::Path(_) => true,
             Contender::Peer(p) => family.polygons.iter().all(|polygon| p.accepts(polygon)),
         }
     }
@@ -75,6 +84,7 @@ impl Contender {
         match self {
             Contender::Method(m) => m.fill(polygon, sink).map_err(|refusal| refusal.describe()),
             Contender::Peer(p) => p.draw(polygon, sink),
+            Contender::Path(path) => path.fill(polygon, sink).map_err(|refusal| refusal.describe()),
         }
     }
 
@@ -85,15 +95,35 @@ impl Contender {
             Contender::Method(method) => {
                 let polygons = polygons.to_vec();
                 let mut screen = Framebuffer::new(SCREEN);
+                match method.id() {
+                    // Our methods, compiled for the framebuffer: its store is
+                    // inlined into the fill.
+                    Some(id) => Box::new(move || {
+                        for polygon in &polygons {
+                            // A refusal costs what it costs; it draws nothing.
+                            let _ = id.fill(polygon, &mut screen);
+                        }
+                        black_box(&mut screen);
+                    }),
+                    None => Box::new(move || {
+                        for polygon in &polygons {
+                            let _ = method.fill(polygon, &mut screen);
+                        }
+                        black_box(&mut screen);
+                    }),
+                }
+            }
+            Contender::Peer(p) => p.pass(polygons),
+            Contender::Path(path) => {
+                let polygons = polygons.to_vec();
+                let mut screen = Framebuffer::new(SCREEN);
                 Box::new(move || {
                     for polygon in &polygons {
-                        // A refusal costs what it costs; it draws nothing.
-                        let _ = method.fill(polygon, &mut screen);
+                        let _ = path.fill(polygon, &mut screen);
                     }
                     black_box(&mut screen);
                 })
             }
-            Contender::Peer(p) => p.pass(polygons),
         }
     }
 }

@@ -1,8 +1,8 @@
 //! The polygon-fill lab (`cargo xtask lab`): every method of `raster`, the
-//! peers (tiny-skia, embedded-graphics) and two bounds (memset, span write)
-//! on one seeded corpus; accuracy against `raster::reference`, speed in
-//! wall-clock time; results.json, report.md and four charts under the
-//! output directory.
+//! peers (tiny-skia, Cairo, embedded-graphics) and three bounds (memset,
+//! span stores, the dyn-sink replay) on one seeded corpus; accuracy against
+//! `raster::reference`, speed in wall-clock time; results.json, report.md
+//! and the charts under the output directory.
 //!
 //! Speed is measured, never asserted. What fails a run is a missing
 //! results.json or any wrong pixel, overdraw, gap or failure of `exact`.
@@ -24,7 +24,9 @@ use indicatif::{ProgressBar, ProgressStyle};
 pub mod charts;
 pub mod contender;
 pub mod corpus;
+pub mod heap;
 pub mod measure;
+pub mod modelling;
 pub mod peers;
 pub mod report;
 pub mod results;
@@ -39,6 +41,10 @@ use timing::Timing;
 
 /// The method held to zero wrong pixels, overdraw, gaps and failures.
 pub const EXACT: &str = "exact";
+
+/// Error rates (in %) below this count as none where rates are averaged in
+/// logarithms or drawn on a log axis.
+pub const ZERO_FLOOR: f64 = 1e-4;
 
 /// What `cargo xtask lab` asks for.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -77,7 +83,10 @@ pub fn run(options: &LabOptions) -> Result<()> {
 fn measure_corpus(quick: bool, budget: Budget, timing: Timing) -> Results {
     let families = corpus::build(budget);
     let contenders = Contender::all();
-    let work: u64 = families.iter().map(|f| f.polygons.len() as u64 + timing::jobs(f, contenders.len())).sum();
+    let work: u64 = families
+        .iter()
+        .map(|f| 2 * f.polygons.len() as u64 + timing::jobs(f, contenders.len()) + modelling::JOBS)
+        .sum();
     let bar = ProgressBar::new(work).with_style(
         ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {percent:>3}% {msg}")
             .expect("the progress template is valid")
@@ -90,7 +99,11 @@ fn measure_corpus(quick: bool, budget: Budget, timing: Timing) -> Results {
         bar.set_message(format!("timing {}", family.name));
         let speeds = timing::time_family(family, &judged, &contenders, timing, &|| bar.inc(1));
         results.add_family(family, &contenders, &judged, &speeds);
+        bar.set_message(format!("modelling {}", family.name));
+        results.modelling.extend(modelling::measure(family, timing, &|| bar.inc(1)));
     }
+    bar.set_message("modelling the show");
+    results.show_modelling = modelling::measure_show(timing);
     bar.finish_and_clear();
     results
 }
@@ -102,14 +115,17 @@ fn write(path: &Path, contents: &str) -> Result<()> {
 /// Reads results.json back and fails unless `exact` has a row for every
 /// family, and every row says, in numbers, that it has no wrong pixel, no
 /// overdraw, no refusal and no failure (and no gap where the family tiles:
-/// `gaps` is `null` only on families that do not). A missing row or field
-/// fails: a gate that passes on what it cannot see is no gate.
+/// `gaps` is `null` only on families that do not); and unless every path of
+/// `exact` and `fill_auto` in "what modelling costs" drew no wrong pixel,
+/// no overdraw, no gap and never failed (a path may refuse). A missing row
+/// or field fails: a gate that passes on what it cannot see is no gate.
 pub fn check(results_json: &Path) -> Result<()> {
     let text = fs::read_to_string(results_json).with_context(|| format!("{} is missing", results_json.display()))?;
     let results: serde_json::Value =
         serde_json::from_str(&text).with_context(|| format!("{} is not valid JSON", results_json.display()))?;
     let rows = results["rows"].as_array().context("results.json has no rows")?;
     let families = results["families"].as_array().context("results.json has no families")?;
+    let modelling = results["modelling"].as_array().context("results.json has no modelling rows")?;
     let mut faults = Vec::new();
     for family in families {
         let name = family["name"].as_str().context("results.json has a family without a name")?;
@@ -118,13 +134,16 @@ pub fn check(results_json: &Path) -> Result<()> {
             faults.push(format!("{name}: no `{EXACT}` row"));
             continue;
         };
-        for field in ["wrong_pixels", "overdraw", "refusals", "failures", "gaps"] {
-            match (&row[field], row[field].as_u64()) {
-                (_, Some(0)) => {}
-                (serde_json::Value::Null, None) if field == "gaps" && row.get(field).is_some() => {}
-                (_, Some(value)) => faults.push(format!("{name}: {field} = {value}")),
-                (value, None) => faults.push(format!("{name}: {field} is {value}, not a count")),
-            }
+        check_counts(&mut faults, name, row, &["wrong_pixels", "overdraw", "refusals", "failures", "gaps"]);
+        let paths = modelling.iter().filter(|row| row["family"] == name && !row["refusals"].is_null());
+        let mut lanes = 0;
+        for row in paths {
+            let lane = format!("{name}, {} path", row["lane"].as_str().unwrap_or("unnamed"));
+            check_counts(&mut faults, &lane, row, &["wrong_pixels", "overdraw", "failures", "gaps"]);
+            lanes += 1;
+        }
+        if lanes == 0 {
+            faults.push(format!("{name}: no rows of exact's paths"));
         }
     }
     if families.is_empty() {
@@ -134,10 +153,23 @@ pub fn check(results_json: &Path) -> Result<()> {
         bail!("`{EXACT}` is not proven exact by {}:\n  {}", results_json.display(), faults.join("\n  "));
     }
     eprintln!(
-        "lab: `{EXACT}` has no wrong pixel, overdraw, gap, refusal or failure on any of {} families",
+        "lab: `{EXACT}` has no wrong pixel, overdraw, gap, refusal or failure on any of {} families, nor its paths",
         families.len()
     );
     Ok(())
+}
+
+/// Adds a fault for each of `fields` of `row` that is not a zero count
+/// (`gaps` may be `null`: no tiling).
+fn check_counts(faults: &mut Vec<String>, what: &str, row: &serde_json::Value, fields: &[&str]) {
+    for &field in fields {
+        match (&row[field], row[field].as_u64()) {
+            (_, Some(0)) => {}
+            (serde_json::Value::Null, None) if field == "gaps" && row.get(field).is_some() => {}
+            (_, Some(value)) => faults.push(format!("{what}: {field} = {value}")),
+            (value, None) => faults.push(format!("{what}: {field} is {value}, not a count")),
+        }
+    }
 }
 
 #[cfg(test)]
@@ -157,13 +189,16 @@ mod tests {
         assert!(check(&dir.path().join("results.json")).is_err());
     }
 
-    /// results.json with one family `f` and one `exact` row whose fields
-    /// are `fields` (JSON object members).
+    /// results.json with one family `f`, one `exact` row whose fields are
+    /// `fields` (JSON object members) and one clean path row.
     fn exact_row(fields: &str) -> String {
-        format!(r#"{{"families": [{{"name": "f"}}], "rows": [{{"name": "exact", "family": "f", {fields}}}]}}"#)
+        format!(
+            r#"{{"families": [{{"name": "f"}}], "rows": [{{"name": "exact", "family": "f", {fields}}}], "modelling": [{PATH}]}}"#
+        )
     }
 
     const CLEAN: &str = r#""wrong_pixels": 0, "overdraw": 0, "refusals": 0, "failures": 0, "gaps": null"#;
+    const PATH: &str = r#"{"family": "f", "lane": "monotone", "refusals": 4, "wrong_pixels": 0, "overdraw": 0, "failures": 0, "gaps": null}"#;
 
     #[test]
     fn a_clean_exact_row_passes() {
@@ -192,10 +227,25 @@ mod tests {
         let (_dir, path) = results_file(&exact_row(&CLEAN.replace(r#", "gaps": null"#, "")));
         let error = check(&path).unwrap_err().to_string();
         assert!(error.contains("f: gaps is null, not a count"), "{error}");
-        let (_dir, path) = results_file(r#"{"families": [{"name": "f"}], "rows": [{"name": "wgt", "family": "f"}]}"#);
+        let (_dir, path) =
+            results_file(r#"{"families": [{"name": "f"}], "rows": [{"name": "wgt", "family": "f"}], "modelling": []}"#);
         let error = check(&path).unwrap_err().to_string();
         assert!(error.contains("f: no `exact` row"), "{error}");
-        let (_dir, path) = results_file(r#"{"families": [], "rows": []}"#);
+        let (_dir, path) = results_file(r#"{"families": [], "rows": [], "modelling": []}"#);
         assert!(check(&path).is_err());
+    }
+
+    #[test]
+    fn a_path_drawing_wrong_fails_and_missing_paths_fail() {
+        let json = exact_row(CLEAN);
+        let (_dir, path) =
+            results_file(&json.replace(r#""refusals": 4, "wrong_pixels": 0"#, r#""refusals": 4, "wrong_pixels": 2"#));
+        let error = check(&path).unwrap_err().to_string();
+        assert!(error.contains("f, monotone path: wrong_pixels = 2"), "{error}");
+        let (_dir, path) = results_file(&json.replace(PATH, ""));
+        let error = check(&path).unwrap_err().to_string();
+        assert!(error.contains("f: no rows of exact's paths"), "{error}");
+        let (_dir, path) = results_file(&json.replace(&format!(r#", "modelling": [{PATH}]"#), ""));
+        assert!(check(&path).unwrap_err().to_string().contains("no modelling rows"));
     }
 }

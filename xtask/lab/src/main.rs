@@ -5,6 +5,10 @@ use std::path::PathBuf;
 
 use clap::Parser;
 
+/// Counts allocations, for the allocations per polygon of exact's paths.
+#[global_allocator]
+static ALLOCATOR: lab::heap::Counting = lab::heap::Counting;
+
 /// Measures every fill method for speed and accuracy on one seeded corpus.
 #[derive(Parser, Debug)]
 #[command(name = "lab")]

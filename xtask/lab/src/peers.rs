@@ -4,6 +4,12 @@
 //! - tiny-skia 0.12, aliased: `Mask::fill_path` with `anti_alias = false`
 //!   (Skia's non-AA scan converter: pixel centres, 26.6 fixed-point edges).
 //!   Its paths are `f32`, built from our subpixels before timing starts.
+//! - Cairo, the C library most Linux desktops fill with, through `cairo-rs`
+//!   0.22 over the system libcairo: `Context::fill` with
+//!   `Antialias::None` (its mono scan converter: pixel centres, 24.8
+//!   fixed-point edges) into an A8 image surface of 320x200. Its paths are
+//!   `f64` pixels, exact for our subpixels, set up for each polygon inside
+//!   the timed pass, as a program using Cairo would.
 //! - embedded-graphics 0.8: a filled `Triangle` (vertices rounded to whole
 //!   pixels, its only input), for triangle families only. Its draw target
 //!   writes through the same [`SpanSink`] as our methods, into the same
@@ -11,6 +17,7 @@
 
 use std::hint::black_box;
 
+use cairo::{Antialias, Context, Format, ImageSurface};
 use embedded_graphics::pixelcolor::Gray8;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::{PrimitiveStyle, Rectangle, Styled, Triangle};
@@ -22,15 +29,17 @@ use tiny_skia::{Mask, Path, PathBuilder, Transform};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Peer {
     TinySkia,
+    Cairo,
     EmbeddedGraphics,
 }
 
 impl Peer {
-    pub const ALL: [Peer; 2] = [Peer::TinySkia, Peer::EmbeddedGraphics];
+    pub const ALL: [Peer; 3] = [Peer::TinySkia, Peer::Cairo, Peer::EmbeddedGraphics];
 
     pub const fn name(self) -> &'static str {
         match self {
             Peer::TinySkia => "tiny-skia",
+            Peer::Cairo => "cairo",
             Peer::EmbeddedGraphics => "embedded-graphics",
         }
     }
@@ -38,15 +47,16 @@ impl Peer {
     pub const fn source(self) -> &'static str {
         match self {
             Peer::TinySkia => "tiny-skia 0.12 Mask::fill_path, anti_alias false",
+            Peer::Cairo => "system libcairo through cairo-rs 0.22: Context::fill, Antialias::None, A8 surface",
             Peer::EmbeddedGraphics => "embedded-graphics 0.8 Triangle with fill style",
         }
     }
 
-    /// Where the peer samples a pixel: tiny-skia at centres; embedded-
-    /// graphics puts pixel (x, y) at the whole-pixel point (x, y).
+    /// Where the peer samples a pixel: tiny-skia and Cairo at centres;
+    /// embedded-graphics puts pixel (x, y) at the whole-pixel point (x, y).
     pub const fn sample(self) -> SampleOffset {
         match self {
-            Peer::TinySkia => SampleOffset::CENTRE,
+            Peer::TinySkia | Peer::Cairo => SampleOffset::CENTRE,
             Peer::EmbeddedGraphics => SampleOffset { x: 0, y: 0 },
         }
     }
@@ -55,7 +65,7 @@ impl Peer {
     /// draws triangles).
     pub fn accepts(self, polygon: &Polygon) -> bool {
         match self {
-            Peer::TinySkia => true,
+            Peer::TinySkia | Peer::Cairo => true,
             Peer::EmbeddedGraphics => triangle(polygon).is_some(),
         }
     }
@@ -69,6 +79,11 @@ impl Peer {
                 mask.fill_path(&path, fill_rule(polygon.rule), false, Transform::identity());
                 emit_runs(&mask, polygon.color, sink);
                 Ok(())
+            }
+            Peer::Cairo => {
+                let mut canvas = CairoCanvas::new().map_err(|_| "cairo made no surface")?;
+                canvas.fill(polygon).map_err(|_| "cairo failed to fill")?;
+                canvas.emit_runs(polygon.color, sink).map_err(|_| "cairo's pixels could not be read")
             }
             Peer::EmbeddedGraphics => {
                 let shape = triangle(polygon).ok_or("not a triangle")?;
@@ -91,6 +106,17 @@ impl Peer {
                         mask.fill_path(path, *rule, false, Transform::identity());
                     }
                     black_box(&mut mask);
+                })
+            }
+            Peer::Cairo => {
+                let polygons = polygons.to_vec();
+                let mut canvas = CairoCanvas::new().expect("cairo makes a 320x200 A8 surface");
+                Box::new(move || {
+                    for polygon in &polygons {
+                        // A failed fill costs what it costs, as a refusal does.
+                        let _ = canvas.fill(polygon);
+                    }
+                    black_box(&mut canvas);
                 })
             }
             Peer::EmbeddedGraphics => {
@@ -137,8 +163,14 @@ fn path(polygon: &Polygon) -> Option<Path> {
 
 /// Every run of set mask bytes, as spans into `sink`.
 fn emit_runs(mask: &Mask, color: u8, sink: &mut dyn SpanSink) {
-    let width = mask.width() as usize;
-    for (y, row) in mask.data().chunks_exact(width).enumerate() {
+    emit_rows(mask.data(), mask.width() as usize, mask.width() as usize, color, sink);
+}
+
+/// Every run of non-zero bytes of `rows` (`stride` bytes a row, the first
+/// `width` of them pixels), as spans into `sink`.
+fn emit_rows(rows: &[u8], stride: usize, width: usize, color: u8, sink: &mut dyn SpanSink) {
+    for (y, row) in rows.chunks_exact(stride).enumerate() {
+        let row = &row[..width];
         let mut x = 0;
         while let Some(start) = row[x..].iter().position(|&v| v != 0).map(|i| x + i) {
             let end = row[start..].iter().position(|&v| v == 0).map_or(width, |i| start + i);
@@ -148,6 +180,48 @@ fn emit_runs(mask: &Mask, color: u8, sink: &mut dyn SpanSink) {
                 break;
             }
         }
+    }
+}
+
+/// Cairo's drawing state for one 320x200 A8 surface: aliased, opaque.
+struct CairoCanvas {
+    surface: ImageSurface,
+    context: Context,
+}
+
+impl CairoCanvas {
+    fn new() -> Result<Self, cairo::Error> {
+        let surface = ImageSurface::create(Format::A8, SCREEN.width, SCREEN.height)?;
+        let context = Context::new(&surface)?;
+        context.set_antialias(Antialias::None);
+        context.set_source_rgba(0.0, 0.0, 0.0, 1.0);
+        Ok(Self { surface, context })
+    }
+
+    /// Fills `polygon`: one closed subpath per contour, in pixels.
+    fn fill(&mut self, polygon: &Polygon) -> Result<(), cairo::Error> {
+        let one = f64::from(raster::SUBPIXEL_ONE);
+        let context = &self.context;
+        context.set_fill_rule(match polygon.rule {
+            FillRule::EvenOdd => cairo::FillRule::EvenOdd,
+            FillRule::NonZero => cairo::FillRule::Winding,
+        });
+        for contour in &polygon.contours {
+            let Some((first, rest)) = contour.split_first() else { continue };
+            context.move_to(f64::from(first.x) / one, f64::from(first.y) / one);
+            for p in rest {
+                context.line_to(f64::from(p.x) / one, f64::from(p.y) / one);
+            }
+            context.close_path();
+        }
+        context.fill()
+    }
+
+    /// The surface's covered pixels, as spans into `sink`.
+    fn emit_runs(&self, color: u8, sink: &mut dyn SpanSink) -> Result<(), cairo::BorrowError> {
+        self.surface.flush();
+        let (stride, width) = (self.surface.stride() as usize, self.surface.width() as usize);
+        self.surface.with_data(|rows| emit_rows(rows, stride, width, color, sink))
     }
 }
 
@@ -165,31 +239,33 @@ fn triangle(polygon: &Polygon) -> Option<Styled<Triangle, PrimitiveStyle<Gray8>>
     )
 }
 
-fn draw_triangle(shape: &Styled<Triangle, PrimitiveStyle<Gray8>>, sink: &mut dyn SpanSink) {
+/// Draws `shape` into `sink`; timed into a [`Framebuffer`], whose store is
+/// then inlined as it is into our methods.
+fn draw_triangle<S: SpanSink + ?Sized>(shape: &Styled<Triangle, PrimitiveStyle<Gray8>>, sink: &mut S) {
     let Ok(()) = shape.draw(&mut SpanTarget { sink });
 }
 
 /// An embedded-graphics draw target over a [`SpanSink`]: rows of a solid
 /// rectangle become spans, single pixels one-pixel spans. As the
 /// `DrawTarget` contract asks, whatever falls outside is dropped.
-struct SpanTarget<'a> {
-    sink: &'a mut dyn SpanSink,
+struct SpanTarget<'a, S: SpanSink + ?Sized> {
+    sink: &'a mut S,
 }
 
-impl SpanTarget<'_> {
+impl<S: SpanSink + ?Sized> SpanTarget<'_, S> {
     fn screen(&self) -> Rectangle {
         let size = self.sink.size();
         Rectangle::new(embedded_graphics::geometry::Point::zero(), Size::new(size.width as u32, size.height as u32))
     }
 }
 
-impl Dimensions for SpanTarget<'_> {
+impl<S: SpanSink + ?Sized> Dimensions for SpanTarget<'_, S> {
     fn bounding_box(&self) -> Rectangle {
         self.screen()
     }
 }
 
-impl DrawTarget for SpanTarget<'_> {
+impl<S: SpanSink + ?Sized> DrawTarget for SpanTarget<'_, S> {
     type Color = Gray8;
     type Error = core::convert::Infallible;
 
@@ -243,6 +319,27 @@ mod tests {
         let mut spans = Spans(vec![]);
         Peer::TinySkia.draw(&square(2, 3, 4), &mut spans).unwrap();
         assert_eq!(spans.0, vec![(3, 2, 6), (4, 2, 6), (5, 2, 6), (6, 2, 6)]);
+    }
+
+    #[test]
+    fn cairo_fills_a_grid_square_by_its_pixel_centres() {
+        let mut spans = Spans(vec![]);
+        Peer::Cairo.draw(&square(2, 3, 4), &mut spans).unwrap();
+        assert_eq!(spans.0, vec![(3, 2, 6), (4, 2, 6), (5, 2, 6), (6, 2, 6)]);
+    }
+
+    #[test]
+    fn cairo_leaves_a_hole_by_either_rule() {
+        let mut holed = square(0, 0, 6);
+        let mut hole = square(2, 2, 2).contours.remove(0);
+        hole.reverse();
+        holed.contours.push(hole);
+        for rule in [FillRule::EvenOdd, FillRule::NonZero] {
+            holed.rule = rule;
+            let mut spans = Spans(vec![]);
+            Peer::Cairo.draw(&holed, &mut spans).unwrap();
+            assert_eq!(&spans.0[2..4], &[(2, 0, 2), (2, 4, 6)], "{rule:?}");
+        }
     }
 
     #[test]

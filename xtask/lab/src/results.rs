@@ -8,6 +8,7 @@ use serde::Serialize;
 use crate::contender::Contender;
 use crate::corpus::{Axis, Family, Group};
 use crate::measure::{Judged, Tally};
+use crate::modelling::{PathRow, ShowRow};
 use crate::spans;
 use crate::timing::{Bound, Speeds};
 
@@ -27,6 +28,11 @@ pub struct Results {
     pub contenders: Vec<ContenderInfo>,
     pub rows: Vec<Row>,
     pub sweeps: Vec<SweepPoint>,
+    /// What modelling costs: exact's paths, fill_auto and classification
+    /// alone, per family.
+    pub modelling: Vec<PathRow>,
+    /// The show's shaded entries as they need and over-modelled.
+    pub show_modelling: Vec<ShowRow>,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -69,8 +75,8 @@ pub struct Row {
     pub pixels_per_second: Option<f64>,
     /// Time over the memset bound's on the same polygons.
     pub time_vs_memset: Option<f64>,
-    /// Time over the span-write bound's on the same polygons.
-    pub time_vs_span_write: Option<f64>,
+    /// Time over the store bound's on the same polygons.
+    pub time_vs_store: Option<f64>,
     pub wrong_pixels: Option<u64>,
     pub wrong_pixels_own: Option<u64>,
     pub overdraw: Option<u64>,
@@ -140,7 +146,16 @@ impl Results {
             summary: String::new(),
             sample: None,
         }));
-        Self { seed, quick, families: vec![], contenders: infos, rows: vec![], sweeps: vec![] }
+        Self {
+            seed,
+            quick,
+            families: vec![],
+            contenders: infos,
+            rows: vec![],
+            sweeps: vec![],
+            modelling: vec![],
+            show_modelling: vec![],
+        }
     }
 
     /// Adds what was measured on `family`.
@@ -170,7 +185,7 @@ impl Results {
             ns_per_polygon: ns,
             pixels_per_second: ns.map(|ns| timed_pixels as f64 / (ns * timed as f64) * 1e9),
             time_vs_memset: ratio(ns, Bound::Memset),
-            time_vs_span_write: ratio(ns, Bound::SpanWrite),
+            time_vs_store: ratio(ns, Bound::Store),
             wrong_pixels: None,
             wrong_pixels_own: None,
             overdraw: None,
@@ -238,7 +253,8 @@ impl Results {
 
     /// The speed-against-accuracy points: one per method or peer per
     /// everyday family (scenes, random, tilings), at (time over the memset
-    /// bound, wrong pixels in % of exact pixels, at least `zero_floor`).
+    /// bound, wrong pixels in % of exact pixels, at least `zero_floor`,
+    /// which must be positive for [`Results::speed_accuracy_means`]).
     /// Rows with a refusal or failure are left out: they drew less work,
     /// and their point would flatter them.
     pub fn speed_accuracy_points(&self, zero_floor: f64) -> Vec<(&Row, (f64, f64))> {
@@ -247,6 +263,23 @@ impl Results {
             .iter()
             .filter(|r| everyday(r.group) && r.refusals == Some(0) && r.failures == Some(0))
             .filter_map(|r| Some((r, (r.time_vs_memset?, (r.error_rate()? * 100.0).max(zero_floor)))))
+            .collect()
+    }
+
+    /// One point per method or peer: the geometric means of its
+    /// [`Results::speed_accuracy_points`] on both axes, over the families
+    /// it has a point on, with how many those are. In results order.
+    pub fn speed_accuracy_means(&self, zero_floor: f64) -> Vec<MeanPoint> {
+        let points = self.speed_accuracy_points(zero_floor);
+        self.contenders
+            .iter()
+            .filter(|c| c.kind != Kind::Bound)
+            .filter_map(|c| {
+                let mine: Vec<(f64, f64)> = points.iter().filter(|(r, _)| r.name == c.name).map(|(_, p)| *p).collect();
+                let mean = geometric_mean(mine.iter().map(|p| p.0))?;
+                let error = geometric_mean(mine.iter().map(|p| p.1))?;
+                Some(MeanPoint { name: c.name, kind: c.kind, at: (mean, error), families: mine.len() })
+            })
             .collect()
     }
 
@@ -259,6 +292,23 @@ impl Results {
     pub fn row(&self, name: &str, family: &str) -> Option<&Row> {
         self.rows.iter().find(|r| r.name == name && r.family == family)
     }
+}
+
+/// A contender's mean point on the speed-against-accuracy chart.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeanPoint {
+    pub name: &'static str,
+    pub kind: Kind,
+    /// (time over the memset bound's, wrong pixels in %), geometric means.
+    pub at: (f64, f64),
+    /// Families the means are over.
+    pub families: usize,
+}
+
+/// The geometric mean of positive `values`; `None` for none.
+fn geometric_mean(values: impl Iterator<Item = f64>) -> Option<f64> {
+    let (sum, n) = values.fold((0.0, 0u32), |(sum, n), v| (sum + v.ln(), n + 1));
+    (n > 0).then(|| (sum / f64::from(n)).exp())
 }
 
 fn with_tally(row: Row, tally: &Tally, tiled: bool) -> Row {

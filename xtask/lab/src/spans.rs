@@ -62,6 +62,13 @@ fn visible(s: &Span) -> Option<(i64, i64, i64)> {
     ((0..SCREEN.height).contains(&s.y) && x0 < x1).then(|| (i64::from(s.y), i64::from(x0), i64::from(x1)))
 }
 
+/// The byte ranges the visible parts of the spans cover in a 320x200
+/// buffer of rows, in order.
+pub fn byte_ranges(spans: &[Span]) -> Vec<(usize, usize)> {
+    let width = i64::from(SCREEN.width);
+    spans.iter().filter_map(visible).map(|(y, x0, x1)| ((y * width + x0) as usize, (y * width + x1) as usize)).collect()
+}
+
 /// Pixels the spans write on the screen, counting overdraw.
 pub fn pixel_count(spans: &[Span]) -> u64 {
     spans.iter().filter_map(visible).map(|(_, x0, x1)| (x1 - x0) as u64).sum()
@@ -111,6 +118,12 @@ mod tests {
         assert_eq!(normal_form(&[span(0, 3, 3)]), None);
         assert_eq!(normal_form(&[span(0, 300, 321)]), None);
         assert_eq!(normal_form(&[span(-1, 0, 1)]), None);
+    }
+
+    #[test]
+    fn byte_ranges_are_the_visible_parts_row_after_row() {
+        let ranges = byte_ranges(&[span(0, -5, 3), span(2, 318, 400), span(200, 0, 9), span(1, 4, 4)]);
+        assert_eq!(ranges, vec![(0, 3), (958, 960)]);
     }
 
     #[test]

@@ -1,10 +1,11 @@
-//! Wall-clock timing of fill passes, and the two bounds every fill is
-//! compared with. Nothing here is ever asserted: speed is reported only.
+//! Wall-clock timing of fill passes, and the bounds every fill is compared
+//! with. Nothing here is ever asserted: speed is reported only.
 
 use std::hint::black_box;
 use std::ops::Range;
 use std::time::{Duration, Instant};
 
+use raster::sink::set_bytes;
 use raster::{Framebuffer, Polygon, SpanSink, SCREEN};
 
 use crate::contender::Contender;
@@ -30,51 +31,74 @@ impl Timing {
     /// one warm-up pass, then the median of the repeats. `None` for no
     /// polygons.
     pub fn ns_per_polygon(&self, pass: &mut dyn FnMut(), polygons: usize) -> Option<f64> {
-        if polygons == 0 {
-            return None;
-        }
-        let start = Instant::now();
-        pass();
-        let once = start.elapsed().max(Duration::from_nanos(1));
-        let passes = (self.min_repeat.as_nanos() / once.as_nanos()).clamp(1, 1 << 20) as u32;
-        let samples: Vec<f64> = (0..self.repeats)
-            .map(|_| {
+        self.ns_per_polygon_each(vec![(pass, polygons)]).remove(0)
+    }
+
+    /// [`Timing::ns_per_polygon`] of each of `passes` (a pass and the
+    /// polygons it fills), timed in turn within every repeat, so that a
+    /// change in the machine's load falls on all of them alike and the
+    /// ratios between them hold.
+    pub fn ns_per_polygon_each(&self, mut passes: Vec<(&mut dyn FnMut(), usize)>) -> Vec<Option<f64>> {
+        // Each pass runs as often as it takes to last `min_repeat`.
+        let counts: Vec<u32> = passes
+            .iter_mut()
+            .map(|(pass, _)| {
                 let start = Instant::now();
-                for _ in 0..passes {
-                    pass();
-                }
-                start.elapsed().as_nanos() as f64 / f64::from(passes) / polygons as f64
+                pass();
+                let once = start.elapsed().max(Duration::from_nanos(1));
+                (self.min_repeat.as_nanos() / once.as_nanos()).clamp(1, 1 << 20) as u32
             })
             .collect();
-        median(&samples)
+        let mut samples = vec![Vec::with_capacity(self.repeats); passes.len()];
+        for _ in 0..self.repeats {
+            for (((pass, polygons), &count), samples) in passes.iter_mut().zip(&counts).zip(&mut samples) {
+                let start = Instant::now();
+                for _ in 0..count {
+                    pass();
+                }
+                samples.push(start.elapsed().as_nanos() as f64 / f64::from(count) / (*polygons).max(1) as f64);
+            }
+        }
+        passes.iter().zip(&samples).map(|((_, polygons), samples)| median(samples).filter(|_| *polygons > 0)).collect()
     }
 }
 
-/// What a fill cannot beat: writing its pixels and nothing else.
+/// What a fill is measured against: what writing its pixels alone costs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Bound {
     /// One `memset` (`<[u8]>::fill`, the safe `write_bytes`) of each
-    /// polygon's exact pixel count.
+    /// polygon's exact pixel count: what its bytes would cost if they were
+    /// one run, which no polygon narrower than the screen is.
     Memset,
-    /// The exact reference's spans replayed into a 320x200 framebuffer
-    /// through `&mut dyn SpanSink`, as a method emits them.
-    SpanWrite,
+    /// The exact reference's spans stored straight into a 320x200 byte
+    /// buffer by the framebuffer's own span store
+    /// ([`raster::sink::set_bytes`]), in a loop over the recorded spans with
+    /// no call per span: the true lower bound of a fill into that
+    /// framebuffer, which must store the same spans and find them too.
+    Store,
+    /// The same spans sent one by one through `&mut dyn SpanSink` into a
+    /// [`Framebuffer`]: what the sink's interface costs a method that is not
+    /// compiled for its sink (a call through the vtable, the contract check
+    /// and the store per span).
+    DynSink,
 }
 
 impl Bound {
-    pub const ALL: [Bound; 2] = [Bound::Memset, Bound::SpanWrite];
+    pub const ALL: [Bound; 3] = [Bound::Memset, Bound::Store, Bound::DynSink];
 
     pub const fn name(self) -> &'static str {
         match self {
             Bound::Memset => "memset bound",
-            Bound::SpanWrite => "span-write bound",
+            Bound::Store => "store bound",
+            Bound::DynSink => "dyn-sink replay",
         }
     }
 
     pub const fn source(self) -> &'static str {
         match self {
             Bound::Memset => "one memset (slice fill) of each polygon's exact pixel count",
-            Bound::SpanWrite => "the reference's spans replayed into a Framebuffer",
+            Bound::Store => "the reference's spans stored into a 320x200 buffer, no call per span",
+            Bound::DynSink => "the reference's spans sent through &mut dyn SpanSink into a Framebuffer",
         }
     }
 
@@ -91,7 +115,20 @@ impl Bound {
                     }
                 })
             }
-            Bound::SpanWrite => {
+            Bound::Store => {
+                // Byte ranges of the visible spans, worked out before timing.
+                let ranges: Vec<Vec<(usize, usize)>> = exact.iter().map(|s| spans::byte_ranges(s)).collect();
+                let mut bytes = vec![0u8; SCREEN.width as usize * SCREEN.height as usize];
+                Box::new(move || {
+                    let bytes = black_box(&mut bytes[..]);
+                    for polygon in &ranges {
+                        for &(start, end) in polygon {
+                            set_bytes(&mut bytes[start..end], 0x55);
+                        }
+                    }
+                })
+            }
+            Bound::DynSink => {
                 let exact = exact.to_vec();
                 let mut screen = Framebuffer::new(SCREEN);
                 Box::new(move || {
@@ -173,28 +210,25 @@ fn time_range(
     range: Range<usize>,
     progress: &dyn Fn(),
 ) -> Speeds {
-    let contender_speeds = contenders
-        .iter()
-        .enumerate()
-        .map(|(c, contender)| {
-            let polygons: Vec<&Polygon> =
-                judged.timed[c].iter().filter(|i| range.contains(i)).map(|&i| &family.polygons[i]).collect();
-            let ns = judged.tallies[c]
-                .as_ref()
-                .and_then(|_| timing.ns_per_polygon(&mut *contender.pass(&polygons), polygons.len()));
-            progress();
-            ns
-        })
+    // Every contender that takes the family and every bound, timed in turn.
+    let polygons: Vec<Vec<&Polygon>> = (0..contenders.len())
+        .map(|c| judged.timed[c].iter().filter(|i| range.contains(i)).map(|&i| &family.polygons[i]).collect())
         .collect();
     let exact: Vec<&[Span]> = judged.exact[range.clone()].iter().map(Vec::as_slice).collect();
-    let bound_speeds = Bound::ALL
-        .iter()
-        .map(|bound| {
-            let ns = timing.ns_per_polygon(&mut *bound.pass(&exact), exact.len());
-            progress();
-            ns
-        })
-        .collect();
+    let timed: Vec<usize> = (0..contenders.len()).filter(|&c| judged.tallies[c].is_some()).collect();
+    let mut passes: Vec<(Box<dyn FnMut() + '_>, usize)> =
+        timed.iter().map(|&c| (contenders[c].pass(&polygons[c]), polygons[c].len())).collect();
+    passes.extend(Bound::ALL.iter().map(|bound| (bound.pass(&exact), exact.len())));
+    let mut speeds =
+        timing.ns_per_polygon_each(passes.iter_mut().map(|(p, n)| (&mut **p as &mut dyn FnMut(), *n)).collect());
+    for _ in 0..contenders.len() + Bound::ALL.len() {
+        progress();
+    }
+    let bound_speeds = speeds.split_off(timed.len());
+    let mut contender_speeds = vec![None; contenders.len()];
+    for (&c, ns) in timed.iter().zip(speeds) {
+        contender_speeds[c] = ns;
+    }
     Speeds { contenders: contender_speeds, bounds: bound_speeds, runs: vec![] }
 }
 
@@ -205,6 +239,17 @@ mod tests {
     #[test]
     fn no_polygons_take_no_time() {
         assert_eq!(Timing::QUICK.ns_per_polygon(&mut || {}, 0), None);
+    }
+
+    #[test]
+    fn passes_timed_in_turn_each_run_every_repeat() {
+        let (mut a, mut b) = (0, 0);
+        let timing = Timing { repeats: 3, min_repeat: Duration::ZERO };
+        let (mut pass_a, mut pass_b) = (|| a += 1, || b += 1);
+        let times = timing.ns_per_polygon_each(vec![(&mut pass_a, 5), (&mut pass_b, 0)]);
+        assert!(times[0].is_some());
+        assert_eq!(times[1], None);
+        assert_eq!((a, b), (4, 4));
     }
 
     #[test]

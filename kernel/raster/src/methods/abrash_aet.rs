@@ -45,7 +45,8 @@ use alloc::vec::Vec;
 
 use super::abrash_int::ErrorTermStep;
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
+use crate::method::{Builtin, Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::MethodId;
 use crate::sink::SpanSink;
 
 /// Listing 40.1.
@@ -65,12 +66,11 @@ static INFO: MethodInfo = MethodInfo {
     heap: Heap::EveryPolygon,
 };
 
-impl Method for AbrashAet {
-    fn info(&self) -> &'static MethodInfo {
-        &INFO
-    }
+impl Builtin for AbrashAet {
+    const ID: MethodId = MethodId::AbrashAet;
+    const INFO: &'static MethodInfo = &INFO;
 
-    fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+    fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
         let size = sink.size();
         let get = build_get(polygon, size.height)?;
         let Some(first) = get.first() else {
@@ -184,7 +184,7 @@ fn move_x_sorted_to_aet(
 /// left.X, right.X - 1)`, clipped to the target. Closed contours always give
 /// pairs; an odd edge out would be the book's null dereference, and is left
 /// alone here.
-fn scan_out_aet(aet: &[EdgeState], y: i32, color: u8, width: i32, sink: &mut dyn SpanSink) {
+fn scan_out_aet<S: SpanSink + ?Sized>(aet: &[EdgeState], y: i32, color: u8, width: i32, sink: &mut S) {
     for [left, right] in aet.as_chunks::<2>().0 {
         let (x_start, x_end) = (left.step.x.max(0), right.step.x.min(width));
         if x_start < x_end {

@@ -21,7 +21,8 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
+use crate::method::{Builtin, Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::MethodId;
 use crate::sink::SpanSink;
 
 /// Listing 38.1.
@@ -44,12 +45,11 @@ static INFO: MethodInfo = MethodInfo {
     heap: Heap::EveryPolygon,
 };
 
-impl Method for AbrashFloat {
-    fn info(&self) -> &'static MethodInfo {
-        &INFO
-    }
+impl Builtin for AbrashFloat {
+    const ID: MethodId = MethodId::AbrashFloat;
+    const INFO: &'static MethodInfo = &INFO;
 
-    fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+    fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
         fill_with(polygon, sink, scan_edge)
     }
 }
@@ -57,7 +57,11 @@ impl Method for AbrashFloat {
 /// `Method::fill` of chapters 38 and 39: one contour, its vertices rounded
 /// to the whole pixels the listings take, filled by [`fill_convex_polygon`]
 /// with the chapter's `scan_edge`.
-pub(super) fn fill_with(polygon: &Polygon, sink: &mut dyn SpanSink, scan_edge: ScanEdge) -> Result<(), Refusal> {
+pub(super) fn fill_with<S: SpanSink + ?Sized>(
+    polygon: &Polygon,
+    sink: &mut S,
+    scan_edge: ScanEdge,
+) -> Result<(), Refusal> {
     let contour = polygon.single_contour().ok_or(Refusal::MultipleContours)?;
     let vertices: Vec<PixelPoint> = contour.iter().map(|p| p.round_to_pixel()).collect();
     fill_convex_polygon(&vertices, polygon.color, sink, scan_edge);
@@ -113,7 +117,7 @@ impl LineList {
 /// edges are scanned by `scan_edge`: Listing 38.1's float one here, Listing
 /// 39.2's integer one in `abrash_int` (chapter 39 keeps this driver and
 /// replaces only `ScanEdge`).
-fn fill_convex_polygon(v: &[PixelPoint], color: u8, sink: &mut dyn SpanSink, scan_edge: ScanEdge) {
+fn fill_convex_polygon<S: SpanSink + ?Sized>(v: &[PixelPoint], color: u8, sink: &mut S, scan_edge: ScanEdge) {
     let n = v.len();
     if n == 0 {
         return;

@@ -28,7 +28,8 @@ use core::ops::Range;
 
 use super::abrash_float::{fill_with, Segment, CONVENTION};
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Class, Heap, Method, MethodInfo, Refusal};
+use crate::method::{Builtin, Class, Heap, MethodInfo, Refusal};
+use crate::methods::MethodId;
 use crate::sink::SpanSink;
 
 /// Listings 38.1, 39.1 and 39.2.
@@ -44,12 +45,11 @@ static INFO: MethodInfo = MethodInfo {
     heap: Heap::EveryPolygon,
 };
 
-impl Method for AbrashInt {
-    fn info(&self) -> &'static MethodInfo {
-        &INFO
-    }
+impl Builtin for AbrashInt {
+    const ID: MethodId = MethodId::AbrashInt;
+    const INFO: &'static MethodInfo = &INFO;
 
-    fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+    fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
         fill_with(polygon, sink, scan_edge)
     }
 }

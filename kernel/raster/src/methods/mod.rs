@@ -3,7 +3,9 @@
 use core::fmt;
 use core::str::FromStr;
 
-use crate::method::Method;
+use crate::geometry::Polygon;
+use crate::method::{Builtin, Method, Refusal};
+use crate::sink::SpanSink;
 
 pub mod abrash_aet;
 pub mod abrash_float;
@@ -54,6 +56,23 @@ impl MethodId {
             MethodId::LamotheFixed => &lamothe::LamotheFixed,
             MethodId::Wgt => &wgt::Wgt,
             MethodId::Exact => &exact::Exact,
+        }
+    }
+
+    /// Fills `polygon` into `sink` with this method, statically dispatched:
+    /// each method's loops are compiled for the sink's type, with its store
+    /// inlined, so a span costs no call. The same pixels as
+    /// `self.method().fill(polygon, sink)`.
+    pub fn fill<S: SpanSink + ?Sized>(self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
+        match self {
+            MethodId::AbrashFloat => abrash_float::AbrashFloat.fill_into(polygon, sink),
+            MethodId::AbrashInt => abrash_int::AbrashInt.fill_into(polygon, sink),
+            MethodId::AbrashAet => abrash_aet::AbrashAet.fill_into(polygon, sink),
+            MethodId::Pendleton => pendleton::Pendleton.fill_into(polygon, sink),
+            MethodId::Lamothe => lamothe::Lamothe.fill_into(polygon, sink),
+            MethodId::LamotheFixed => lamothe::LamotheFixed.fill_into(polygon, sink),
+            MethodId::Wgt => wgt::Wgt.fill_into(polygon, sink),
+            MethodId::Exact => exact::Exact.fill_into(polygon, sink),
         }
     }
 

@@ -50,7 +50,8 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Point, Polygon, SUBPIXEL_BITS};
-use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
+use crate::method::{Builtin, Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::MethodId;
 use crate::sink::SpanSink;
 
 /// `poly()` and its helpers.
@@ -71,12 +72,11 @@ static INFO: MethodInfo = MethodInfo {
     heap: Heap::EveryPolygon,
 };
 
-impl Method for Pendleton {
-    fn info(&self) -> &'static MethodInfo {
-        &INFO
-    }
+impl Builtin for Pendleton {
+    const ID: MethodId = MethodId::Pendleton;
+    const INFO: &'static MethodInfo = &INFO;
 
-    fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+    fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
         let contour = polygon.single_contour().ok_or(Refusal::MultipleContours)?;
         let points =
             contour.iter().map(|&p| FpPoint::from_point(p)).collect::<Option<Vec<_>>>().ok_or(Refusal::OutOfRange)?;
@@ -187,7 +187,7 @@ fn edge(table: &mut EdgeTable, mut pt1: FpPoint, mut pt2: FpPoint) {
 
 /// `span()`: fills row `y` from one crossing to the other, the pixels
 /// `adjust(left)..adjust(right)`, clipped to the target's `width`.
-fn span(sink: &mut dyn SpanSink, color: u8, y: i32, mut x1: Fp14, mut x2: Fp14, width: i32) {
+fn span<S: SpanSink + ?Sized>(sink: &mut S, color: u8, y: i32, mut x1: Fp14, mut x2: Fp14, width: i32) {
     if x2 < x1 {
         core::mem::swap(&mut x1, &mut x2);
     }
@@ -205,7 +205,7 @@ fn span(sink: &mut dyn SpanSink, color: u8, y: i32, mut x1: Fp14, mut x2: Fp14, 
 /// `poly()`: finds the top and bottom extremes, fills `table1` along the
 /// vertices from the top forward to the bottom and `table2` from the bottom
 /// forward to the top, then spans each row between them.
-fn poly(color: u8, pnts: &[FpPoint], sink: &mut dyn SpanSink) {
+fn poly<S: SpanSink + ?Sized>(color: u8, pnts: &[FpPoint], sink: &mut S) {
     let n = pnts.len();
     if n < 3 {
         return;
@@ -262,6 +262,7 @@ fn poly(color: u8, pnts: &[FpPoint], sink: &mut dyn SpanSink) {
 mod tests {
     use super::*;
     use crate::coverage::CoverageSink;
+    use crate::method::Method;
     use crate::methods::test_support::{
         assert_clipping_changes_no_pixel, draw, empty, fill, full, SMALL, TALL_TRIANGLES,
     };

@@ -48,7 +48,8 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
+use crate::method::{Builtin, Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::MethodId;
 use crate::sink::SpanSink;
 
 /// The tutorial's `fillpoly`.
@@ -71,12 +72,11 @@ static INFO: MethodInfo = MethodInfo {
     heap: Heap::EveryPolygon,
 };
 
-impl Method for Wgt {
-    fn info(&self) -> &'static MethodInfo {
-        &INFO
-    }
+impl Builtin for Wgt {
+    const ID: MethodId = MethodId::Wgt;
+    const INFO: &'static MethodInfo = &INFO;
 
-    fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+    fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
         let contour = polygon.single_contour().ok_or(Refusal::MultipleContours)?;
         let vertices = contour
             .iter()
@@ -133,7 +133,7 @@ impl LineArrays {
 }
 
 /// `fillpoly`: every edge, the closing one last, then every row.
-fn fillpoly(v: &[Vertex], color: u8, sink: &mut dyn SpanSink) {
+fn fillpoly<S: SpanSink + ?Sized>(v: &[Vertex], color: u8, sink: &mut S) {
     let (Some(top), Some(bottom)) = (v.iter().map(|p| p.y).min(), v.iter().map(|p| p.y).max()) else {
         return;
     };
@@ -181,6 +181,7 @@ mod tests {
     use super::*;
     use crate::coverage::CoverageSink;
     use crate::geometry::Point;
+    use crate::method::Method;
     use crate::methods::test_support::{draw, fill, full, SMALL};
     use crate::sink::SCREEN;
 

@@ -246,7 +246,10 @@ impl Stage {
             Kind::LamotheRotate => lamothe::draw(frame, method, &mut self.scratch, &mut self.target),
             Kind::WgtGouraud => shaded::gouraud(frame, method, &mut self.scratch, &mut self.target),
             Kind::WgtTexture => shaded::texture(frame, method, &mut self.scratch, &mut self.target),
-            Kind::PendletonDepth => shaded::depth(frame, method, &mut self.scratch, &mut self.depth, &mut self.target),
+            Kind::PendletonDepth => {
+                let (scratch, depth, target) = (&mut self.scratch, &mut self.depth, &mut self.target);
+                shaded::draw(shaded::Shaded::Depth, Modelling::Needed, frame, method, scratch, depth, target)
+            }
             Kind::Race => race::draw(frame, method, &mut self.scratch, &mut self.target),
         }
     }
@@ -255,9 +258,32 @@ impl Stage {
     /// first, as [`Stage::draw`] draws it onto the stage: for a target
     /// other than the stage, such as the screen itself. An animated entry
     /// draws nothing but the black.
-    pub fn draw_still(&mut self, entry: &Entry, method: &dyn Method, target: &mut dyn SpanSink) -> DrawReport {
+    pub fn draw_still<S: SpanSink>(&mut self, entry: &Entry, method: &dyn Method, target: &mut S) -> DrawReport {
         sink::clear(target, 0);
         draw_page(&mut self.still, entry, method, target)
+    }
+
+    /// Draws frame `frame` of a shaded entry with `method`, modelling what
+    /// `modelling` asks; `None` for an entry that is not shaded. With
+    /// [`Modelling::Needed`] it is [`Stage::draw`]; with
+    /// [`Modelling::Forced`] the same picture costs four interpolated
+    /// attributes and a depth buffer.
+    pub fn draw_modelled(
+        &mut self,
+        entry: &Entry,
+        frame: u32,
+        method: &dyn Method,
+        modelling: Modelling,
+    ) -> Option<DrawReport> {
+        let shaded = match entry.kind {
+            Kind::WgtGouraud => shaded::Shaded::Gouraud,
+            Kind::WgtTexture => shaded::Shaded::Texture,
+            Kind::PendletonDepth => shaded::Shaded::Depth,
+            Kind::Still(_) | Kind::LamotheRotate | Kind::Race => return None,
+        };
+        sink::clear(&mut self.target, 0);
+        let (scratch, depth, target) = (&mut self.scratch, &mut self.depth, &mut self.target);
+        Some(shaded::draw(shaded, modelling, entry.wrap(frame), method, scratch, depth, target))
     }
 
     /// Draws the labels over the frame (see [`draw_labels`]).
@@ -280,7 +306,7 @@ impl Stage {
 /// Draws the still page of `entry` with `method` onto `target`, building
 /// the page into `built` unless it is the one built last; nothing for an
 /// entry that is not a still.
-fn draw_page(built: &mut Option<Scene>, entry: &Entry, method: &dyn Method, target: &mut dyn SpanSink) -> DrawReport {
+fn draw_page<S: SpanSink>(built: &mut Option<Scene>, entry: &Entry, method: &dyn Method, target: &mut S) -> DrawReport {
     let Kind::Still(page) = entry.kind else { return DrawReport::default() };
     let scene = match built {
         Some(scene) if scene.name == page.name => scene,
@@ -294,6 +320,17 @@ fn draw_page(built: &mut Option<Scene>, entry: &Entry, method: &dyn Method, targ
 /// the cycles its draw took at the bottom.
 pub fn draw_labels(target: &mut dyn SpanSink, entry: &Entry, frame: u32, method: &dyn Method, cycles: u64) {
     label::draw_labels(target, entry, entry.wrap(frame), method.info().name, cycles);
+}
+
+/// How much a shaded frame models ("model no more than a scene needs",
+/// measured by the lab).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Modelling {
+    /// What the entry needs: flat shading one attribute, texture two, the
+    /// Z-buffered scene two and its depth buffer.
+    Needed,
+    /// Four interpolated attributes and a depth buffer, whatever it needs.
+    Forced,
 }
 
 /// What one animation's `draw` puts on a fresh screen with fresh scratch.

@@ -20,7 +20,7 @@
 
 use super::interp::{Painter, Vertex};
 use super::trig::{angle_at, div_round, offset, rotate, sin_cos, unscale, TURN};
-use super::{Ramp, Scratch};
+use super::{Modelling, Ramp, Scratch};
 use crate::scene::DrawReport;
 use raster::geometry::{Point, SUBPIXEL_BITS};
 use raster::method::Method;
@@ -198,16 +198,26 @@ fn solids(frame: u32) -> [Solid; 3] {
     [wide, tall, sloping]
 }
 
+/// The Z test at pixel `(x, y)` of `depth`, a row-major buffer `width`
+/// values a row: whether `z` is nearer than what is there, which it then
+/// replaces. Pixels beyond the buffer's end never pass.
+fn nearer(depth: &mut [i32], width: i32, x: i32, y: i32, z: i32) -> bool {
+    let Some(nearest) = usize::try_from(y * width + x).ok().and_then(|i| depth.get_mut(i)) else {
+        return false;
+    };
+    let passes = z < *nearest;
+    if passes {
+        *nearest = z;
+    }
+    passes
+}
+
 /// Draws `solids` with the Z test against `depth`, a row-major buffer
 /// `width` values a row (pixels beyond its end are left alone).
 fn draw_solids(solids: &[Solid], painter: &mut Painter, depth: &mut [i32], width: i32) {
     for solid in solids {
         let mut shade = |x: i32, y: i32, &[z, level]: &[i32; 2]| {
-            let nearest = depth.get_mut(usize::try_from(y * width + x).ok()?)?;
-            (z < *nearest).then(|| {
-                *nearest = z;
-                solid.ramp.color(level >> LEVEL_BITS)
-            })
+            nearer(depth, width, x, y, z).then(|| solid.ramp.color(level >> LEVEL_BITS))
         };
         match &solid.shape {
             Shape::Triangle(corners) => painter.triangle(corners, &mut shade),
@@ -216,20 +226,76 @@ fn draw_solids(solids: &[Solid], painter: &mut Painter, depth: &mut [i32], width
     }
 }
 
-/// Draws frame `frame` of `pendleton-zbuffer`; `depth` holds one value per
-/// pixel of `target` and is reset first.
-pub(super) fn depth(
+/// Attributes a frame carries when more is modelled than it needs.
+const OVERMODELLED: usize = 4;
+
+/// `v` with its attributes followed by zeros, up to [`OVERMODELLED`].
+fn padded<const N: usize>(v: Vertex<N>) -> Vertex<OVERMODELLED> {
+    let mut attrs = [0; OVERMODELLED];
+    attrs[..N].copy_from_slice(&v.attrs);
+    Vertex::new(v.at, attrs)
+}
+
+/// Draws frame `frame` of a shaded entry as `modelling` asks; `depth` holds
+/// one value per pixel of `target` and is reset first where it is used.
+/// [`Modelling::Forced`] costs more for the same picture: four interpolated
+/// attributes where the entry uses one or two, and a depth buffer, reset
+/// and tested at every pixel, where it has none (the Gouraud and texture
+/// entries take depth 0 everywhere, so every pixel passes).
+pub(super) fn draw(
+    entry: Shaded,
+    modelling: Modelling,
     frame: u32,
     method: &dyn Method,
     scratch: &mut Scratch,
     depth: &mut [i32],
     target: &mut Framebuffer,
 ) -> DrawReport {
+    match (entry, modelling) {
+        (Shaded::Gouraud, Modelling::Needed) => return gouraud(frame, method, scratch, target),
+        (Shaded::Texture, Modelling::Needed) => return texture(frame, method, scratch, target),
+        _ => {}
+    }
     depth.fill(i32::MAX);
     let width = target.size().width;
     let mut painter = Painter::new(method, scratch, target);
-    draw_solids(&solids(frame), &mut painter, depth, width);
+    match entry {
+        Shaded::Gouraud => {
+            let corners = gouraud_triangle(frame).map(padded);
+            painter.triangle(&corners, &mut |x, y, &[level, z, _, _]: &[i32; OVERMODELLED]| {
+                nearer(depth, width, x, y, z).then(|| Ramp::Gold.color(level >> LEVEL_BITS))
+            });
+        }
+        Shaded::Texture => {
+            let corners = texture_quad(frame).map(padded);
+            painter.quad(&corners, &mut |x, y, &[u, v, z, _]: &[i32; OVERMODELLED]| {
+                nearer(depth, width, x, y, z).then(|| texel(u >> TEXEL_BITS, v >> TEXEL_BITS))
+            });
+        }
+        Shaded::Depth if modelling == Modelling::Needed => {
+            draw_solids(&solids(frame), &mut painter, depth, width);
+        }
+        Shaded::Depth => {
+            for solid in solids(frame) {
+                let mut shade = |x: i32, y: i32, &[z, level, _, _]: &[i32; OVERMODELLED]| {
+                    nearer(depth, width, x, y, z).then(|| solid.ramp.color(level >> LEVEL_BITS))
+                };
+                match &solid.shape {
+                    Shape::Triangle(corners) => painter.triangle(&corners.map(padded), &mut shade),
+                    Shape::Quad(corners) => painter.quad(&corners.map(padded), &mut shade),
+                }
+            }
+        }
+    }
     painter.report()
+}
+
+/// The shaded entries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Shaded {
+    Gouraud,
+    Texture,
+    Depth,
 }
 
 #[cfg(test)]
@@ -238,7 +304,7 @@ mod tests {
     use alloc::vec::Vec;
 
     use super::*;
-    use crate::show::{entry, Entry, Stage, RAMP_BASE, RAMP_LEVELS};
+    use crate::show::{entry, Entry, Modelling, Stage, RAMP_BASE, RAMP_LEVELS};
     use raster::coverage::CoverageSink;
     use raster::geometry::Polygon;
     use raster::methods::exact::Exact;
@@ -255,6 +321,23 @@ mod tests {
         let report = stage.draw(entry, frame, method);
         assert_eq!(report.refused, 0, "{} frame {frame}: {report:?}", entry.name);
         stage.pixels().to_vec()
+    }
+
+    /// Modelling more than needed costs time, not pixels: four attributes
+    /// and a depth buffer draw each shaded frame as it is drawn without.
+    #[test]
+    fn overmodelled_frames_are_the_frames_they_overmodel() {
+        let mut stage = Stage::new();
+        for entry in entries() {
+            for frame in [0, 37, entry.frames - 1] {
+                let needed = frame_of(&mut stage, entry, frame, &Exact);
+                let report = stage.draw_modelled(entry, frame, &Exact, Modelling::Forced).unwrap();
+                assert_eq!(report.refused, 0, "{} frame {frame}", entry.name);
+                assert!(stage.pixels() == needed.as_slice(), "{} frame {frame} differs", entry.name);
+            }
+        }
+        let still = entry("abrash38-1").unwrap();
+        assert_eq!(stage.draw_modelled(still, 0, &Exact, Modelling::Forced), None);
     }
 
     /// The ramp a palette index belongs to, if any.

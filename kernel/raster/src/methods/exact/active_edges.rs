@@ -12,7 +12,10 @@
 //! emits, steps and checks the order at once; only a row where the order
 //! changed sorts again and works the parts out again. A run of two edges
 //! with the inside between them (most rows of most simple polygons) takes
-//! the monotone path's two-edge loop instead.
+//! the monotone path's two-edge loop instead. Where there is a crossing for
+//! every four columns or more (scribbles of thousands of edges), keeping
+//! them sorted costs more than summing their windings per column, which a
+//! row then does instead (`emit_by_columns`).
 
 use alloc::vec::Vec;
 
@@ -21,20 +24,27 @@ use crate::method::Refusal;
 use crate::sink::{Size, SpanSink};
 
 use super::edge::{first_sample_at_or_after, visible_column, visible_rows, EdgeStepper};
-use super::monotone::span_rows;
+use super::monotone::{columns_fit, span_rows};
 
 /// Fills `polygon` by its fill rule. Refuses only when memory for the edge
 /// tables cannot be had.
-pub(crate) fn fill_active_edges(polygon: &Polygon, size: Size, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
-    let mut edges = edge_table(polygon, size)?;
+pub(crate) fn fill_active_edges<S: SpanSink + ?Sized>(
+    polygon: &Polygon,
+    size: Size,
+    sink: &mut S,
+) -> Result<(), Refusal> {
+    let (mut edges, clip) = edge_table(polygon, size)?;
     edges.sort_unstable_by_key(|edge| edge.rows.start);
     let mut active: Vec<ActiveEdge> = Vec::new();
     active.try_reserve_exact(edges.len()).map_err(|_| Refusal::OutOfMemory)?;
     let mut sorter = Sorter::for_edges(edges.len(), size.width)?;
     let target = Target { color: polygon.color, width: size.width };
-    match polygon.rule {
-        FillRule::EvenOdd => walk::<false>(&edges, &mut active, &mut sorter, target, sink),
-        FillRule::NonZero => walk::<true>(&edges, &mut active, &mut sorter, target, sink),
+    let (edges, active, sorter) = (&edges[..], &mut active, &mut sorter);
+    match (polygon.rule, clip) {
+        (FillRule::EvenOdd, false) => walk::<false, false, _>(edges, active, sorter, target, sink),
+        (FillRule::EvenOdd, true) => walk::<false, true, _>(edges, active, sorter, target, sink),
+        (FillRule::NonZero, false) => walk::<true, false, _>(edges, active, sorter, target, sink),
+        (FillRule::NonZero, true) => walk::<true, true, _>(edges, active, sorter, target, sink),
     }
     Ok(())
 }
@@ -46,13 +56,14 @@ struct Target {
     width: i32,
 }
 
-/// Walks the rows of the edge table, top down. `NON_ZERO` picks the rule.
-fn walk<const NON_ZERO: bool>(
+/// Walks the rows of the edge table, top down. `NON_ZERO` picks the rule;
+/// without `CLIP` every crossing column lies in the target's `0..=width`.
+fn walk<const NON_ZERO: bool, const CLIP: bool, S: SpanSink + ?Sized>(
     edges: &[TableEdge],
     active: &mut Vec<ActiveEdge>,
     sorter: &mut Sorter,
     target: Target,
-    sink: &mut dyn SpanSink,
+    sink: &mut S,
 ) {
     let mut next = 0;
     let mut row = 0;
@@ -79,28 +90,19 @@ fn walk<const NON_ZERO: bool>(
             });
             next += 1;
         }
+        if sorter.tallies(active.len()) {
+            // So many crossings for the width that summing them per column
+            // is cheaper than keeping them sorted; and edges start and end
+            // on most rows, so this goes a row at a time.
+            emit_by_columns::<NON_ZERO, _>(row, active, &mut sorter.windings, target, sink);
+            row += 1;
+            continue;
+        }
         // Every active edge meets `row` and every pending one starts below
         // it, so the run has at least this row.
         let starts = edges.get(next).map_or(i64::MAX, |edge| edge.rows.start);
         let run_end = active.iter().map(|edge| i64::from(edge.end_row)).fold(starts, i64::min);
-        sorter.sort(active, target.width);
-        let mut open_at_end = assign_parts::<NON_ZERO>(active);
-        if let ([a, b], false) = (active.as_mut_slice(), open_at_end) {
-            // Two crossings, outside right of both: whatever their order
-            // (they may cross), the inside is the span between them, as on
-            // the monotone path.
-            span_rows::<false, true>(row..run_end, &mut a.stepper, &mut b.stepper, target.color, target.width, sink);
-            row = run_end;
-        }
-        let mut sorted = true;
-        while row < run_end {
-            if !sorted {
-                sorter.sort(active, target.width);
-                open_at_end = assign_parts::<NON_ZERO>(active);
-            }
-            sorted = emit_and_step(row, active, open_at_end, target, sink);
-            row += 1;
-        }
+        row = sorted_run::<NON_ZERO, CLIP, _>(row, run_end, active, sorter, target, sink);
         // Drop the edges that ended, keeping the order of the rest.
         let mut kept = 0;
         for i in 0..active.len() {
@@ -110,6 +112,93 @@ fn walk<const NON_ZERO: bool>(
             }
         }
         active.truncate(kept);
+    }
+}
+
+/// Fills the rows `row..run_end`, over which no edge starts or ends, with
+/// the crossings kept sorted; returns `run_end`.
+fn sorted_run<const NON_ZERO: bool, const CLIP: bool, S: SpanSink + ?Sized>(
+    mut row: i64,
+    run_end: i64,
+    active: &mut Vec<ActiveEdge>,
+    sorter: &mut Sorter,
+    target: Target,
+    sink: &mut S,
+) -> i64 {
+    sorter.sort(active, target.width);
+    let mut open_at_end = assign_parts::<NON_ZERO>(active);
+    if let ([a, b], false) = (active.as_mut_slice(), open_at_end) {
+        // Two crossings, outside right of both: whatever their order
+        // (they may cross), the inside is the span between them, as on
+        // the monotone path.
+        span_rows::<false, CLIP, _>(row..run_end, &mut a.stepper, &mut b.stepper, target.color, target.width, sink);
+        row = run_end;
+    }
+    let mut sorted = true;
+    while row < run_end {
+        if !sorted {
+            sorter.sort(active, target.width);
+            open_at_end = assign_parts::<NON_ZERO>(active);
+        }
+        sorted = emit_and_step::<CLIP, _>(row, active, open_at_end, target, sink);
+        row += 1;
+    }
+    row
+}
+
+/// Emits the inside runs of `row` without sorting the crossings, steps
+/// every edge to the next row and drops the ones that end (out of order:
+/// the sorted path sorts whatever it is given): each crossing's winding is
+/// added at its visible column in `windings` (`width + 1` of them), and the
+/// running sum from the left is each pixel's winding number.
+/// `O(edges + width)` a row; the runs are the maximal ones, left to right,
+/// as [`emit_and_step`]'s.
+fn emit_by_columns<const NON_ZERO: bool, S: SpanSink + ?Sized>(
+    row: i64,
+    active: &mut Vec<ActiveEdge>,
+    windings: &mut [i32],
+    target: Target,
+    sink: &mut S,
+) {
+    windings.fill(0);
+    let mut i = 0;
+    while let Some(edge) = active.get_mut(i) {
+        windings[visible_column(edge.stepper.column, target.width) as usize] += i32::from(edge.winding);
+        if i64::from(edge.end_row) > row + 1 {
+            edge.stepper.step();
+            i += 1;
+        } else {
+            // The last edge takes its place and is seen next.
+            active.swap_remove(i);
+        }
+    }
+    // Which pixels are inside, 64 a word, without a branch per pixel; then
+    // one step per change of state, where a run opens or closes.
+    let (mut sum, mut inside, mut start) = (0i32, false, 0i64);
+    for (word, chunk) in windings[..target.width as usize].chunks(64).enumerate() {
+        let mut bits = 0u64;
+        for (i, &winding) in chunk.iter().enumerate() {
+            sum += winding;
+            bits |= u64::from(is_inside::<NON_ZERO>(i64::from(sum))) << i;
+        }
+        // Bit `i` set where pixel `i` differs from the one before it.
+        let mut changes = bits ^ (bits << 1 | u64::from(inside));
+        if chunk.len() < 64 {
+            changes &= (1 << chunk.len()) - 1;
+        }
+        while changes != 0 {
+            let x = (word * 64) as i64 + i64::from(changes.trailing_zeros());
+            if inside {
+                emit(row, (start, x), target, sink);
+            } else {
+                start = x;
+            }
+            inside = !inside;
+            changes &= changes - 1;
+        }
+    }
+    if inside {
+        emit(row, (start, i64::from(target.width)), target, sink);
     }
 }
 
@@ -144,11 +233,14 @@ enum Part {
 }
 
 /// Every edge that meets a visible row and can lie left of a visible pixel
-/// centre. Horizontal edges never meet a row; an edge whose leftmost point
-/// is right of the last centre counts for no visible pixel.
-fn edge_table(polygon: &Polygon, size: Size) -> Result<Vec<TableEdge>, Refusal> {
+/// centre, and whether some crossing column may lie outside the target's
+/// `0..=width` (then columns are clamped). Horizontal edges never meet a
+/// row; an edge whose leftmost point is right of the last centre counts for
+/// no visible pixel.
+fn edge_table(polygon: &Polygon, size: Size) -> Result<(Vec<TableEdge>, bool), Refusal> {
     let mut edges = Vec::new();
     edges.try_reserve_exact(polygon.vertex_count()).map_err(|_| Refusal::OutOfMemory)?;
+    let (mut min_x, mut max_x) = (i32::MAX, i32::MIN);
     for contour in &polygon.contours {
         let following = contour.iter().cycle().skip(1);
         for (&from, &to) in contour.iter().zip(following) {
@@ -157,10 +249,11 @@ fn edge_table(polygon: &Polygon, size: Size) -> Result<Vec<TableEdge>, Refusal> 
             let leftmost_column = first_sample_at_or_after(top.x.min(bottom.x).into());
             if !rows.is_empty() && leftmost_column < i64::from(size.width) {
                 edges.push(TableEdge { top, bottom, winding, rows });
+                (min_x, max_x) = (min_x.min(top.x.min(bottom.x)), max_x.max(top.x.max(bottom.x)));
             }
         }
     }
-    Ok(edges)
+    Ok((edges, !columns_fit(min_x, max_x, size.width)))
 }
 
 /// Sorts the active edges by visible column (the column clamped to the
@@ -178,8 +271,19 @@ fn edge_table(polygon: &Polygon, size: Size) -> Result<Vec<TableEdge>, Refusal> 
 struct Sorter {
     /// Per visible column, edges at it, then where the next of them goes.
     counts: Vec<u32>,
+    /// Per visible column, the windings of the crossings at it, for rows
+    /// with so many crossings that they are summed rather than sorted.
+    windings: Vec<i32>,
     keys: Vec<u64>,
     scratch: Vec<ActiveEdge>,
+}
+
+/// A table of `columns` zeros, or a refusal when memory cannot be had.
+fn per_column<T: Default + Clone>(columns: usize) -> Result<Vec<T>, Refusal> {
+    let mut table = Vec::new();
+    table.try_reserve_exact(columns).map_err(|_| Refusal::OutOfMemory)?;
+    table.resize(columns, T::default());
+    Ok(table)
 }
 
 /// The longest active list sorted by insertion.
@@ -190,18 +294,25 @@ impl Sorter {
     /// sorting never allocates: a count per visible column when there are
     /// at most four per edge, or a key per edge.
     fn for_edges(edges: usize, width: i32) -> Result<Self, Refusal> {
-        let (mut counts, mut keys, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
-        if edges > SHORT && u32::try_from(edges).is_ok() {
+        let (mut counts, mut windings, mut keys, mut scratch) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        // Every winding sum stays within `±edges`, an `i32`.
+        if edges > SHORT && i32::try_from(edges).is_ok() {
             scratch.try_reserve_exact(edges).map_err(|_| Refusal::OutOfMemory)?;
             let columns = width.max(0) as usize + 1;
             if columns / 4 <= edges {
-                counts.try_reserve_exact(columns).map_err(|_| Refusal::OutOfMemory)?;
-                counts.resize(columns, 0);
+                (counts, windings) = (per_column(columns)?, per_column(columns)?);
             } else {
                 keys.try_reserve_exact(edges).map_err(|_| Refusal::OutOfMemory)?;
             }
         }
-        Ok(Self { counts, keys, scratch })
+        Ok(Self { counts, windings, keys, scratch })
+    }
+
+    /// Whether a run of `active` crossings is cheaper summed per column
+    /// ([`emit_by_columns`]) than kept sorted: where there are per-column
+    /// tables and at least a crossing for every four columns.
+    fn tallies(&self, active: usize) -> bool {
+        !self.windings.is_empty() && self.windings.len() / 4 <= active
     }
 
     fn sort(&mut self, active: &mut Vec<ActiveEdge>, width: i32) {
@@ -281,21 +392,23 @@ fn assign_parts<const NON_ZERO: bool>(active: &mut [ActiveEdge]) -> bool {
 /// maximal runs. A run still open after the last crossing (`open_at_end`)
 /// reaches the right border. Columns are clamped to the target, which
 /// changes no visible pixel's inside test.
-#[inline]
-fn emit_and_step(
+#[inline(always)]
+fn emit_and_step<const CLIP: bool, S: SpanSink + ?Sized>(
     row: i64,
     active: &mut [ActiveEdge],
     open_at_end: bool,
     target: Target,
-    sink: &mut dyn SpanSink,
+    sink: &mut S,
 ) -> bool {
     let width = i64::from(target.width);
     // The open run's start, and the run waiting to be emitted: the next one
     // may touch it. `-1`, left of every visible column, stands for none.
     let (mut start, mut pending) = (0, (-1, -1));
     let (mut sorted, mut previous) = (true, 0);
+    // Without `CLIP`, columns lie in `0..=width` already.
+    let visible = |column: i64| if CLIP { column.clamp(0, width) } else { column };
     for edge in active.iter_mut() {
-        let column = edge.stepper.column.clamp(0, width);
+        let column = visible(edge.stepper.column);
         match edge.part {
             Part::Opens => start = column,
             Part::Closes if pending.1 == start => pending.1 = column,
@@ -306,7 +419,7 @@ fn emit_and_step(
             Part::Neither => {}
         }
         edge.stepper.step();
-        let next = edge.stepper.column.clamp(0, width);
+        let next = visible(edge.stepper.column);
         sorted &= previous <= next;
         previous = next;
     }
@@ -324,7 +437,7 @@ fn emit_and_step(
 
 /// Emits a run of `row`, columns in `-1..=width`, unless it is empty.
 #[inline(always)]
-fn emit(row: i64, (start, end): (i64, i64), target: Target, sink: &mut dyn SpanSink) {
+fn emit<S: SpanSink + ?Sized>(row: i64, (start, end): (i64, i64), target: Target, sink: &mut S) {
     if start < end {
         // `row` is a visible row, in `0..height`; `0 <= start < end <= width`.
         sink.span(row as i32, start as i32, end as i32, target.color);

@@ -16,6 +16,7 @@ pub(super) const SAMPLE_OFFSET: i32 = SUBPIXEL_ONE / 2;
 /// subpixel coordinate `v`: `ceil((v - SAMPLE_OFFSET) / SUBPIXEL_ONE)`.
 /// An arithmetic shift is a floor, so adding `SUBPIXEL_ONE - 1` turns it
 /// into the ceiling.
+#[inline(always)]
 pub(super) fn first_sample_at_or_after(v: i64) -> i64 {
     (v - i64::from(SAMPLE_OFFSET) + i64::from(SUBPIXEL_ONE) - 1) >> SUBPIXEL_BITS
 }
@@ -23,6 +24,7 @@ pub(super) fn first_sample_at_or_after(v: i64) -> i64 {
 /// The scan lines an edge from `top_y` down to `bottom_y` meets
 /// (`top_y <= ys < bottom_y`), limited to the target's rows `0..height`.
 /// Empty for horizontal and upward edges.
+#[inline(always)]
 pub(super) fn visible_rows(top_y: i32, bottom_y: i32, height: i32) -> Range<i64> {
     let first = first_sample_at_or_after(top_y.into()).max(0);
     let end = first_sample_at_or_after(bottom_y.into()).min(height.into());
@@ -33,6 +35,7 @@ pub(super) fn visible_rows(top_y: i32, bottom_y: i32, height: i32) -> Range<i64>
 /// crossing keeps the inside test of each visible pixel unchanged: a
 /// crossing left of the target still counts for all of it, one right of it
 /// for none.
+#[inline(always)]
 pub(super) fn visible_column(column: i64, width: i32) -> i32 {
     column.clamp(0, width.into()) as i32
 }
@@ -105,8 +108,9 @@ impl EdgeStepper {
         stepper
     }
 
-    /// [`EdgeStepper::at_row`] for `|dx|, dy < 2^31`, in `i64` with two
-    /// divisions and no `i128`.
+    /// [`EdgeStepper::at_row`] for `|dx|, dy < 2^31`, in `i64`, with one
+    /// 32-bit division on the edge's first row and two divisions on a later
+    /// one. Without `stepped`, the step is left zero.
     ///
     /// Split `x_top - SAMPLE_OFFSET = SUBPIXEL_ONE * q + f - SAMPLE_OFFSET`
     /// with `f` in `0..SUBPIXEL_ONE`: `N = q * D + n` with
@@ -114,7 +118,14 @@ impl EdgeStepper {
     /// `ceil(N / D) = q + ceil(n / D)` and the error `column * D - N` is
     /// `ceil(n / D) * D - n`. The row meets the edge, so `0 <= t < dy`:
     /// `|n| < 2^7 * 2^31 + 2^31 * 2^31 < 2^63`, and `D < 2^39`.
-    /// Without `stepped`, the step is left zero.
+    ///
+    /// On the first row, `t < SUBPIXEL_ONE`, and the step's division gives
+    /// the start too: with `dx = s * dy + r` (`0 <= r < dy`),
+    /// `n = a * dy + t * r` where `a = f - SAMPLE_OFFSET + t * s`; with
+    /// `a = SUBPIXEL_ONE * a1 + a0` (`0 <= a0 < SUBPIXEL_ONE`),
+    /// `n = a1 * D + m` where `m = a0 * dy + t * r` lies in `0..2 * D`, so
+    /// `ceil(n / D)` is `a1` plus 0, 1 or 2, as `m` is 0, at most `D`, or
+    /// more. (`|a| < 2^8 * 2^31`, `m < 2^40`.)
     #[inline(always)]
     fn narrow(top: Point, dx: i64, dy: i64, row: i64, stepped: bool) -> Self {
         let one = i64::from(SUBPIXEL_ONE);
@@ -122,15 +133,22 @@ impl EdgeStepper {
         let x = i64::from(top.x);
         let (q, f) = (x >> SUBPIXEL_BITS, x & (one - 1));
         let denominator = one * dy;
+        // `dx, dy` fit `i32` and `dy > 0`: one 32-bit division, no overflow.
+        let (dx32, dy32) = (dx as i32, dy as i32);
+        let (column_step, remainder) = (i64::from(dx32.div_euclid(dy32)), i64::from(dx32.rem_euclid(dy32)));
+        if stepped && t < one {
+            let a = f - i64::from(SAMPLE_OFFSET) + t * column_step;
+            let m = (a & (one - 1)) * dy + t * remainder;
+            let up = i64::from(m > 0) + i64::from(m > denominator);
+            let column = q + (a >> SUBPIXEL_BITS) + up;
+            return Self { column, error: up * denominator - m, column_step, error_step: one * remainder, denominator };
+        }
         let n = (f - i64::from(SAMPLE_OFFSET)) * dy + t * dx;
         // One truncating division: `n = quotient * D + remainder`, the
         // remainder of `n`'s sign; the ceiling adds one for a positive one.
-        let (quotient, remainder) = (n / denominator, n % denominator);
-        let (up, error) = if remainder > 0 { (1, denominator - remainder) } else { (0, -remainder) };
-        // `dx, dy` fit `i32` and `dy > 0`: one 32-bit division, no overflow.
-        let (dx32, dy32) = (dx as i32, dy as i32);
-        let (column_step, error_step) =
-            if stepped { (dx32.div_euclid(dy32).into(), one * i64::from(dx32.rem_euclid(dy32))) } else { (0, 0) };
+        let (quotient, rest) = (n / denominator, n % denominator);
+        let (up, error) = if rest > 0 { (1, denominator - rest) } else { (0, -rest) };
+        let (column_step, error_step) = if stepped { (column_step, one * remainder) } else { (0, 0) };
         Self { column: q + quotient + up, error, column_step, error_step, denominator }
     }
 
@@ -157,13 +175,13 @@ impl EdgeStepper {
     /// Moves to the next scan line. Branch-free: the carry is as likely as
     /// not on a random slope, so a branch would be mispredicted half the
     /// time. `error` and `error_step` are in `0..D`, so the difference is in
-    /// `-D..D` and its sign bit is the carry.
+    /// `-D..D`, and below zero exactly on a carry.
     #[inline(always)]
     pub fn step(&mut self) {
-        self.error -= self.error_step;
-        let borrow = self.error >> 63; // -1 on a carry, else 0
-        self.error += self.denominator & borrow;
-        self.column += self.column_step - borrow;
+        let error = self.error - self.error_step;
+        let carry = error < 0;
+        self.error = core::hint::select_unpredictable(carry, error + self.denominator, error);
+        self.column += self.column_step + i64::from(carry);
     }
 }
 

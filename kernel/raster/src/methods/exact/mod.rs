@@ -22,13 +22,14 @@
 //!
 //! - Speed: triangles and monotone polygons allocate nothing and cost two
 //!   edge steps and one span per row; the rest cost one pass over the
-//!   crossings per row, sorting only where edges cross.
+//!   crossings per row, sorting only where edges cross (or, where there is
+//!   a crossing for every four columns, summing them per column instead).
 //!
 //! Stages, one file each: `edge` (scan lines and exact crossing columns),
 //! `monotone` (the triangle fill and the two-chain path for monotone
-//! polygons), `active_edges` (the edge-table path for the rest). The choice
-//! between them is [`fill_auto`]'s, from the polygon's
-//! [`Shape`](crate::classify::Shape).
+//! polygons), `active_edges` (the edge-table path for the rest). Each is a
+//! [`Path`] that can be asked for alone; the choice between them is
+//! [`fill_auto`]'s ([`choose_path`]).
 
 mod active_edges;
 mod edge;
@@ -38,8 +39,9 @@ use active_edges::fill_active_edges;
 use monotone::{fill_monotone, fill_triangle};
 
 use crate::classify::{is_monotone, Shape};
-use crate::geometry::{FillRule, Polygon};
-use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
+use crate::geometry::{FillRule, Point, Polygon};
+use crate::method::{Builtin, Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::MethodId;
 use crate::sink::SpanSink;
 
 /// The exact method.
@@ -60,54 +62,145 @@ static INFO: MethodInfo = MethodInfo {
     heap: Heap::BeyondConvex,
 };
 
-impl Method for Exact {
-    fn info(&self) -> &'static MethodInfo {
-        &INFO
-    }
+impl Builtin for Exact {
+    const ID: MethodId = MethodId::Exact;
+    const INFO: &'static MethodInfo = &INFO;
 
     /// The automatic path: the cheapest exact stage for the polygon's class.
-    fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+    fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
         fill_auto(polygon, sink)
     }
 }
 
+/// The paths `exact` fills by, from the narrowest class of polygon to the
+/// widest. Each is exact on the polygons of its class and refuses the rest
+/// ([`Refusal::OutsideClass`]); [`fill_auto`] picks one per polygon.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Path {
+    /// One contour of three vertices: its long edge and the short edge
+    /// meeting each row, one span per row, no allocation.
+    Triangle,
+    /// One contour monotone in y (triangles included): two chains from the
+    /// top vertex down, one span per row, no allocation.
+    Monotone,
+    /// Any polygon: the active edge table, which allocates its tables.
+    ActiveEdges,
+}
+
+impl Path {
+    pub const ALL: [Path; 3] = [Path::Triangle, Path::Monotone, Path::ActiveEdges];
+
+    pub const fn name(self) -> &'static str {
+        match self {
+            Path::Triangle => "triangle",
+            Path::Monotone => "monotone",
+            Path::ActiveEdges => "active edges",
+        }
+    }
+
+    /// Whether `polygon` is of this path's class, so that [`Path::fill`]
+    /// fills it rather than refusing it.
+    pub fn takes(self, polygon: &Polygon) -> bool {
+        match (self, polygon.contours.as_slice()) {
+            (Path::ActiveEdges, _) => true,
+            (Path::Triangle, [contour]) => contour.len() == 3,
+            (Path::Monotone, [contour]) => contour.len() == 3 || is_monotone(contour),
+            _ => false,
+        }
+    }
+
+    /// Fills `polygon` exactly by this path, or refuses it with
+    /// [`Refusal::OutsideClass`] if it is not of the path's class.
+    pub fn fill<S: SpanSink + ?Sized>(self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
+        if !self.takes(polygon) {
+            return Err(Refusal::OutsideClass);
+        }
+        let size = sink.size();
+        match (self, polygon.contours.as_slice()) {
+            (Path::Triangle, [contour]) => {
+                fill_triangle([contour[0], contour[1], contour[2]], polygon.color, size, sink);
+                Ok(())
+            }
+            (Path::Monotone, [contour]) => {
+                fill_monotone(contour, polygon.color, size, sink);
+                Ok(())
+            }
+            _ => fill_active_edges(polygon, size, sink),
+        }
+    }
+}
+
+/// Where [`fill_auto`] sends a polygon, with what that path needs of it.
+enum Route<'a> {
+    /// Nothing to draw: no contour encloses anything.
+    Nothing,
+    Triangle([Point; 3]),
+    /// The one enclosing contour, monotone in y.
+    Monotone(&'a [Point]),
+    ActiveEdges,
+}
+
+impl<'a> Route<'a> {
+    /// [`fill_auto`]'s classification of `polygon`, in linear time.
+    ///
+    /// The common case, one contour, skips `Shape::of`'s collinearity test,
+    /// which there only tells drawing nothing from filling: a contour of
+    /// three vertices goes to the triangle fill, one monotone in y to the
+    /// monotone fill, any other to the active edge table, and each draws
+    /// nothing for a collinear contour. All its crossings on a row are at
+    /// one column, so no pixel lies between them (the edge table drops
+    /// edges right of the target whole, so on a row it keeps all of them or
+    /// the column is past the target).
+    #[inline]
+    fn of(polygon: &'a Polygon) -> Self {
+        if let [contour] = polygon.contours.as_slice() {
+            return match contour.as_slice() {
+                &[a, b, c] => Route::Triangle([a, b, c]),
+                _ if is_monotone(contour) => Route::Monotone(contour),
+                _ => Route::ActiveEdges,
+            };
+        }
+        match Shape::of(polygon) {
+            Shape::Empty => Route::Nothing,
+            Shape::Monotone(contour) => Route::Monotone(contour),
+            Shape::Contour(_) | Shape::Contours => Route::ActiveEdges,
+        }
+    }
+}
+
+/// The path [`fill_auto`] fills `polygon` by, or `None` when it draws
+/// nothing at all: the classification it runs, alone.
+pub fn choose_path(polygon: &Polygon) -> Option<Path> {
+    match Route::of(polygon) {
+        Route::Nothing => None,
+        Route::Triangle(_) => Some(Path::Triangle),
+        Route::Monotone(_) => Some(Path::Monotone),
+        Route::ActiveEdges => Some(Path::ActiveEdges),
+    }
+}
+
 /// Fills `polygon` exactly (`docs/conventions.md`) by the cheapest path correct for
-/// its class: degenerate polygons (and targets without pixels) draw
-/// nothing, triangles and monotone contours take the two-chain path,
-/// everything else the active edge table. Simple and complex polygons share
-/// that path, so telling them apart would cost without saving anything.
-///
-/// The common case, one contour, skips `Shape::of`'s collinearity test,
-/// which there only tells drawing nothing from filling: a contour of three
-/// vertices goes to the triangle fill, one monotone in y to the monotone
-/// fill, any other to the active edge table, and each draws nothing for a
-/// collinear contour. All its crossings on a row are at one column, so no
-/// pixel lies between them (the edge table drops edges right of the target
-/// whole, so on a row it keeps all of them or the column is past the
-/// target).
-pub fn fill_auto(polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+/// its class ([`choose_path`]): degenerate polygons (and targets without
+/// pixels) draw nothing, triangles take the triangle path, monotone
+/// contours the two-chain path, everything else the active edge table.
+/// Simple and complex polygons share that path, so telling them apart would
+/// cost without saving anything.
+pub fn fill_auto<S: SpanSink + ?Sized>(polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
     let size = sink.size();
     if size.width <= 0 || size.height <= 0 {
         return Ok(());
     }
-    if let [contour] = polygon.contours.as_slice() {
-        if let &[a, b, c] = contour.as_slice() {
-            fill_triangle([a, b, c], polygon.color, size, sink);
-            return Ok(());
+    match Route::of(polygon) {
+        Route::Nothing => Ok(()),
+        Route::Triangle(triangle) => {
+            fill_triangle(triangle, polygon.color, size, sink);
+            Ok(())
         }
-        if is_monotone(contour) {
-            fill_monotone(contour, polygon.color, size, sink);
-            return Ok(());
-        }
-        return fill_active_edges(polygon, size, sink);
-    }
-    match Shape::of(polygon) {
-        Shape::Empty => Ok(()),
-        Shape::Monotone(contour) => {
+        Route::Monotone(contour) => {
             fill_monotone(contour, polygon.color, size, sink);
             Ok(())
         }
-        Shape::Contour(_) | Shape::Contours => fill_active_edges(polygon, size, sink),
+        Route::ActiveEdges => fill_active_edges(polygon, size, sink),
     }
 }
 
@@ -115,6 +208,7 @@ pub fn fill_auto(polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refus
 mod tests {
     use super::*;
     use crate::geometry::Point;
+    use crate::method::Method;
     use crate::methods::test_support::fill;
     use crate::sink::Size;
 

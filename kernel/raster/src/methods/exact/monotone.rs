@@ -25,7 +25,7 @@ use super::edge::{first_sample_at_or_after, visible_column, visible_rows, EdgeSt
 /// taken, so no test of the class is needed first: on every row the long
 /// edge (top to bottom vertex) and the one short edge meeting the row are
 /// the only crossings, and three points on one line enclose nothing.
-pub(crate) fn fill_triangle([a, b, c]: [Point; 3], color: u8, size: Size, sink: &mut dyn SpanSink) {
+pub(crate) fn fill_triangle<S: SpanSink + ?Sized>([a, b, c]: [Point; 3], color: u8, size: Size, sink: &mut S) {
     // Sorted by y: `top.y <= middle.y <= bottom.y`.
     let (a, b) = if b.y < a.y { (b, a) } else { (a, b) };
     let (b, c) = if c.y < b.y { (c, b) } else { (b, c) };
@@ -67,7 +67,7 @@ pub(crate) fn fill_triangle([a, b, c]: [Point; 3], color: u8, size: Size, sink: 
 }
 
 /// Fills `contour`, which must be monotone in y, with one span per row.
-pub(crate) fn fill_monotone(contour: &[Point], color: u8, size: Size, sink: &mut dyn SpanSink) {
+pub(crate) fn fill_monotone<S: SpanSink + ?Sized>(contour: &[Point], color: u8, size: Size, sink: &mut S) {
     let Some(&first) = contour.first() else {
         return;
     };
@@ -97,9 +97,9 @@ pub(crate) fn fill_monotone(contour: &[Point], color: u8, size: Size, sink: &mut
         let run_end = a.end_row.min(b.end_row).min(rows.end);
         // The chains may cross: the left crossing is the smaller column.
         if clip {
-            span_rows::<false, true>(row..run_end, &mut a.stepper, &mut b.stepper, color, size.width, sink);
+            span_rows::<false, true, _>(row..run_end, &mut a.stepper, &mut b.stepper, color, size.width, sink);
         } else {
-            span_rows::<false, false>(row..run_end, &mut a.stepper, &mut b.stepper, color, size.width, sink);
+            span_rows::<false, false, _>(row..run_end, &mut a.stepper, &mut b.stepper, color, size.width, sink);
         }
         row = run_end;
         if row >= rows.end {
@@ -119,25 +119,26 @@ pub(crate) fn fill_monotone(contour: &[Point], color: u8, size: Size, sink: &mut
 /// Whether every crossing column of edges with x in `min_x..=max_x` lies in
 /// the target's `0..=width`, so that no column needs clamping: a crossing
 /// lies on its edge, and [`first_sample_at_or_after`] keeps order.
-fn columns_fit(min_x: i32, max_x: i32, width: i32) -> bool {
+#[inline(always)]
+pub(super) fn columns_fit(min_x: i32, max_x: i32, width: i32) -> bool {
     first_sample_at_or_after(min_x.into()) >= 0 && first_sample_at_or_after(max_x.into()) <= i64::from(width)
 }
 
 /// [`span_rows`] for `left` never right of `right`.
 #[inline(always)]
-fn emit_ordered(
+fn emit_ordered<S: SpanSink + ?Sized>(
     rows: Range<i64>,
     left: &mut EdgeStepper,
     right: &mut EdgeStepper,
     clip: bool,
     color: u8,
     width: i32,
-    sink: &mut dyn SpanSink,
+    sink: &mut S,
 ) {
     if clip {
-        span_rows::<true, true>(rows, left, right, color, width, sink);
+        span_rows::<true, true, _>(rows, left, right, color, width, sink);
     } else {
-        span_rows::<true, false>(rows, left, right, color, width, sink);
+        span_rows::<true, false, _>(rows, left, right, color, width, sink);
     }
 }
 
@@ -148,13 +149,13 @@ fn emit_ordered(
 /// Clamping every crossing keeps the inside test of each visible pixel
 /// unchanged (see [`visible_column`]).
 #[inline(always)]
-pub(super) fn span_rows<const ORDERED: bool, const CLIP: bool>(
+pub(super) fn span_rows<const ORDERED: bool, const CLIP: bool, S: SpanSink + ?Sized>(
     rows: Range<i64>,
     a: &mut EdgeStepper,
     b: &mut EdgeStepper,
     color: u8,
     width: i32,
-    sink: &mut dyn SpanSink,
+    sink: &mut S,
 ) {
     // Local copies: the steppers then need not be stored on every row.
     let (mut a_, mut b_) = (*a, *b);

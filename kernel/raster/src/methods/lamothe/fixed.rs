@@ -24,7 +24,8 @@
 //!   module's split and fan.
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
+use crate::method::{Builtin, Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::MethodId;
 use crate::sink::SpanSink;
 
 use super::{EdgePair, FlatHalves};
@@ -52,12 +53,11 @@ static INFO: MethodInfo = MethodInfo {
     heap: Heap::Never,
 };
 
-impl Method for LamotheFixed {
-    fn info(&self) -> &'static MethodInfo {
-        &INFO
-    }
+impl Builtin for LamotheFixed {
+    const ID: MethodId = MethodId::LamotheFixed;
+    const INFO: &'static MethodInfo = &INFO;
 
-    fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+    fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
         super::fill_polygon(self, polygon, sink)
     }
 }

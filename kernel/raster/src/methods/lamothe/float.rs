@@ -20,7 +20,8 @@
 //!   module's split and fan.
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::method::{Class, Convention, Heap, Method, MethodInfo, Refusal};
+use crate::method::{Builtin, Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::MethodId;
 use crate::sink::SpanSink;
 
 use super::{EdgePair, FlatHalves};
@@ -42,12 +43,11 @@ static INFO: MethodInfo = MethodInfo {
     heap: Heap::Never,
 };
 
-impl Method for Lamothe {
-    fn info(&self) -> &'static MethodInfo {
-        &INFO
-    }
+impl Builtin for Lamothe {
+    const ID: MethodId = MethodId::Lamothe;
+    const INFO: &'static MethodInfo = &INFO;
 
-    fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+    fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
         super::fill_polygon(self, polygon, sink)
     }
 }

@@ -117,7 +117,11 @@ trait FlatHalves {
 
 /// `Method::fill` for both variants: one contour, rounded to pixels, cut
 /// into triangles (module doc), each drawn by `Draw_Triangle_2D`.
-fn fill_polygon(variant: &impl FlatHalves, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+fn fill_polygon<S: SpanSink + ?Sized>(
+    variant: &impl FlatHalves,
+    polygon: &Polygon,
+    sink: &mut S,
+) -> Result<(), Refusal> {
     let contour = polygon.single_contour().ok_or(Refusal::MultipleContours)?;
     let Some(clip) = ClipRect::of(sink.size()) else {
         return Ok(());
@@ -138,12 +142,12 @@ fn fill_polygon(variant: &impl FlatHalves, polygon: &Polygon, sink: &mut dyn Spa
 
 /// `Draw_Triangle_2D` / `Draw_TriangleFP_2D` (the two differ only in the
 /// halves they call).
-fn draw_triangle_2d(
+fn draw_triangle_2d<S: SpanSink + ?Sized>(
     variant: &impl FlatHalves,
     [p1, p2, p3]: [PixelPoint; 3],
     clip: ClipRect,
     color: u8,
-    sink: &mut dyn SpanSink,
+    sink: &mut S,
 ) {
     // "test for h lines and v lines"
     if (p1.x == p2.x && p2.x == p3.x) || (p1.y == p2.y && p2.y == p3.y) {
@@ -196,14 +200,14 @@ fn long_edge_offset(p1: PixelPoint, p2: PixelPoint, p3: PixelPoint) -> i32 {
 /// The body shared by `Draw_Top_Tri`, `Draw_Bottom_Tri` and their FP twins
 /// after the setup: y clip, then lines `y1..=y3` by the no-x-clip path when
 /// all three x lie inside the clip rectangle, else by the x-clip path.
-fn scan_half(
+fn scan_half<S: SpanSink + ?Sized>(
     mut edges: impl EdgePair,
     xs: [i32; 3],
     mut y1: i32,
     mut y3: i32,
     clip: ClipRect,
     color: u8,
-    sink: &mut dyn SpanSink,
+    sink: &mut S,
 ) {
     if y1 < clip.min_y {
         edges.skip_lines(clip.min_y - y1);
@@ -240,7 +244,7 @@ fn scan_half(
 
 /// `memset(dest_addr + start, color, count)` on line `y`, cut to the sink
 /// (module doc: a negative count draws nothing).
-fn memset(sink: &mut dyn SpanSink, y: i32, start: i64, count: i64, color: u8) {
+fn memset<S: SpanSink + ?Sized>(sink: &mut S, y: i32, start: i64, count: i64, color: u8) {
     let width = i64::from(sink.size().width);
     let (x0, x1) = (start.max(0), start.saturating_add(count).min(width));
     if x0 < x1 {

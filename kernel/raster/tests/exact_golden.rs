@@ -1,0 +1,139 @@
+//! `exact`'s pixels pinned by a hash over a large seeded corpus, so that a
+//! change to how it walks edges or hands spans to its sink cannot move a
+//! pixel unnoticed, even where no reference comparison looks (the `i32`
+//! extremes, screen-sized polygons).
+//!
+//! The corpus is the `exact_*` generators run by proptest's deterministic
+//! runner (its generator is pinned by Cargo.lock): polygons of every kind on
+//! the small test target, huge ones, and the same kinds scaled up to cover
+//! the 320x200 screen. Each fill is reduced to the pixels it sets (its
+//! spans sorted by row and column, touching or overlapping ones joined),
+//! plus its result and how many spans broke the sink contract, and all of
+//! that is hashed with FNV-1a.
+//!
+//! `EXPECTED` was printed by this test at the commit that added it, before
+//! the sink rework: the pixels of today's `exact` are the pixels of that one.
+//! Each polygon is filled twice, through `Method::fill` (a call per span
+//! through the sink's vtable) and through `MethodId::fill` (the sink's
+//! store compiled into the fill), which must emit the same spans; the
+//! screen-sized ones are also filled into a `Framebuffer`, whose pixels
+//! must be the spans' pixels.
+
+mod exact_support;
+
+use exact_support::{any_polygon, polygon_of, Kind, TARGET};
+use proptest::strategy::{Strategy, ValueTree};
+use proptest::test_runner::TestRunner;
+use raster::methods::exact::Exact;
+use raster::{Framebuffer, Method, MethodId, Point, Polygon, Size, SpanSink, SCREEN};
+
+/// The hash of the whole corpus, recorded before the sink rework.
+const EXPECTED: u64 = 0xddf3_e3f4_dbe2_531e;
+
+/// Polygons of every kind on the small target.
+const SMALL: usize = 60_000;
+/// Huge polygons (any `i32` vertex) on the small target.
+const HUGE: usize = 6_000;
+/// Polygons of every kind scaled by [`SCALE`] onto the screen.
+const SCREEN_SIZED: usize = 12_000;
+const SCALE: i32 = 7;
+
+/// Keeps every span as emitted.
+struct Spans {
+    size: Size,
+    spans: Vec<(i32, i32, i32)>,
+}
+
+impl SpanSink for Spans {
+    fn size(&self) -> Size {
+        self.size
+    }
+
+    fn span(&mut self, y: i32, x_start: i32, x_end: i32, _color: u8) {
+        self.spans.push((y, x_start, x_end));
+    }
+}
+
+/// FNV-1a, 64 bits: stable across platforms and Rust versions.
+struct Fnv(u64);
+
+impl Fnv {
+    fn add(&mut self, value: i64) {
+        for byte in value.to_le_bytes() {
+            self.0 = (self.0 ^ u64::from(byte)).wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+}
+
+/// Fills `polygon` into a target of `size` and adds what it drew to `hash`.
+fn add_fill(hash: &mut Fnv, polygon: &Polygon, size: Size) {
+    let mut sink = Spans { size, spans: Vec::new() };
+    let result = Exact.fill(polygon, &mut sink);
+    let mut inlined = Spans { size, spans: Vec::new() };
+    assert_eq!(MethodId::Exact.fill(polygon, &mut inlined), result);
+    assert_eq!(inlined.spans, sink.spans, "the two dispatches differ on {polygon:?}");
+    if size == SCREEN {
+        assert_framebuffer_holds(polygon, &sink.spans);
+    }
+    hash.add(i64::from(result.is_ok()));
+    let broken = sink.spans.iter().filter(|&&(y, x0, x1)| !size.holds_span(y, x0, x1)).count();
+    hash.add(broken as i64);
+    let mut spans = sink.spans;
+    spans.sort_unstable();
+    let mut pixels: Vec<(i32, i32, i32)> = Vec::with_capacity(spans.len());
+    for (y, x0, x1) in spans {
+        match pixels.last_mut() {
+            Some(last) if last.0 == y && x0 <= last.2 => last.2 = last.2.max(x1),
+            _ => pixels.push((y, x0, x1)),
+        }
+    }
+    hash.add(pixels.len() as i64);
+    for (y, x0, x1) in pixels {
+        hash.add(i64::from(y));
+        hash.add(i64::from(x0));
+        hash.add(i64::from(x1));
+    }
+}
+
+/// `polygon` filled into a [`Framebuffer`] sets exactly the pixels of
+/// `spans`, which lie inside the screen.
+fn assert_framebuffer_holds(polygon: &Polygon, spans: &[(i32, i32, i32)]) {
+    let mut drawn = Framebuffer::new(SCREEN);
+    MethodId::Exact.fill(polygon, &mut drawn).expect("exact takes every polygon");
+    let mut expected = vec![0u8; drawn.pixels().len()];
+    for &(y, x0, x1) in spans {
+        let row = (y * SCREEN.width) as usize;
+        expected[row + x0 as usize..row + x1 as usize].fill(polygon.color);
+    }
+    assert!(drawn.pixels() == expected, "the framebuffer differs from the spans of {polygon:?}");
+}
+
+fn corpus_hash() -> u64 {
+    let mut runner = TestRunner::deterministic();
+    let mut hash = Fnv(0xcbf2_9ce4_8422_2325);
+    let mut draw = |strategy: &dyn Fn(&mut TestRunner) -> Polygon, count: usize, size: Size| {
+        for _ in 0..count {
+            let polygon = strategy(&mut runner);
+            add_fill(&mut hash, &polygon, size);
+        }
+    };
+    let any = |runner: &mut TestRunner| any_polygon().new_tree(runner).expect("generates").current().1;
+    let huge = |runner: &mut TestRunner| polygon_of(Kind::Huge).new_tree(runner).expect("generates").current();
+    let scaled = |runner: &mut TestRunner| {
+        let mut polygon = any_polygon().prop_map(|(_, p)| p).new_tree(runner).expect("generates").current();
+        for p in polygon.contours.iter_mut().flatten() {
+            *p = Point::new(p.x.saturating_mul(SCALE), p.y.saturating_mul(SCALE));
+        }
+        polygon
+    };
+    draw(&any, SMALL, TARGET);
+    draw(&huge, HUGE, TARGET);
+    draw(&scaled, SCREEN_SIZED, SCREEN);
+    hash.0
+}
+
+#[test]
+fn exact_draws_the_pixels_it_drew_before_the_sink_rework() {
+    let hash = corpus_hash();
+    assert_eq!(hash, EXPECTED, "exact's pixels changed: the corpus now hashes to {hash:#018x}");
+}

@@ -1,0 +1,293 @@
+//! What modelling costs: "model no more than a scene needs", measured.
+//!
+//! `exact` fills a polygon by the narrowest of its paths that takes it
+//! ([`raster::methods::exact::Path`]: triangle, monotone, active edges),
+//! chosen by `fill_auto`'s linear-time classification. Here every family is
+//! drawn through each path alone (a path refuses what is outside its class,
+//! and must never draw it wrong), through `fill_auto`, and classified alone
+//! (`fill_auto`'s own choice, and `raster::classify`'s full one), each
+//! judged against the reference and timed, with its heap allocations per
+//! polygon. The show's shaded entries are timed as they are modelled and
+//! over-modelled ([`scenes::show::Modelling`]).
+
+use std::hint::black_box;
+
+use raster::methods::exact::{choose_path, Path};
+use raster::{classify, MethodId, Polygon};
+use scenes::show::{Modelling, Stage, ENTRIES_IN_ORDER};
+use serde::Serialize;
+
+use crate::contender::Contender;
+use crate::corpus::Family;
+use crate::heap;
+use crate::measure::{self, Tally};
+use crate::timing::Timing;
+
+/// One way through a family's polygons.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Lane {
+    /// One of exact's paths alone.
+    Path(Path),
+    /// `fill_auto`: the classification, then the path it picks.
+    Auto,
+    /// `fill_auto`'s classification alone (`exact::choose_path`).
+    Dispatch,
+    /// `raster::classify`: every class, simplicity included (quadratic).
+    Classify,
+}
+
+impl Lane {
+    pub const ALL: [Lane; 6] = [
+        Lane::Path(Path::Triangle),
+        Lane::Path(Path::Monotone),
+        Lane::Path(Path::ActiveEdges),
+        Lane::Auto,
+        Lane::Dispatch,
+        Lane::Classify,
+    ];
+
+    pub const fn name(self) -> &'static str {
+        match self {
+            Lane::Path(path) => path.name(),
+            Lane::Auto => "fill_auto",
+            Lane::Dispatch => "dispatch",
+            Lane::Classify => "classify",
+        }
+    }
+
+    /// The lane as a contender, for the lanes that draw.
+    fn contender(self) -> Option<Contender> {
+        match self {
+            Lane::Path(path) => Some(Contender::Path(path)),
+            Lane::Auto => Some(Contender::Method(MethodId::Exact.method())),
+            Lane::Dispatch | Lane::Classify => None,
+        }
+    }
+
+    /// Does the lane's work on every one of `polygons`, once.
+    fn run<'a>(self, polygons: &'a [&'a Polygon], contender: Option<&Contender>) -> Box<dyn FnMut() + 'a> {
+        match (self, contender) {
+            (Lane::Dispatch, _) => Box::new(move || {
+                for polygon in polygons {
+                    black_box(choose_path(black_box(polygon)));
+                }
+            }),
+            (Lane::Classify, _) => Box::new(move || {
+                for polygon in polygons {
+                    black_box(classify(black_box(polygon)));
+                }
+            }),
+            (_, Some(contender)) => contender.pass(polygons),
+            (_, None) => Box::new(|| {}),
+        }
+    }
+}
+
+/// One lane on one family, as written to results.json. Accuracy fields are
+/// `None` for the lanes that only classify.
+#[derive(Clone, Debug, Serialize)]
+pub struct PathRow {
+    pub family: &'static str,
+    pub lane: &'static str,
+    pub polygons: u64,
+    /// Polygons the path refused as outside its class.
+    pub refusals: Option<u64>,
+    pub wrong_pixels: Option<u64>,
+    pub overdraw: Option<u64>,
+    /// On tiling families only.
+    pub gaps: Option<u64>,
+    pub failures: Option<u64>,
+    /// Only where the lane takes every polygon of the family.
+    pub ns_per_polygon: Option<f64>,
+    /// Heap allocations per polygon (`None` where they are not counted).
+    pub allocations_per_polygon: Option<f64>,
+    /// For a path: the polygons `fill_auto` sends down it.
+    pub chosen_by_fill_auto: Option<u64>,
+    /// For the drawing lanes: time over the cheapest path's that takes
+    /// every polygon of the family.
+    pub time_vs_cheapest: Option<f64>,
+}
+
+/// Timing jobs [`measure()`] runs on a family, for progress.
+pub const JOBS: u64 = Lane::ALL.len() as u64;
+
+/// Every lane on `family`: judged on every core, then timed and its
+/// allocations counted on this thread alone. `progress` is told of each
+/// polygon judged and each lane timed.
+pub fn measure(family: &Family, timing: Timing, progress: &(dyn Fn() + Sync)) -> Vec<PathRow> {
+    let contenders: Vec<Contender> = Lane::ALL.iter().filter_map(|lane| lane.contender()).collect();
+    let judged = measure::quietly(|| measure::judge(family, &contenders, progress));
+    let tiled = !family.tilings.is_empty();
+    let polygons: Vec<&Polygon> = family.polygons.iter().collect();
+    let mut chosen = [0u64; Path::ALL.len()];
+    for path in polygons.iter().filter_map(|p| choose_path(p)) {
+        chosen[path as usize] += 1;
+    }
+    let lanes: Vec<(Lane, Option<&Contender>, Option<&Tally>)> = Lane::ALL
+        .iter()
+        .map(|&lane| {
+            let c = contenders.iter().position(|c| Some(c.name()) == lane.contender().map(|l| l.name()));
+            (lane, c.map(|c| &contenders[c]), c.and_then(|c| judged.tallies[c].as_ref()))
+        })
+        .collect();
+    // Timed, in turn, only on what it all takes, and only if it never failed.
+    let takes_all: Vec<bool> =
+        lanes.iter().map(|(_, _, tally)| tally.is_none_or(|t| t.refusals == 0 && t.failures == 0)).collect();
+    let mut passes: Vec<Box<dyn FnMut() + '_>> = lanes
+        .iter()
+        .zip(&takes_all)
+        .filter(|(_, &takes)| takes)
+        .map(|((lane, contender, _), _)| lane.run(&polygons, *contender))
+        .collect();
+    let mut times =
+        timing.ns_per_polygon_each(passes.iter_mut().map(|p| (&mut **p as &mut dyn FnMut(), polygons.len())).collect());
+    for _ in 0..JOBS {
+        progress();
+    }
+    times.reverse();
+    let mut rows: Vec<PathRow> = lanes
+        .iter()
+        .zip(&takes_all)
+        .map(|(&(lane, contender, tally), &takes)| {
+            let ns = if takes { times.pop().flatten() } else { None };
+            // The pass is made first: only the fills' own allocations count.
+            let pass = lane.run(&polygons, contender);
+            let allocations = heap::per_item(polygons.len(), pass);
+            PathRow {
+                family: family.name,
+                lane: lane.name(),
+                polygons: polygons.len() as u64,
+                refusals: tally.map(|t| t.refusals),
+                wrong_pixels: tally.map(|t| t.wrong_pixels),
+                overdraw: tally.map(|t| t.overdraw),
+                // Pixels of refused tiles are gaps of the tiling, not faults.
+                gaps: tally.filter(|t| tiled && t.refusals == 0).map(|t| t.gaps),
+                failures: tally.map(|t| t.failures),
+                ns_per_polygon: ns,
+                allocations_per_polygon: if takes { allocations } else { None },
+                chosen_by_fill_auto: match lane {
+                    Lane::Path(path) => Some(chosen[path as usize]),
+                    _ => None,
+                },
+                time_vs_cheapest: None,
+            }
+        })
+        .collect();
+    let cheapest = rows
+        .iter()
+        .filter(|r| Path::ALL.iter().any(|p| p.name() == r.lane))
+        .filter_map(|r| r.ns_per_polygon)
+        .min_by(f64::total_cmp);
+    for row in rows.iter_mut().filter(|r| r.refusals.is_some()) {
+        row.time_vs_cheapest = row.ns_per_polygon.zip(cheapest).map(|(ns, cheapest)| ns / cheapest);
+    }
+    rows
+}
+
+/// A shaded entry of the show, timed as modelled or over-modelled.
+#[derive(Clone, Debug, Serialize)]
+pub struct ShowRow {
+    pub entry: &'static str,
+    /// `needed` (what the entry uses) or `forced` (four attributes and a
+    /// depth buffer).
+    pub modelling: &'static str,
+    /// Frames timed: every frame of the entry, drawn by `exact`.
+    pub frames: u32,
+    pub ns_per_frame: Option<f64>,
+    /// Time over the same entry's as it needs.
+    pub time_vs_needed: Option<f64>,
+}
+
+/// Every shaded entry of the show, every frame, drawn by `exact` as the
+/// entry needs and over-modelled, the two timed in turn.
+pub fn measure_show(timing: Timing) -> Vec<ShowRow> {
+    let method = MethodId::Exact.method();
+    let (mut as_needed, mut forced) = (Stage::new(), Stage::new());
+    let mut rows = Vec::new();
+    for entry in ENTRIES_IN_ORDER {
+        if as_needed.draw_modelled(entry, 0, method, Modelling::Needed).is_none() {
+            continue;
+        }
+        let every_frame = |stage: &mut Stage, modelling: Modelling| {
+            for frame in 0..entry.frames {
+                black_box(stage.draw_modelled(entry, frame, method, modelling));
+            }
+        };
+        let mut pass_needed = || every_frame(&mut as_needed, Modelling::Needed);
+        let mut pass_forced = || every_frame(&mut forced, Modelling::Forced);
+        let frames = entry.frames as usize;
+        let times = timing.ns_per_polygon_each(vec![(&mut pass_needed, frames), (&mut pass_forced, frames)]);
+        for (name, ns) in ["needed", "forced"].into_iter().zip(&times) {
+            let time_vs_needed = ns.zip(times[0]).map(|(ns, needed)| ns / needed);
+            rows.push(ShowRow {
+                entry: entry.name,
+                modelling: name,
+                frames: entry.frames,
+                ns_per_frame: *ns,
+                time_vs_needed,
+            });
+        }
+    }
+    rows
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::corpus::{self, Budget};
+
+    fn family(name: &str) -> Family {
+        corpus::build(Budget::QUICK).into_iter().find(|f| f.name == name).unwrap()
+    }
+
+    const FAST: Timing = Timing { repeats: 1, min_repeat: std::time::Duration::ZERO };
+
+    #[test]
+    fn on_triangles_every_path_draws_and_fill_auto_takes_the_triangle_path() {
+        let rows = measure(&family("small_triangles"), FAST, &|| {});
+        let names: Vec<&str> = rows.iter().map(|r| r.lane).collect();
+        assert_eq!(names, ["triangle", "monotone", "active edges", "fill_auto", "dispatch", "classify"]);
+        for row in &rows[..4] {
+            assert_eq!(
+                (row.refusals, row.wrong_pixels, row.overdraw, row.failures),
+                (Some(0), Some(0), Some(0), Some(0))
+            );
+            assert!(row.ns_per_polygon.is_some() && row.time_vs_cheapest.is_some(), "{row:?}");
+        }
+        assert_eq!(rows[0].chosen_by_fill_auto, Some(rows[0].polygons));
+        assert_eq!(rows[1].chosen_by_fill_auto, Some(0));
+        assert_eq!(rows[4].refusals, None);
+        // The unit tests keep the system allocator: no count is made up.
+        assert_eq!(rows[0].allocations_per_polygon, None);
+    }
+
+    #[test]
+    fn a_path_refuses_what_it_cannot_fill_and_is_not_timed_there() {
+        let rows = measure(&family("concave"), FAST, &|| {});
+        let triangle = &rows[0];
+        assert_eq!(triangle.refusals, Some(triangle.polygons));
+        assert_eq!((triangle.wrong_pixels, triangle.ns_per_polygon), (Some(0), None));
+        let active = &rows[2];
+        assert_eq!(active.refusals, Some(0));
+        assert_eq!(active.time_vs_cheapest, Some(1.0));
+    }
+
+    #[test]
+    fn every_shaded_entry_is_timed_both_ways() {
+        let rows = measure_show(FAST);
+        let entries: Vec<(&str, &str)> = rows.iter().map(|r| (r.entry, r.modelling)).collect();
+        assert_eq!(
+            entries,
+            [
+                ("wgt-gouraud", "needed"),
+                ("wgt-gouraud", "forced"),
+                ("wgt-texture", "needed"),
+                ("wgt-texture", "forced"),
+                ("pendleton-zbuffer", "needed"),
+                ("pendleton-zbuffer", "forced"),
+            ]
+        );
+        assert!(rows.iter().all(|r| r.ns_per_frame.is_some()));
+        assert_eq!(rows[0].time_vs_needed, Some(1.0));
+    }
+}
