@@ -10,7 +10,7 @@ use alloc::vec::Vec;
 use core::fmt;
 use core::mem::{align_of, size_of};
 use core::ops::Range;
-use core::ptr::NonNull;
+use core::ptr::{self, NonNull};
 
 use bootloader_api::BootInfo;
 use protocol::{DUMP_LEN, FRAMEBUFFER_LEN};
@@ -111,42 +111,39 @@ impl Screen {
         dump
     }
 
-    /// Sets the bytes `range` of video memory to `color`: whole aligned
-    /// 8-byte stores where the span allows, and 4-, 2- or 1-byte stores,
-    /// each aligned to its width, before and after them. Panics if `range`
+    /// Sets the bytes `range` of video memory to `color`: the bytes up to
+    /// the first 8-byte boundary one at a time, then whole aligned 8-byte
+    /// stores, then the last few bytes one at a time, so the card's bus
+    /// sees an eighth of the writes a byte loop makes. Panics if `range`
     /// reaches past the 64,000 bytes (callers check the sink contract).
     #[inline]
     fn fill(&mut self, range: Range<usize>, color: u8) {
-        let base = self.pixels.as_raw_ptr().cast::<u8>().as_ptr().addr();
+        let bytes = self.pixels.index(range);
+        let (start, len) = (bytes.as_raw_ptr().cast::<u8>().as_ptr(), bytes.len());
+        let head = start.align_offset(align_of::<u64>()).min(len);
+        let words = (len - head) / size_of::<u64>();
+        let tail = len - head - words * size_of::<u64>();
         let pattern = u64::from(color) * 0x0101_0101_0101_0101;
-        let mut at = range.start;
-        while at < range.end {
-            let (address, left) = (base + at, range.end - at);
-            at += if address.is_multiple_of(8) && left >= 8 {
-                self.store(at, pattern)
-            } else if address.is_multiple_of(4) && left >= 4 {
-                self.store(at, pattern as u32)
-            } else if address.is_multiple_of(2) && left >= 2 {
-                self.store(at, pattern as u16)
-            } else {
-                self.store(at, color)
-            };
+        // SAFETY: `bytes` is `len` bytes of the video memory `Screen::new`
+        // took (`index` checked the range), valid for volatile writes and
+        // aliased by no reference. The three runs cover bytes `0..head`,
+        // `head..head + 8 * words` and the `tail` after them, `len` in all,
+        // each write inside `bytes`; the words start at the first 8-byte
+        // boundary (`align_offset`), so each `u64` write is aligned; any
+        // bytes are a valid `u8` or `u64`.
+        unsafe {
+            for i in 0..head {
+                ptr::write_volatile(start.add(i), color);
+            }
+            let body = start.add(head).cast::<u64>();
+            for i in 0..words {
+                ptr::write_volatile(body.add(i), pattern);
+            }
+            let end = start.add(head + words * size_of::<u64>());
+            for i in 0..tail {
+                ptr::write_volatile(end.add(i), color);
+            }
         }
-    }
-
-    /// One volatile store of `value` at byte `at` of video memory; returns
-    /// its width. Panics unless the store lies within the 64,000 bytes and
-    /// is aligned to its width.
-    #[inline(always)]
-    fn store<T: Copy>(&mut self, at: usize, value: T) -> usize {
-        let bytes = self.pixels.index(at..at + size_of::<T>());
-        assert!(bytes.as_raw_ptr().cast::<u8>().as_ptr().addr().is_multiple_of(align_of::<T>()));
-        // SAFETY: `bytes` is `size_of::<T>()` bytes of the video memory
-        // `Screen::new` took (index checked the range), and its address is
-        // a multiple of `T`'s alignment (asserted), so it is valid for one
-        // volatile write of a `T`; `T` is an integer, any bytes are valid.
-        unsafe { bytes.map(|b| b.cast::<T>()) }.write(value);
-        size_of::<T>()
     }
 }
 
