@@ -4,8 +4,9 @@
 //! Each family draws from its own generator, seeded from [`SEED`] and the
 //! family's name, so adding or resizing a family leaves the others as they
 //! were. Coordinates are generated in pixels as `f64` and snapped to the
-//! nearest 1/256 px ([`Point`]), as `docs/conventions.md#coordinates` has
-//! vertices.
+//! nearest 1/256 px ([`Point`]), the vertex grid of
+//! `docs/conventions.md#coordinates` (a tie, which random `f64`s all but
+//! never make, rounds away from zero here, up in scene files).
 
 use std::f64::consts::TAU;
 use std::ops::Range;
