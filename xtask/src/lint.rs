@@ -2,13 +2,14 @@
 //! crates are linted with the toolchain that runs the xtask; the kernel,
 //! which only builds with the pinned nightly for bare metal, with that
 //! nightly. Warnings are errors. Installs rustfmt and clippy where missing
-//! (the minimal rustup profile has neither).
+//! (the minimal rustup profile has neither), and libcairo's headers, which
+//! the lab's Cairo peer builds against.
 
 use std::process::Command;
 
 use anyhow::{Context, Result};
 use harness::cargo::{host, pinned, NightlyBuild, KERNEL_TARGET, NIGHTLY_ONLY};
-use harness::prerequisites::ensure_toolchain;
+use harness::prerequisites::{ensure_cairo, ensure_toolchain};
 use harness::process::run_streaming;
 use harness::workspace;
 
@@ -17,6 +18,8 @@ pub fn lint() -> Result<()> {
     // RUSTUP_TOOLCHAIN, so this adds the components to that one.
     run_streaming(Command::new("rustup").args(["component", "add", "rustfmt", "clippy"]))
         .context("failed to install rustfmt and clippy")?;
+    // Clippy builds the lab, whose Cairo peer links the system libcairo.
+    ensure_cairo()?;
     for mut command in [fmt_check(), host_clippy()] {
         run_streaming(&mut command)?;
     }
