@@ -1,6 +1,6 @@
 //! `scenes`: what the lab draws, as data. The seeds' sample programs as
 //! built-in scenes ([`builtin`]), the plain-text scene files users write
-//! ([`file`]), the VGA default palette ([`palette`]), and the demo's show
+//! ([`file`](mod@file)), the VGA default palette ([`palette`]), and the demo's show
 //! ([`show`]: every frame of every entry, the book pages, animations with
 //! shading, textures and depth through one attribute interpolator, and the
 //! race of every method), drawn the same way in the kernel and on the host

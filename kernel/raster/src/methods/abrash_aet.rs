@@ -45,7 +45,8 @@ use alloc::vec::Vec;
 
 use super::abrash_int::ErrorTermStep;
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Builtin, Class, Convention, Heap, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::Builtin;
 use crate::methods::MethodId;
 use crate::sink::SpanSink;
 

@@ -21,7 +21,8 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::method::{Builtin, Class, Convention, Heap, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::Builtin;
 use crate::methods::MethodId;
 use crate::sink::SpanSink;
 

@@ -28,7 +28,8 @@ use core::ops::Range;
 
 use super::abrash_float::{fill_with, Segment, CONVENTION};
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Builtin, Class, Heap, MethodInfo, Refusal};
+use crate::method::{Class, Heap, MethodInfo, Refusal};
+use crate::methods::Builtin;
 use crate::methods::MethodId;
 use crate::sink::SpanSink;
 

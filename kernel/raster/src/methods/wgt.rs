@@ -48,7 +48,8 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Builtin, Class, Convention, Heap, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::Builtin;
 use crate::methods::MethodId;
 use crate::sink::SpanSink;
 
@@ -181,8 +182,8 @@ mod tests {
     use super::*;
     use crate::coverage::CoverageSink;
     use crate::geometry::Point;
-    use crate::method::Method;
     use crate::methods::test_support::{draw, fill, full, SMALL};
+    use crate::methods::Method;
     use crate::sink::SCREEN;
 
     /// The first and last pixel drawn on row `y`, checking the row is one

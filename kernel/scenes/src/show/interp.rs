@@ -27,8 +27,8 @@ use super::trig::div_round;
 use super::Scratch;
 use crate::scene::DrawReport;
 use raster::geometry::{Point, SUBPIXEL_BITS, SUBPIXEL_ONE};
-use raster::method::{Method, Refusal};
 use raster::sink::{Framebuffer, Size, SpanSink};
+use raster::{Method, Refusal};
 
 /// Bound on vertex coordinates (in subpixels, so 2048 px) and on
 /// attribute values: both lie in `-LIMIT..=LIMIT`.

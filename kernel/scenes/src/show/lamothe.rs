@@ -20,8 +20,8 @@ use super::trig::{angle_at, offset, polar, rotate, TURN};
 use super::Scratch;
 use crate::scene::DrawReport;
 use raster::geometry::Point;
-use raster::method::Method;
 use raster::sink::Framebuffer;
+use raster::Method;
 
 /// Frames in one full turn of the big square (7.3 s at 35 frames a second).
 pub(super) const FRAMES: u32 = 256;

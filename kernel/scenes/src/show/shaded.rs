@@ -23,8 +23,8 @@ use super::trig::{angle_at, div_round, offset, rotate, sin_cos, unscale, TURN};
 use super::{Modelling, Ramp, Scratch};
 use crate::scene::DrawReport;
 use raster::geometry::{Point, SUBPIXEL_BITS};
-use raster::method::Method;
 use raster::sink::{Framebuffer, SpanSink};
+use raster::Method;
 
 pub(super) const GOURAUD_FRAMES: u32 = 120;
 pub(super) const TEXTURE_FRAMES: u32 = 120;

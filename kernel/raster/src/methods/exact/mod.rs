@@ -40,7 +40,8 @@ use monotone::{fill_monotone, fill_triangle};
 
 use crate::classify::{is_monotone, Shape};
 use crate::geometry::{FillRule, Point, Polygon};
-use crate::method::{Builtin, Class, Convention, Heap, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::Builtin;
 use crate::methods::MethodId;
 use crate::sink::SpanSink;
 
@@ -208,8 +209,8 @@ pub fn fill_auto<S: SpanSink + ?Sized>(polygon: &Polygon, sink: &mut S) -> Resul
 mod tests {
     use super::*;
     use crate::geometry::Point;
-    use crate::method::Method;
     use crate::methods::test_support::fill;
+    use crate::methods::Method;
     use crate::sink::Size;
 
     fn draw(polygon: &Polygon) -> alloc::string::String {

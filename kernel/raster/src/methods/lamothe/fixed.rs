@@ -24,7 +24,8 @@
 //!   module's split and fan.
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::method::{Builtin, Class, Convention, Heap, MethodInfo, Refusal};
+use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::Builtin;
 use crate::methods::MethodId;
 use crate::sink::SpanSink;
 
