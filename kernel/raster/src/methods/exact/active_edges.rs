@@ -131,7 +131,7 @@ fn sorted_run<const NON_ZERO: bool, const CLIP: bool, S: SpanSink + ?Sized>(
         // Two crossings, outside right of both: whatever their order
         // (they may cross), the inside is the span between them, as on
         // the monotone path.
-        span_rows::<false, CLIP, _>(row..run_end, &mut a.stepper, &mut b.stepper, target.color, target.width, sink);
+        span_rows::<false, CLIP, _, _>(row..run_end, &mut a.stepper, &mut b.stepper, target.color, target.width, sink);
         row = run_end;
     }
     let mut sorted = true;

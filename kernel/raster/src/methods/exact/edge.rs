@@ -185,6 +185,111 @@ impl EdgeStepper {
     }
 }
 
+/// What the row loops need of an edge: its crossing column on the current
+/// row, and the move to the next row.
+pub(super) trait Crossing: Copy {
+    /// The edge from `top` down to `bottom` on scan line `row`, which it
+    /// must meet.
+    fn at_row(top: Point, bottom: Point, row: i64) -> Self;
+    /// First pixel column at or right of the crossing on the current row.
+    fn column(&self) -> i64;
+    /// Moves to the next scan line.
+    fn step(&mut self);
+}
+
+impl Crossing for EdgeStepper {
+    #[inline(always)]
+    fn at_row(top: Point, bottom: Point, row: i64) -> Self {
+        EdgeStepper::at_row(top, bottom, row)
+    }
+
+    #[inline(always)]
+    fn column(&self) -> i64 {
+        self.column
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        EdgeStepper::step(self)
+    }
+}
+
+/// Fractional bits of [`ShortEdge::position`].
+const FRACTION_BITS: u32 = 35;
+
+/// A [`ShortEdge`] takes edges shorter than this, in subpixels (512 px),
+/// on both axes: [`ShortEdge::fits`].
+const SHORT: i64 = 1 << 17;
+
+/// An edge shorter than 512 px both ways, walked with one fixed-point
+/// accumulator instead of a column and an error term: a row costs one
+/// addition, and the column is a shift. Exact, as the bound below shows.
+///
+/// In pixels, the crossing on a row is at `u = (x_top - SAMPLE_OFFSET) /
+/// 256 + t * dx / (256 * dy)` with `t = ys - y_top`, a multiple of `1 / D`
+/// (`D = 256 * dy`), and the column is `ceil(u)`. `position` holds, in
+/// units of `2^-35` px, `u + e + 1 - 2^-25`, where `e` (the rounding) is
+/// at least zero and below `2^-25`: then its floor is `ceil(u)`. Write
+/// `u = m - j / D` with `m = ceil(u)` and `0 <= j < D`; as `D <= 2^25`,
+/// `u + 1 - 2^-25 >= m - (D - 1) / D + 1 - 1 / D = m`, and
+/// `u + e + 1 - 2^-25 < m + 1` as `e < 2^-25`.
+///
+/// The step is `S = ceil(dx * 2^35 / dy)`, at most one unit above the exact
+/// one, and the first row's position is the exact
+/// `(x_top - SAMPLE_OFFSET) * 2^27` plus `ceil(t * S / 256)`, under
+/// `1 + t / 256` units above the exact; `r` rows later the excess is under
+/// `1 + (t + 256 r) / 256` units, and `t + 256 r < dy < 2^17` on every row
+/// the edge meets: under `2^10` units, `2^-25` px.
+///
+/// Magnitudes: `|dx|, dy < 2^17`, so `|S| <= 2^52`, and `|t * S| < 2^53` as
+/// `t < dy`; `x_top * 2^27` is below `2^58` for any `i32`, and the position
+/// stays within a pixel of the edge's x range (in `i32`) on its rows, or a
+/// step past them: under `2^59` in size, so no `i64` overflows.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct ShortEdge {
+    /// The crossing, rounded up, plus `1 - 2^-25` px, in `2^-35` px.
+    position: i64,
+    /// What a row adds to `position`: `ceil(dx * 2^35 / dy)`.
+    step: i64,
+}
+
+impl ShortEdge {
+    /// Whether every edge between points in `x_range` and `y_range`
+    /// (inclusive) may be a [`ShortEdge`].
+    #[inline(always)]
+    pub fn fits((min_x, max_x): (i32, i32), (min_y, max_y): (i32, i32)) -> bool {
+        i64::from(max_x) - i64::from(min_x) < SHORT && i64::from(max_y) - i64::from(min_y) < SHORT
+    }
+}
+
+impl Crossing for ShortEdge {
+    /// [`Crossing::at_row`] for an edge that [`ShortEdge::fits`].
+    #[inline(always)]
+    fn at_row(top: Point, bottom: Point, row: i64) -> Self {
+        let (dx, dy) = (i64::from(bottom.x) - i64::from(top.x), i64::from(bottom.y) - i64::from(top.y));
+        // One division; `dy > 0`. A truncating quotient is the ceiling
+        // less one where a positive remainder is left.
+        let scaled = dx << FRACTION_BITS;
+        let step = scaled / dy + i64::from(scaled % dy > 0);
+        let t = row * i64::from(SUBPIXEL_ONE) + i64::from(SAMPLE_OFFSET) - i64::from(top.y);
+        let start = (i64::from(top.x) - i64::from(SAMPLE_OFFSET)) << (FRACTION_BITS - SUBPIXEL_BITS);
+        // An arithmetic shift is a floor: adding 255 first makes it the ceiling.
+        let offset = (t * step + i64::from(SUBPIXEL_ONE) - 1) >> SUBPIXEL_BITS;
+        let bias = (1 << FRACTION_BITS) - (1 << (FRACTION_BITS - 25));
+        Self { position: start + offset + bias, step }
+    }
+
+    #[inline(always)]
+    fn column(&self) -> i64 {
+        self.position >> FRACTION_BITS
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        self.position += self.step;
+    }
+}
+
 /// `ceil(n / d)` for `d > 0`.
 fn ceil_div(n: i128, d: i128) -> i128 {
     -(-n).div_euclid(d)
@@ -244,6 +349,67 @@ mod tests {
         assert_eq!(stepper.column, 2);
         let stepper = EdgeStepper::at_row(Point::new(641, 0), Point::new(641, 1000), 1);
         assert_eq!(stepper.column, 3);
+    }
+
+    /// A [`ShortEdge`] walks the columns of an [`EdgeStepper`] on every row
+    /// of every edge it takes: short and longest ones, steep and flat, on
+    /// and off the pixel grid, anywhere in the `i32` plane.
+    #[test]
+    fn short_edges_step_the_exact_columns() {
+        let limit = SHORT - 1;
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let special = [0, 1, 2, 127, 128, 129, 255, 256, 257, 1000, limit - 1, limit];
+        for i in 0..20_000 {
+            let pick = |r: u64, s: usize| -> i64 {
+                match r % 3 {
+                    0 => special[s % special.len()],
+                    1 => (r >> 8) as i64 % 4096,
+                    _ => (r >> 8) as i64 % (limit + 1),
+                }
+            };
+            let (r1, r2, r3) = (next(), next(), next());
+            let dy = pick(r1, i).max(1);
+            let dx = if r2 & 1 == 0 { pick(r2 >> 1, i + 3) } else { -pick(r2 >> 1, i + 5) };
+            let (x, y) = match i % 3 {
+                0 => ((r3 % 100_000) as i32, (r3 >> 32) as i32 % 60_000),
+                1 => ((r3 as i32) >> (r3 % 24), (r3 >> 32) as i32 >> ((r3 >> 40) % 24)),
+                _ => (if r3 & 1 == 0 { i32::MIN } else { i32::MAX - limit as i32 }, (r3 >> 32) as i32),
+            };
+            let (Ok(bx), Ok(by)) = (i32::try_from(i64::from(x) + dx), i32::try_from(i64::from(y) + dy)) else {
+                continue;
+            };
+            let (top, bottom) = (Point::new(x, y), Point::new(bx, by));
+            assert!(ShortEdge::fits((x.min(bx), x.max(bx)), (y, by)));
+            let rows = first_sample_at_or_after(y.into())..first_sample_at_or_after(by.into());
+            if rows.is_empty() {
+                continue;
+            }
+            let (mut short, mut exact) =
+                (ShortEdge::at_row(top, bottom, rows.start), EdgeStepper::at_row(top, bottom, rows.start));
+            for row in rows.clone() {
+                assert_eq!(short.column(), exact.column, "{top:?}-{bottom:?} row {row}");
+                short.step();
+                exact.step();
+            }
+            // Set up on a later row, as after clipping at the target's top.
+            let row = (rows.start + rows.end) / 2;
+            let later = ShortEdge::at_row(top, bottom, row).column();
+            assert_eq!(later, EdgeStepper::at_row(top, bottom, row).column, "{top:?}-{bottom:?} row {row}");
+        }
+    }
+
+    #[test]
+    fn edges_of_512_pixels_are_not_short() {
+        assert!(ShortEdge::fits((0, (1 << 17) - 1), (i32::MAX - ((1 << 17) - 1), i32::MAX)));
+        assert!(!ShortEdge::fits((0, 1 << 17), (0, 0)));
+        assert!(!ShortEdge::fits((0, 0), (-1, (1 << 17) - 1)));
+        assert!(!ShortEdge::fits((i32::MIN, i32::MAX), (0, 0)));
     }
 
     /// The `i64` setup gives the `i128` one's stepper on every edge it
