@@ -191,6 +191,12 @@ pub(super) trait Crossing: Copy {
     /// The edge from `top` down to `bottom` on scan line `row`, which it
     /// must meet.
     fn at_row(top: Point, bottom: Point, row: i64) -> Self;
+    /// [`Crossing::at_row`] when `row` is the last row the edge meets that
+    /// will be read, where a setup may skip the step.
+    #[inline(always)]
+    fn at_last_row(top: Point, bottom: Point, row: i64) -> Self {
+        Self::at_row(top, bottom, row)
+    }
     /// First pixel column at or right of the crossing on the current row.
     fn column(&self) -> i64;
     /// Moves to the next scan line.
@@ -201,6 +207,11 @@ impl Crossing for EdgeStepper {
     #[inline(always)]
     fn at_row(top: Point, bottom: Point, row: i64) -> Self {
         EdgeStepper::at_row(top, bottom, row)
+    }
+
+    #[inline(always)]
+    fn at_last_row(top: Point, bottom: Point, row: i64) -> Self {
+        EdgeStepper::at_last_row(top, bottom, row)
     }
 
     #[inline(always)]

@@ -103,6 +103,25 @@ pub(crate) fn fill_monotone<S: SpanSink + ?Sized>(contour: &[Point], color: u8, 
     }
     let clip = !columns_fit(min_x, max_x, size.width);
     let rows = visible_rows(top_y, bottom_y, size.height);
+    if ShortEdge::fits((min_x, max_x), (top_y, bottom_y)) {
+        chain_rows::<ShortEdge, _>(contour, top, rows, clip, color, size.width, sink);
+    } else {
+        chain_rows::<EdgeStepper, _>(contour, top, rows, clip, color, size.width, sink);
+    }
+}
+
+/// The visible `rows` of the monotone `contour` whose top vertex is
+/// `contour[top]`, down both chains at once, with edges walked as `E`.
+#[inline(always)]
+fn chain_rows<E: Crossing, S: SpanSink + ?Sized>(
+    contour: &[Point],
+    top: usize,
+    rows: Range<i64>,
+    clip: bool,
+    color: u8,
+    width: i32,
+    sink: &mut S,
+) {
     let mut forward = Chain { contour, walk: Walk::Forward, vertex: top, edges_left: contour.len() };
     let mut backward = Chain { contour, walk: Walk::Backward, vertex: top, edges_left: contour.len() };
     let mut row = rows.start;
@@ -111,7 +130,7 @@ pub(crate) fn fill_monotone<S: SpanSink + ?Sized>(contour: &[Point], color: u8, 
     }
     // A chain that runs out of edges above the bottom row (which a monotone
     // contour never does) ends the fill.
-    let (Some(mut a), Some(mut b)) = (forward.seek(row), backward.seek(row)) else {
+    let (Some(mut a), Some(mut b)) = (forward.seek::<E>(row), backward.seek::<E>(row)) else {
         return;
     };
     loop {
@@ -119,9 +138,9 @@ pub(crate) fn fill_monotone<S: SpanSink + ?Sized>(contour: &[Point], color: u8, 
         let run_end = a.end_row.min(b.end_row).min(rows.end);
         // The chains may cross: the left crossing is the smaller column.
         if clip {
-            span_rows::<false, true, _, _>(row..run_end, &mut a.stepper, &mut b.stepper, color, size.width, sink);
+            span_rows::<false, true, _, _>(row..run_end, &mut a.stepper, &mut b.stepper, color, width, sink);
         } else {
-            span_rows::<false, false, _, _>(row..run_end, &mut a.stepper, &mut b.stepper, color, size.width, sink);
+            span_rows::<false, false, _, _>(row..run_end, &mut a.stepper, &mut b.stepper, color, width, sink);
         }
         row = run_end;
         if row >= rows.end {
@@ -216,15 +235,15 @@ struct Chain<'a> {
 }
 
 /// A chain's edge on the current row, and the row it ends before.
-struct ChainEdge {
-    stepper: EdgeStepper,
+struct ChainEdge<E> {
+    stepper: E,
     end_row: i64,
 }
 
 impl Chain<'_> {
     /// Takes edges until one meets `row`, and puts its stepper on that row.
     /// `None` only if the chain runs out of edges.
-    fn seek(&mut self, row: i64) -> Option<ChainEdge> {
+    fn seek<E: Crossing>(&mut self, row: i64) -> Option<ChainEdge<E>> {
         let last = self.contour.len() - 1;
         while self.edges_left > 0 {
             self.edges_left -= 1;
@@ -238,11 +257,8 @@ impl Chain<'_> {
             self.vertex = next;
             let end_row = first_sample_at_or_after(bottom.y.into());
             if first_sample_at_or_after(top.y.into()) <= row && row < end_row {
-                let stepper = if end_row - row == 1 {
-                    EdgeStepper::at_last_row(top, bottom, row)
-                } else {
-                    EdgeStepper::at_row(top, bottom, row)
-                };
+                let stepper =
+                    if end_row - row == 1 { E::at_last_row(top, bottom, row) } else { E::at_row(top, bottom, row) };
                 return Some(ChainEdge { stepper, end_row });
             }
         }
