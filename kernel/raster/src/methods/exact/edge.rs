@@ -362,45 +362,62 @@ mod tests {
         assert_eq!(stepper.column, 3);
     }
 
+    /// A seeded xorshift generator.
+    fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        }
+    }
+
+    /// An edge's `(dx, dy)`, each up to `limit` (`dy` at least 1, `dx` of
+    /// either sign): one of `special`, a short one or any, at random.
+    fn random_extent(next: &mut impl FnMut() -> u64, i: usize, special: &[i64], limit: i64) -> (i64, i64) {
+        let pick = |r: u64, s: usize| -> i64 {
+            match r % 4 {
+                0 => special[s % special.len()],
+                1 => (r >> 8) as i64 % 4096,
+                _ => (r >> 8) as i64 % (limit + 1),
+            }
+        };
+        let (r1, r2) = (next(), next());
+        let dy = pick(r1, i).max(1);
+        let dx = if r2 & 1 == 0 { pick(r2 >> 1, i + 3) } else { -pick(r2 >> 1, i + 5) };
+        (dx, dy)
+    }
+
+    /// The edge from `(x, y)` by `(dx, dy)` and the rows it meets, if its
+    /// end is an `i32` point and it meets a row.
+    fn edge_from((x, y): (i32, i32), (dx, dy): (i64, i64)) -> Option<(Point, Point, Range<i64>)> {
+        let (bx, by) = (i32::try_from(i64::from(x) + dx).ok()?, i32::try_from(i64::from(y) + dy).ok()?);
+        let rows = first_sample_at_or_after(y.into())..first_sample_at_or_after(by.into());
+        (!rows.is_empty()).then(|| (Point::new(x, y), Point::new(bx, by), rows))
+    }
+
     /// A [`ShortEdge`] walks the columns of an [`EdgeStepper`] on every row
     /// of every edge it takes: short and longest ones, steep and flat, on
     /// and off the pixel grid, anywhere in the `i32` plane.
     #[test]
     fn short_edges_step_the_exact_columns() {
         let limit = SHORT - 1;
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
         let special = [0, 1, 2, 127, 128, 129, 255, 256, 257, 1000, limit - 1, limit];
+        let (mut edges, mut walked) = (0, 0);
         for i in 0..20_000 {
-            let pick = |r: u64, s: usize| -> i64 {
-                match r % 3 {
-                    0 => special[s % special.len()],
-                    1 => (r >> 8) as i64 % 4096,
-                    _ => (r >> 8) as i64 % (limit + 1),
-                }
-            };
-            let (r1, r2, r3) = (next(), next(), next());
-            let dy = pick(r1, i).max(1);
-            let dx = if r2 & 1 == 0 { pick(r2 >> 1, i + 3) } else { -pick(r2 >> 1, i + 5) };
+            let (dx, dy) = random_extent(&mut next, i, &special, limit);
+            let r = next();
             let (x, y) = match i % 3 {
-                0 => ((r3 % 100_000) as i32, (r3 >> 32) as i32 % 60_000),
-                1 => ((r3 as i32) >> (r3 % 24), (r3 >> 32) as i32 >> ((r3 >> 40) % 24)),
-                _ => (if r3 & 1 == 0 { i32::MIN } else { i32::MAX - limit as i32 }, (r3 >> 32) as i32),
+                0 => ((r % 100_000) as i32, (r >> 32) as i32 % 60_000),
+                1 => ((r as i32) >> (r % 24), (r >> 32) as i32 >> ((r >> 40) % 24)),
+                _ => (if r & 1 == 0 { i32::MIN } else { i32::MAX - limit as i32 }, (r >> 32) as i32),
             };
-            let (Ok(bx), Ok(by)) = (i32::try_from(i64::from(x) + dx), i32::try_from(i64::from(y) + dy)) else {
+            let Some((top, bottom, rows)) = edge_from((x, y), (dx, dy)) else {
                 continue;
             };
-            let (top, bottom) = (Point::new(x, y), Point::new(bx, by));
-            assert!(ShortEdge::fits((x.min(bx), x.max(bx)), (y, by)));
-            let rows = first_sample_at_or_after(y.into())..first_sample_at_or_after(by.into());
-            if rows.is_empty() {
-                continue;
-            }
+            assert!(ShortEdge::fits((top.x.min(bottom.x), top.x.max(bottom.x)), (top.y, bottom.y)));
+            (edges, walked) = (edges + 1, walked + (rows.end - rows.start));
             let (mut short, mut exact) =
                 (ShortEdge::at_row(top, bottom, rows.start), EdgeStepper::at_row(top, bottom, rows.start));
             for row in rows.clone() {
@@ -413,6 +430,36 @@ mod tests {
             let later = ShortEdge::at_row(top, bottom, row).column();
             assert_eq!(later, EdgeStepper::at_row(top, bottom, row).column, "{top:?}-{bottom:?} row {row}");
         }
+        // Most of the 20,000 draws make an edge, and most edges many rows.
+        assert!(edges > 15_000 && walked > 2_000_000, "{edges} edges, {walked} rows");
+    }
+
+    /// The tightest case of [`ShortEdge`]'s bound: the longest edge
+    /// (`dy = 2^17 - 1`, so `1 / D` is barely above `2^-25`), stepped
+    /// 511 rows to a row where its crossing lies `1 / D` px right of a
+    /// centre. A step rounded down instead of up loses that centre.
+    #[test]
+    fn short_edges_keep_a_crossing_just_right_of_a_centre() {
+        let dy = SHORT - 1;
+        // On row 0, `t = dy - 1`; `dx = dy - 1` makes `t * dx = 1 (mod dy)`
+        // (`dy` is prime), and `x_top` then puts `N` at `1 (mod D)`.
+        let (t, dx) = (dy - 1, dy - 1);
+        let x_top = 128 + ((1 - t * dx) / dy).rem_euclid(256);
+        let top = Point::new(x_top as i32, (128 - t) as i32);
+        let bottom = Point::new((x_top + dx) as i32, (128 - t + dy) as i32);
+        let rows = first_sample_at_or_after(top.y.into())..first_sample_at_or_after(bottom.y.into());
+        assert_eq!(rows.start, -511);
+        let (mut short, mut exact) =
+            (ShortEdge::at_row(top, bottom, rows.start), EdgeStepper::at_row(top, bottom, rows.start));
+        for row in rows {
+            assert_eq!(short.column(), exact.column, "row {row}");
+            short.step();
+            exact.step();
+        }
+        // The case is the one named: on row 0 the centre is `1 / D` left of the crossing.
+        let at_zero = EdgeStepper::at_row(top, bottom, 0);
+        assert_eq!(at_zero.error, at_zero.denominator - 1);
+        assert_eq!(ShortEdge::at_row(top, bottom, 0).column(), at_zero.column);
     }
 
     #[test]
@@ -428,35 +475,15 @@ mod tests {
     #[test]
     fn narrow_setup_matches_wide_setup() {
         let limit = (NARROW - 1) as i64;
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = xorshift(0x2545_f491_4f6c_dd1d);
         let special = [0, 1, 127, 128, 129, 255, 256, limit / 2, limit - 1, limit];
         for i in 0..200_000 {
-            let pick = |r: u64, s: usize| -> i64 {
-                match r % 4 {
-                    0 => special[s % special.len()],
-                    1 => (r >> 8) as i64 % 4096,
-                    _ => (r >> 8) as i64 % (limit + 1),
-                }
-            };
-            let (r1, r2, r3) = (next(), next(), next());
-            let dy = pick(r1, i).max(1);
-            let dx = if r2 & 1 == 0 { pick(r2 >> 1, i + 3) } else { -pick(r2 >> 1, i + 5) };
-            let x = (r3 as i32) >> (r3 % 24);
-            let y = (r3 >> 32) as i32 >> ((r3 >> 40) % 24);
-            let (Ok(bx), Ok(by)) = (i32::try_from(i64::from(x) + dx), i32::try_from(i64::from(y) + dy)) else {
+            let (dx, dy) = random_extent(&mut next, i, &special, limit);
+            let r = next();
+            let (x, y) = ((r as i32) >> (r % 24), (r >> 32) as i32 >> ((r >> 40) % 24));
+            let Some((top, bottom, rows)) = edge_from((x, y), (dx, dy)) else {
                 continue;
             };
-            let (top, bottom) = (Point::new(x, y), Point::new(bx, by));
-            let rows = first_sample_at_or_after(y.into())..first_sample_at_or_after(by.into());
-            if rows.is_empty() {
-                continue;
-            }
             let row = if next() & 1 == 0 { rows.start } else { rows.end - 1 };
             let (a, b) = (EdgeStepper::narrow(top, dx, dy, row, true), EdgeStepper::wide(top, dx, dy, row));
             let fields = |s: EdgeStepper| (s.column, s.error, s.column_step, s.error_step, s.denominator);
