@@ -133,6 +133,11 @@ fn chain_rows<E: Crossing, S: SpanSink + ?Sized>(
     let (Some(mut a), Some(mut b)) = (forward.seek::<E>(row), backward.seek::<E>(row)) else {
         return;
     };
+    // Each chain's next edge is set up (its division issued) before the
+    // rows of the current one are walked, so that it is ready when they
+    // end: the same seeks at the same rows, one run early.
+    let mut next_a = forward.seek_after::<E>(&a, rows.end);
+    let mut next_b = backward.seek_after::<E>(&b, rows.end);
     loop {
         // Both edges meet every row up to the first one either leaves.
         let run_end = a.end_row.min(b.end_row).min(rows.end);
@@ -147,12 +152,14 @@ fn chain_rows<E: Crossing, S: SpanSink + ?Sized>(
             return;
         }
         if a.end_row == row {
-            let Some(next) = forward.seek(row) else { return };
+            let Some(next) = next_a else { return };
             a = next;
+            next_a = forward.seek_after(&a, rows.end);
         }
         if b.end_row == row {
-            let Some(next) = backward.seek(row) else { return };
+            let Some(next) = next_b else { return };
             b = next;
+            next_b = backward.seek_after(&b, rows.end);
         }
     }
 }
@@ -241,6 +248,17 @@ struct ChainEdge<E> {
 }
 
 impl Chain<'_> {
+    /// The edge [`Chain::seek`] takes where `edge` ends, if that is above
+    /// `end`; `None` otherwise, or if the chain runs out of edges.
+    #[inline(always)]
+    fn seek_after<E: Crossing>(&mut self, edge: &ChainEdge<E>, end: i64) -> Option<ChainEdge<E>> {
+        if edge.end_row < end {
+            self.seek(edge.end_row)
+        } else {
+            None
+        }
+    }
+
     /// Takes edges until one meets `row`, and puts its stepper on that row.
     /// `None` only if the chain runs out of edges.
     fn seek<E: Crossing>(&mut self, row: i64) -> Option<ChainEdge<E>> {
