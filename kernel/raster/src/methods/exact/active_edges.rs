@@ -23,7 +23,7 @@ use crate::geometry::{FillRule, Point, Polygon};
 use crate::method::Refusal;
 use crate::sink::{Size, SpanSink};
 
-use super::edge::{first_sample_at_or_after, visible_column, visible_rows, EdgeStepper};
+use super::edge::{first_sample_at_or_after, visible_column, visible_rows, Crossing, EdgeStepper, ShortEdge};
 use super::monotone::{columns_fit, span_rows};
 
 /// Fills `polygon` by its fill rule. Refuses only when memory for the edge
@@ -33,18 +33,33 @@ pub(crate) fn fill_active_edges<S: SpanSink + ?Sized>(
     size: Size,
     sink: &mut S,
 ) -> Result<(), Refusal> {
-    let (mut edges, clip) = edge_table(polygon, size)?;
+    let (mut edges, clip, short) = edge_table(polygon, size)?;
     edges.sort_unstable_by_key(|edge| edge.rows.start);
-    let mut active: Vec<ActiveEdge> = Vec::new();
+    if short {
+        fill_table::<ShortEdge, _>(&edges, clip, polygon, size, sink)
+    } else {
+        fill_table::<EdgeStepper, _>(&edges, clip, polygon, size, sink)
+    }
+}
+
+/// Fills the sorted edge table `edges` of `polygon`, its edges walked as `E`.
+fn fill_table<E: Crossing, S: SpanSink + ?Sized>(
+    edges: &[TableEdge],
+    clip: bool,
+    polygon: &Polygon,
+    size: Size,
+    sink: &mut S,
+) -> Result<(), Refusal> {
+    let mut active: Vec<ActiveEdge<E>> = Vec::new();
     active.try_reserve_exact(edges.len()).map_err(|_| Refusal::OutOfMemory)?;
     let mut sorter = Sorter::for_edges(edges.len(), size.width)?;
     let target = Target { color: polygon.color, width: size.width };
-    let (edges, active, sorter) = (&edges[..], &mut active, &mut sorter);
+    let (active, sorter) = (&mut active, &mut sorter);
     match (polygon.rule, clip) {
-        (FillRule::EvenOdd, false) => walk::<false, false, _>(edges, active, sorter, target, sink),
-        (FillRule::EvenOdd, true) => walk::<false, true, _>(edges, active, sorter, target, sink),
-        (FillRule::NonZero, false) => walk::<true, false, _>(edges, active, sorter, target, sink),
-        (FillRule::NonZero, true) => walk::<true, true, _>(edges, active, sorter, target, sink),
+        (FillRule::EvenOdd, false) => walk::<false, false, _, _>(edges, active, sorter, target, sink),
+        (FillRule::EvenOdd, true) => walk::<false, true, _, _>(edges, active, sorter, target, sink),
+        (FillRule::NonZero, false) => walk::<true, false, _, _>(edges, active, sorter, target, sink),
+        (FillRule::NonZero, true) => walk::<true, true, _, _>(edges, active, sorter, target, sink),
     }
     Ok(())
 }
@@ -58,10 +73,10 @@ struct Target {
 
 /// Walks the rows of the edge table, top down. `NON_ZERO` picks the rule;
 /// without `CLIP` every crossing column lies in the target's `0..=width`.
-fn walk<const NON_ZERO: bool, const CLIP: bool, S: SpanSink + ?Sized>(
+fn walk<const NON_ZERO: bool, const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(
     edges: &[TableEdge],
-    active: &mut Vec<ActiveEdge>,
-    sorter: &mut Sorter,
+    active: &mut Vec<ActiveEdge<E>>,
+    sorter: &mut Sorter<E>,
     target: Target,
     sink: &mut S,
 ) {
@@ -77,9 +92,9 @@ fn walk<const NON_ZERO: bool, const CLIP: bool, S: SpanSink + ?Sized>(
         }
         while let Some(edge) = edges.get(next).filter(|edge| edge.rows.start <= row) {
             let stepper = if edge.rows.end - row == 1 {
-                EdgeStepper::at_last_row(edge.top, edge.bottom, row)
+                E::at_last_row(edge.top, edge.bottom, row)
             } else {
-                EdgeStepper::at_row(edge.top, edge.bottom, row)
+                E::at_row(edge.top, edge.bottom, row)
             };
             active.push(ActiveEdge {
                 stepper,
@@ -94,7 +109,7 @@ fn walk<const NON_ZERO: bool, const CLIP: bool, S: SpanSink + ?Sized>(
             // So many crossings for the width that summing them per column
             // is cheaper than keeping them sorted; and edges start and end
             // on most rows, so this goes a row at a time.
-            emit_by_columns::<NON_ZERO, _>(row, active, &mut sorter.windings, target, sink);
+            emit_by_columns::<NON_ZERO, _, _>(row, active, &mut sorter.windings, target, sink);
             row += 1;
             continue;
         }
@@ -102,7 +117,7 @@ fn walk<const NON_ZERO: bool, const CLIP: bool, S: SpanSink + ?Sized>(
         // it, so the run has at least this row.
         let starts = edges.get(next).map_or(i64::MAX, |edge| edge.rows.start);
         let run_end = active.iter().map(|edge| i64::from(edge.end_row)).fold(starts, i64::min);
-        row = sorted_run::<NON_ZERO, CLIP, _>(row, run_end, active, sorter, target, sink);
+        row = sorted_run::<NON_ZERO, CLIP, _, _>(row, run_end, active, sorter, target, sink);
         // Drop the edges that ended, keeping the order of the rest.
         let mut kept = 0;
         for i in 0..active.len() {
@@ -117,30 +132,30 @@ fn walk<const NON_ZERO: bool, const CLIP: bool, S: SpanSink + ?Sized>(
 
 /// Fills the rows `row..run_end`, over which no edge starts or ends, with
 /// the crossings kept sorted; returns `run_end`.
-fn sorted_run<const NON_ZERO: bool, const CLIP: bool, S: SpanSink + ?Sized>(
+fn sorted_run<const NON_ZERO: bool, const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(
     mut row: i64,
     run_end: i64,
-    active: &mut Vec<ActiveEdge>,
-    sorter: &mut Sorter,
+    active: &mut Vec<ActiveEdge<E>>,
+    sorter: &mut Sorter<E>,
     target: Target,
     sink: &mut S,
 ) -> i64 {
     sorter.sort(active, target.width);
-    let mut open_at_end = assign_parts::<NON_ZERO>(active);
+    let mut open_at_end = assign_parts::<NON_ZERO, _>(active);
     if let ([a, b], false) = (active.as_mut_slice(), open_at_end) {
         // Two crossings, outside right of both: whatever their order
         // (they may cross), the inside is the span between them, as on
         // the monotone path.
-        span_rows::<false, CLIP, _>(row..run_end, &mut a.stepper, &mut b.stepper, target.color, target.width, sink);
+        span_rows::<false, CLIP, _, _>(row..run_end, &mut a.stepper, &mut b.stepper, target.color, target.width, sink);
         row = run_end;
     }
     let mut sorted = true;
     while row < run_end {
         if !sorted {
             sorter.sort(active, target.width);
-            open_at_end = assign_parts::<NON_ZERO>(active);
+            open_at_end = assign_parts::<NON_ZERO, _>(active);
         }
-        sorted = emit_and_step::<CLIP, _>(row, active, open_at_end, target, sink);
+        sorted = emit_and_step::<CLIP, _, _>(row, active, open_at_end, target, sink);
         row += 1;
     }
     row
@@ -153,9 +168,9 @@ fn sorted_run<const NON_ZERO: bool, const CLIP: bool, S: SpanSink + ?Sized>(
 /// running sum from the left is each pixel's winding number.
 /// `O(edges + width)` a row; the runs are the maximal ones, left to right,
 /// as [`emit_and_step`]'s.
-fn emit_by_columns<const NON_ZERO: bool, S: SpanSink + ?Sized>(
+fn emit_by_columns<const NON_ZERO: bool, E: Crossing, S: SpanSink + ?Sized>(
     row: i64,
-    active: &mut Vec<ActiveEdge>,
+    active: &mut Vec<ActiveEdge<E>>,
     windings: &mut [i32],
     target: Target,
     sink: &mut S,
@@ -163,7 +178,7 @@ fn emit_by_columns<const NON_ZERO: bool, S: SpanSink + ?Sized>(
     windings.fill(0);
     let mut i = 0;
     while let Some(edge) = active.get_mut(i) {
-        windings[visible_column(edge.stepper.column, target.width) as usize] += i32::from(edge.winding);
+        windings[visible_column(edge.stepper.column(), target.width) as usize] += i32::from(edge.winding);
         if i64::from(edge.end_row) > row + 1 {
             edge.stepper.step();
             i += 1;
@@ -213,8 +228,8 @@ struct TableEdge {
 
 /// An edge crossing the current row.
 #[derive(Clone, Copy)]
-struct ActiveEdge {
-    stepper: EdgeStepper,
+struct ActiveEdge<E> {
+    stepper: E,
     end_row: i32,
     /// +1 or -1, as [`TableEdge::winding`].
     winding: i8,
@@ -234,13 +249,13 @@ enum Part {
 
 /// Every edge that meets a visible row and can lie left of a visible pixel
 /// centre, and whether some crossing column may lie outside the target's
-/// `0..=width` (then columns are clamped). Horizontal edges never meet a
-/// row; an edge whose leftmost point is right of the last centre counts for
-/// no visible pixel.
-fn edge_table(polygon: &Polygon, size: Size) -> Result<(Vec<TableEdge>, bool), Refusal> {
+/// `0..=width` (then columns are clamped), and whether every edge in it
+/// may be a [`ShortEdge`]. Horizontal edges never meet a row; an edge whose
+/// leftmost point is right of the last centre counts for no visible pixel.
+fn edge_table(polygon: &Polygon, size: Size) -> Result<(Vec<TableEdge>, bool, bool), Refusal> {
     let mut edges = Vec::new();
     edges.try_reserve_exact(polygon.vertex_count()).map_err(|_| Refusal::OutOfMemory)?;
-    let (mut min_x, mut max_x) = (i32::MAX, i32::MIN);
+    let (mut min_x, mut max_x, mut min_y, mut max_y) = (i32::MAX, i32::MIN, i32::MAX, i32::MIN);
     for contour in &polygon.contours {
         let following = contour.iter().cycle().skip(1);
         for (&from, &to) in contour.iter().zip(following) {
@@ -250,10 +265,11 @@ fn edge_table(polygon: &Polygon, size: Size) -> Result<(Vec<TableEdge>, bool), R
             if !rows.is_empty() && leftmost_column < i64::from(size.width) {
                 edges.push(TableEdge { top, bottom, winding, rows });
                 (min_x, max_x) = (min_x.min(top.x.min(bottom.x)), max_x.max(top.x.max(bottom.x)));
+                (min_y, max_y) = (min_y.min(top.y), max_y.max(bottom.y));
             }
         }
     }
-    Ok((edges, !columns_fit(min_x, max_x, size.width)))
+    Ok((edges, !columns_fit(min_x, max_x, size.width), ShortEdge::fits((min_x, max_x), (min_y, max_y))))
 }
 
 /// Sorts the active edges by visible column (the column clamped to the
@@ -267,15 +283,15 @@ fn edge_table(polygon: &Polygon, size: Size) -> Result<(Vec<TableEdge>, bool), R
 /// place when the target is narrow next to the edge count (`O(n + width)`),
 /// and otherwise sorted in `O(n log n)` by 64-bit keys, visible column
 /// above index, then moved into that order once: cheaper than sorting the
-/// edges themselves, six times larger.
-struct Sorter {
+/// edges themselves, three to six times larger.
+struct Sorter<E> {
     /// Per visible column, edges at it, then where the next of them goes.
     counts: Vec<u32>,
     /// Per visible column, the windings of the crossings at it, for rows
     /// with so many crossings that they are summed rather than sorted.
     windings: Vec<i32>,
     keys: Vec<u64>,
-    scratch: Vec<ActiveEdge>,
+    scratch: Vec<ActiveEdge<E>>,
 }
 
 /// A table of `columns` zeros, or a refusal when memory cannot be had.
@@ -289,7 +305,7 @@ fn per_column<T: Default + Clone>(columns: usize) -> Result<Vec<T>, Refusal> {
 /// The longest active list sorted by insertion.
 const SHORT: usize = 16;
 
-impl Sorter {
+impl<E: Crossing> Sorter<E> {
     /// Room for `edges` active edges on a target `width` wide, so that
     /// sorting never allocates: a count per visible column when there are
     /// at most four per edge, or a key per edge.
@@ -315,13 +331,13 @@ impl Sorter {
         !self.windings.is_empty() && self.windings.len() / 4 <= active
     }
 
-    fn sort(&mut self, active: &mut Vec<ActiveEdge>, width: i32) {
-        let column = |edge: &ActiveEdge| visible_column(edge.stepper.column, width) as usize;
+    fn sort(&mut self, active: &mut Vec<ActiveEdge<E>>, width: i32) {
+        let column = |edge: &ActiveEdge<E>| visible_column(edge.stepper.column(), width) as usize;
         if active.len() <= SHORT {
             // By the unclamped column: that order is also by the clamped one.
             for i in 1..active.len() {
                 let mut j = i;
-                while j > 0 && active[j - 1].stepper.column > active[j].stepper.column {
+                while j > 0 && active[j - 1].stepper.column() > active[j].stepper.column() {
                     active.swap(j - 1, j);
                     j -= 1;
                 }
@@ -369,7 +385,7 @@ impl Sorter {
 /// theirs gives the same pixels. Returns whether the pixels right of the
 /// last crossing are inside (edges right of the target are not in the
 /// table, so the sum need not come back to zero).
-fn assign_parts<const NON_ZERO: bool>(active: &mut [ActiveEdge]) -> bool {
+fn assign_parts<const NON_ZERO: bool, E>(active: &mut [ActiveEdge<E>]) -> bool {
     // Each crossing adds +1 or -1: no `i64` overflow for any edge count.
     let mut winding = 0i64;
     for edge in active {
@@ -393,9 +409,9 @@ fn assign_parts<const NON_ZERO: bool>(active: &mut [ActiveEdge]) -> bool {
 /// reaches the right border. Columns are clamped to the target, which
 /// changes no visible pixel's inside test.
 #[inline(always)]
-fn emit_and_step<const CLIP: bool, S: SpanSink + ?Sized>(
+fn emit_and_step<const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(
     row: i64,
-    active: &mut [ActiveEdge],
+    active: &mut [ActiveEdge<E>],
     open_at_end: bool,
     target: Target,
     sink: &mut S,
@@ -408,7 +424,7 @@ fn emit_and_step<const CLIP: bool, S: SpanSink + ?Sized>(
     // Without `CLIP`, columns lie in `0..=width` already.
     let visible = |column: i64| if CLIP { column.clamp(0, width) } else { column };
     for edge in active.iter_mut() {
-        let column = visible(edge.stepper.column);
+        let column = visible(edge.stepper.column());
         match edge.part {
             Part::Opens => start = column,
             Part::Closes if pending.1 == start => pending.1 = column,
@@ -419,7 +435,7 @@ fn emit_and_step<const CLIP: bool, S: SpanSink + ?Sized>(
             Part::Neither => {}
         }
         edge.stepper.step();
-        let next = visible(edge.stepper.column);
+        let next = visible(edge.stepper.column());
         sorted &= previous <= next;
         previous = next;
     }

@@ -185,6 +185,122 @@ impl EdgeStepper {
     }
 }
 
+/// What the row loops need of an edge: its crossing column on the current
+/// row, and the move to the next row.
+pub(super) trait Crossing: Copy {
+    /// The edge from `top` down to `bottom` on scan line `row`, which it
+    /// must meet.
+    fn at_row(top: Point, bottom: Point, row: i64) -> Self;
+    /// [`Crossing::at_row`] when `row` is the last row the edge meets that
+    /// will be read, where a setup may skip the step.
+    #[inline(always)]
+    fn at_last_row(top: Point, bottom: Point, row: i64) -> Self {
+        Self::at_row(top, bottom, row)
+    }
+    /// First pixel column at or right of the crossing on the current row.
+    fn column(&self) -> i64;
+    /// Moves to the next scan line.
+    fn step(&mut self);
+}
+
+impl Crossing for EdgeStepper {
+    #[inline(always)]
+    fn at_row(top: Point, bottom: Point, row: i64) -> Self {
+        EdgeStepper::at_row(top, bottom, row)
+    }
+
+    #[inline(always)]
+    fn at_last_row(top: Point, bottom: Point, row: i64) -> Self {
+        EdgeStepper::at_last_row(top, bottom, row)
+    }
+
+    #[inline(always)]
+    fn column(&self) -> i64 {
+        self.column
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        EdgeStepper::step(self)
+    }
+}
+
+/// Fractional bits of [`ShortEdge::position`].
+const FRACTION_BITS: u32 = 35;
+
+/// A [`ShortEdge`] takes edges shorter than this, in subpixels (512 px),
+/// on both axes: [`ShortEdge::fits`].
+const SHORT: i64 = 1 << 17;
+
+/// An edge shorter than 512 px both ways, walked with one fixed-point
+/// accumulator instead of a column and an error term: a row costs one
+/// addition, and the column is a shift. Exact, as the bound below shows.
+///
+/// In pixels, the crossing on a row is at `u = (x_top - SAMPLE_OFFSET) /
+/// 256 + t * dx / (256 * dy)` with `t = ys - y_top`, a multiple of `1 / D`
+/// (`D = 256 * dy`), and the column is `ceil(u)`. `position` holds, in
+/// units of `2^-35` px, `u + e + 1 - 2^-25`, where `e` (the rounding) is
+/// at least zero and below `2^-25`: then its floor is `ceil(u)`. Write
+/// `u = m - j / D` with `m = ceil(u)` and `0 <= j < D`; as `D <= 2^25`,
+/// `u + 1 - 2^-25 >= m - (D - 1) / D + 1 - 1 / D = m`, and
+/// `u + e + 1 - 2^-25 < m + 1` as `e < 2^-25`.
+///
+/// The step is `S = ceil(dx * 2^35 / dy)`, at most one unit above the exact
+/// one, and the first row's position is the exact
+/// `(x_top - SAMPLE_OFFSET) * 2^27` plus `ceil(t * S / 256)`, under
+/// `1 + t / 256` units above the exact; `r` rows later the excess is under
+/// `1 + (t + 256 r) / 256` units, and `t + 256 r < dy < 2^17` on every row
+/// the edge meets: under `2^10` units, `2^-25` px.
+///
+/// Magnitudes: `|dx|, dy < 2^17`, so `|S| <= 2^52`, and `|t * S| < 2^53` as
+/// `t < dy`; `x_top * 2^27` is below `2^58` for any `i32`, and the position
+/// stays within a pixel of the edge's x range (in `i32`) on its rows, or a
+/// step past them: under `2^59` in size, so no `i64` overflows.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct ShortEdge {
+    /// The crossing, rounded up, plus `1 - 2^-25` px, in `2^-35` px.
+    position: i64,
+    /// What a row adds to `position`: `ceil(dx * 2^35 / dy)`.
+    step: i64,
+}
+
+impl ShortEdge {
+    /// Whether every edge between points in `x_range` and `y_range`
+    /// (inclusive) may be a [`ShortEdge`].
+    #[inline(always)]
+    pub fn fits((min_x, max_x): (i32, i32), (min_y, max_y): (i32, i32)) -> bool {
+        i64::from(max_x) - i64::from(min_x) < SHORT && i64::from(max_y) - i64::from(min_y) < SHORT
+    }
+}
+
+impl Crossing for ShortEdge {
+    /// [`Crossing::at_row`] for an edge that [`ShortEdge::fits`].
+    #[inline(always)]
+    fn at_row(top: Point, bottom: Point, row: i64) -> Self {
+        let (dx, dy) = (i64::from(bottom.x) - i64::from(top.x), i64::from(bottom.y) - i64::from(top.y));
+        // One division; `dy > 0`. A truncating quotient is the ceiling
+        // less one where a positive remainder is left.
+        let scaled = dx << FRACTION_BITS;
+        let step = scaled / dy + i64::from(scaled % dy > 0);
+        let t = row * i64::from(SUBPIXEL_ONE) + i64::from(SAMPLE_OFFSET) - i64::from(top.y);
+        let start = (i64::from(top.x) - i64::from(SAMPLE_OFFSET)) << (FRACTION_BITS - SUBPIXEL_BITS);
+        // An arithmetic shift is a floor: adding 255 first makes it the ceiling.
+        let offset = (t * step + i64::from(SUBPIXEL_ONE) - 1) >> SUBPIXEL_BITS;
+        let bias = (1 << FRACTION_BITS) - (1 << (FRACTION_BITS - 25));
+        Self { position: start + offset + bias, step }
+    }
+
+    #[inline(always)]
+    fn column(&self) -> i64 {
+        self.position >> FRACTION_BITS
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        self.position += self.step;
+    }
+}
+
 /// `ceil(n / d)` for `d > 0`.
 fn ceil_div(n: i128, d: i128) -> i128 {
     -(-n).div_euclid(d)
@@ -246,40 +362,128 @@ mod tests {
         assert_eq!(stepper.column, 3);
     }
 
+    /// A seeded xorshift generator.
+    fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        }
+    }
+
+    /// An edge's `(dx, dy)`, each up to `limit` (`dy` at least 1, `dx` of
+    /// either sign): one of `special`, a short one or any, at random.
+    fn random_extent(next: &mut impl FnMut() -> u64, i: usize, special: &[i64], limit: i64) -> (i64, i64) {
+        let pick = |r: u64, s: usize| -> i64 {
+            match r % 4 {
+                0 => special[s % special.len()],
+                1 => (r >> 8) as i64 % 4096,
+                _ => (r >> 8) as i64 % (limit + 1),
+            }
+        };
+        let (r1, r2) = (next(), next());
+        let dy = pick(r1, i).max(1);
+        let dx = if r2 & 1 == 0 { pick(r2 >> 1, i + 3) } else { -pick(r2 >> 1, i + 5) };
+        (dx, dy)
+    }
+
+    /// The edge from `(x, y)` by `(dx, dy)` and the rows it meets, if its
+    /// end is an `i32` point and it meets a row.
+    fn edge_from((x, y): (i32, i32), (dx, dy): (i64, i64)) -> Option<(Point, Point, Range<i64>)> {
+        let (bx, by) = (i32::try_from(i64::from(x) + dx).ok()?, i32::try_from(i64::from(y) + dy).ok()?);
+        let rows = first_sample_at_or_after(y.into())..first_sample_at_or_after(by.into());
+        (!rows.is_empty()).then(|| (Point::new(x, y), Point::new(bx, by), rows))
+    }
+
+    /// A [`ShortEdge`] walks the columns of an [`EdgeStepper`] on every row
+    /// of every edge it takes: short and longest ones, steep and flat, on
+    /// and off the pixel grid, anywhere in the `i32` plane.
+    #[test]
+    fn short_edges_step_the_exact_columns() {
+        let limit = SHORT - 1;
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
+        let special = [0, 1, 2, 127, 128, 129, 255, 256, 257, 1000, limit - 1, limit];
+        let (mut edges, mut walked) = (0, 0);
+        for i in 0..20_000 {
+            let (dx, dy) = random_extent(&mut next, i, &special, limit);
+            let r = next();
+            let (x, y) = match i % 3 {
+                0 => ((r % 100_000) as i32, (r >> 32) as i32 % 60_000),
+                1 => ((r as i32) >> (r % 24), (r >> 32) as i32 >> ((r >> 40) % 24)),
+                _ => (if r & 1 == 0 { i32::MIN } else { i32::MAX - limit as i32 }, (r >> 32) as i32),
+            };
+            let Some((top, bottom, rows)) = edge_from((x, y), (dx, dy)) else {
+                continue;
+            };
+            assert!(ShortEdge::fits((top.x.min(bottom.x), top.x.max(bottom.x)), (top.y, bottom.y)));
+            (edges, walked) = (edges + 1, walked + (rows.end - rows.start));
+            let (mut short, mut exact) =
+                (ShortEdge::at_row(top, bottom, rows.start), EdgeStepper::at_row(top, bottom, rows.start));
+            for row in rows.clone() {
+                assert_eq!(short.column(), exact.column, "{top:?}-{bottom:?} row {row}");
+                short.step();
+                exact.step();
+            }
+            // Set up on a later row, as after clipping at the target's top.
+            let row = (rows.start + rows.end) / 2;
+            let later = ShortEdge::at_row(top, bottom, row).column();
+            assert_eq!(later, EdgeStepper::at_row(top, bottom, row).column, "{top:?}-{bottom:?} row {row}");
+        }
+        // Most of the 20,000 draws make an edge, and most edges many rows.
+        assert!(edges > 15_000 && walked > 2_000_000, "{edges} edges, {walked} rows");
+    }
+
+    /// The tightest case of [`ShortEdge`]'s bound: the longest edge
+    /// (`dy = 2^17 - 1`, so `1 / D` is barely above `2^-25`), stepped
+    /// 511 rows to a row where its crossing lies `1 / D` px right of a
+    /// centre. A step rounded down instead of up loses that centre.
+    #[test]
+    fn short_edges_keep_a_crossing_just_right_of_a_centre() {
+        let dy = SHORT - 1;
+        // On row 0, `t = dy - 1`; `dx = dy - 1` makes `t * dx = 1 (mod dy)`
+        // (`dy` is prime), and `x_top` then puts `N` at `1 (mod D)`.
+        let (t, dx) = (dy - 1, dy - 1);
+        let x_top = 128 + ((1 - t * dx) / dy).rem_euclid(256);
+        let top = Point::new(x_top as i32, (128 - t) as i32);
+        let bottom = Point::new((x_top + dx) as i32, (128 - t + dy) as i32);
+        let rows = first_sample_at_or_after(top.y.into())..first_sample_at_or_after(bottom.y.into());
+        assert_eq!(rows.start, -511);
+        let (mut short, mut exact) =
+            (ShortEdge::at_row(top, bottom, rows.start), EdgeStepper::at_row(top, bottom, rows.start));
+        for row in rows {
+            assert_eq!(short.column(), exact.column, "row {row}");
+            short.step();
+            exact.step();
+        }
+        // The case is the one named: on row 0 the centre is `1 / D` left of the crossing.
+        let at_zero = EdgeStepper::at_row(top, bottom, 0);
+        assert_eq!(at_zero.error, at_zero.denominator - 1);
+        assert_eq!(ShortEdge::at_row(top, bottom, 0).column(), at_zero.column);
+    }
+
+    #[test]
+    fn edges_of_512_pixels_are_not_short() {
+        assert!(ShortEdge::fits((0, (1 << 17) - 1), (i32::MAX - ((1 << 17) - 1), i32::MAX)));
+        assert!(!ShortEdge::fits((0, 1 << 17), (0, 0)));
+        assert!(!ShortEdge::fits((0, 0), (-1, (1 << 17) - 1)));
+        assert!(!ShortEdge::fits((i32::MIN, i32::MAX), (0, 0)));
+    }
+
     /// The `i64` setup gives the `i128` one's stepper on every edge it
     /// takes, up to its limits.
     #[test]
     fn narrow_setup_matches_wide_setup() {
         let limit = (NARROW - 1) as i64;
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = xorshift(0x2545_f491_4f6c_dd1d);
         let special = [0, 1, 127, 128, 129, 255, 256, limit / 2, limit - 1, limit];
         for i in 0..200_000 {
-            let pick = |r: u64, s: usize| -> i64 {
-                match r % 4 {
-                    0 => special[s % special.len()],
-                    1 => (r >> 8) as i64 % 4096,
-                    _ => (r >> 8) as i64 % (limit + 1),
-                }
-            };
-            let (r1, r2, r3) = (next(), next(), next());
-            let dy = pick(r1, i).max(1);
-            let dx = if r2 & 1 == 0 { pick(r2 >> 1, i + 3) } else { -pick(r2 >> 1, i + 5) };
-            let x = (r3 as i32) >> (r3 % 24);
-            let y = (r3 >> 32) as i32 >> ((r3 >> 40) % 24);
-            let (Ok(bx), Ok(by)) = (i32::try_from(i64::from(x) + dx), i32::try_from(i64::from(y) + dy)) else {
+            let (dx, dy) = random_extent(&mut next, i, &special, limit);
+            let r = next();
+            let (x, y) = ((r as i32) >> (r % 24), (r >> 32) as i32 >> ((r >> 40) % 24));
+            let Some((top, bottom, rows)) = edge_from((x, y), (dx, dy)) else {
                 continue;
             };
-            let (top, bottom) = (Point::new(x, y), Point::new(bx, by));
-            let rows = first_sample_at_or_after(y.into())..first_sample_at_or_after(by.into());
-            if rows.is_empty() {
-                continue;
-            }
             let row = if next() & 1 == 0 { rows.start } else { rows.end - 1 };
             let (a, b) = (EdgeStepper::narrow(top, dx, dy, row, true), EdgeStepper::wide(top, dx, dy, row));
             let fields = |s: EdgeStepper| (s.column, s.error, s.column_step, s.error_step, s.denominator);

@@ -9,7 +9,10 @@
 //! - Arithmetic: integers only. Vertices in 1/256 px (`i32`); each edge's
 //!   setup is two `i64` divisions (one `i128` division for an edge longer
 //!   than 2^23 px), then every row is a branch-free `i64` step with an
-//!   error term (`edge.rs` gives the bounds).
+//!   error term; a polygon whose drawn edges lie in a box under 512 px
+//!   both ways sets up each edge with one division instead and steps it
+//!   with one addition to a fixed-point crossing, exact for edges that
+//!   short (`edge.rs` gives the bounds).
 //! - Range: exact for every `i32` vertex coordinate and every target
 //!   [`Size`](crate::Size), so nothing is refused as out of range; the only
 //!   refusal is [`Refusal::OutOfMemory`] when the edge tables cannot be
@@ -57,7 +60,7 @@ static INFO: MethodInfo = MethodInfo {
         summary: "pixel centres, exact; left edges and flat tops in, right edges and flat bottoms out",
     },
     numeric:
-        "i32 vertices in 1/256 px; i64 edge setup (i128 for edges over 2^23 px), i64 error-term stepping; no floats",
+        "i32 vertices in 1/256 px; i64 edge setup (i128 for edges over 2^23 px), i64 error-term stepping (exact fixed point for polygons under 512 px); no floats",
     handles: Class::Complex,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
     heap: Heap::BeyondConvex,

@@ -19,7 +19,7 @@ use core::ops::Range;
 use crate::geometry::Point;
 use crate::sink::{Size, SpanSink};
 
-use super::edge::{first_sample_at_or_after, visible_column, visible_rows, EdgeStepper};
+use super::edge::{first_sample_at_or_after, visible_column, visible_rows, Crossing, EdgeStepper, ShortEdge};
 
 /// Fills the triangle `a b c` with one span per row. Any three points are
 /// taken, so no test of the class is needed first: on every row the long
@@ -51,18 +51,40 @@ pub(crate) fn fill_triangle<S: SpanSink + ?Sized>([a, b, c]: [Point; 3], color: 
         Ordering::Less => false,
         Ordering::Equal => return,
     };
-    let clip = !columns_fit(a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x), size.width);
+    let (min_x, max_x) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+    let clip = !columns_fit(min_x, max_x, size.width);
     let middle_row = first_sample_at_or_after(middle.y.into()).clamp(rows.start, rows.end);
-    let mut long = EdgeStepper::at_row(top, bottom, rows.start);
-    if rows.start < middle_row {
-        let mut upper = EdgeStepper::at_row(top, middle, rows.start);
-        let (left, right) = if long_is_left { (&mut long, &mut upper) } else { (&mut upper, &mut long) };
-        emit_ordered(rows.start..middle_row, left, right, clip, color, size.width, sink);
+    let parts = (rows.start..middle_row, middle_row..rows.end);
+    if ShortEdge::fits((min_x, max_x), (top.y, bottom.y)) {
+        triangle_rows::<ShortEdge, _>([top, middle, bottom], parts, long_is_left, clip, color, size.width, sink);
+    } else {
+        triangle_rows::<EdgeStepper, _>([top, middle, bottom], parts, long_is_left, clip, color, size.width, sink);
     }
-    if middle_row < rows.end {
-        let mut lower = EdgeStepper::at_row(middle, bottom, middle_row);
+}
+
+/// The rows of the triangle `top middle bottom` (sorted by y) above the
+/// middle vertex's first row, then the rest, with edges walked as `E`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn triangle_rows<E: Crossing, S: SpanSink + ?Sized>(
+    [top, middle, bottom]: [Point; 3],
+    (upper_rows, lower_rows): (Range<i64>, Range<i64>),
+    long_is_left: bool,
+    clip: bool,
+    color: u8,
+    width: i32,
+    sink: &mut S,
+) {
+    let mut long = E::at_row(top, bottom, upper_rows.start);
+    if !upper_rows.is_empty() {
+        let mut upper = E::at_row(top, middle, upper_rows.start);
+        let (left, right) = if long_is_left { (&mut long, &mut upper) } else { (&mut upper, &mut long) };
+        emit_ordered(upper_rows, left, right, clip, color, width, sink);
+    }
+    if !lower_rows.is_empty() {
+        let mut lower = E::at_row(middle, bottom, lower_rows.start);
         let (left, right) = if long_is_left { (&mut long, &mut lower) } else { (&mut lower, &mut long) };
-        emit_ordered(middle_row..rows.end, left, right, clip, color, size.width, sink);
+        emit_ordered(lower_rows, left, right, clip, color, width, sink);
     }
 }
 
@@ -81,6 +103,25 @@ pub(crate) fn fill_monotone<S: SpanSink + ?Sized>(contour: &[Point], color: u8, 
     }
     let clip = !columns_fit(min_x, max_x, size.width);
     let rows = visible_rows(top_y, bottom_y, size.height);
+    if ShortEdge::fits((min_x, max_x), (top_y, bottom_y)) {
+        chain_rows::<ShortEdge, _>(contour, top, rows, clip, color, size.width, sink);
+    } else {
+        chain_rows::<EdgeStepper, _>(contour, top, rows, clip, color, size.width, sink);
+    }
+}
+
+/// The visible `rows` of the monotone `contour` whose top vertex is
+/// `contour[top]`, down both chains at once, with edges walked as `E`.
+#[inline(always)]
+fn chain_rows<E: Crossing, S: SpanSink + ?Sized>(
+    contour: &[Point],
+    top: usize,
+    rows: Range<i64>,
+    clip: bool,
+    color: u8,
+    width: i32,
+    sink: &mut S,
+) {
     let mut forward = Chain { contour, walk: Walk::Forward, vertex: top, edges_left: contour.len() };
     let mut backward = Chain { contour, walk: Walk::Backward, vertex: top, edges_left: contour.len() };
     let mut row = rows.start;
@@ -89,29 +130,36 @@ pub(crate) fn fill_monotone<S: SpanSink + ?Sized>(contour: &[Point], color: u8, 
     }
     // A chain that runs out of edges above the bottom row (which a monotone
     // contour never does) ends the fill.
-    let (Some(mut a), Some(mut b)) = (forward.seek(row), backward.seek(row)) else {
+    let (Some(mut a), Some(mut b)) = (forward.seek::<E>(row), backward.seek::<E>(row)) else {
         return;
     };
+    // Each chain's next edge is set up (its division issued) before the
+    // rows of the current one are walked, so that it is ready when they
+    // end: the same seeks at the same rows, one run early.
+    let mut next_a = forward.seek_after::<E>(&a, rows.end);
+    let mut next_b = backward.seek_after::<E>(&b, rows.end);
     loop {
         // Both edges meet every row up to the first one either leaves.
         let run_end = a.end_row.min(b.end_row).min(rows.end);
         // The chains may cross: the left crossing is the smaller column.
         if clip {
-            span_rows::<false, true, _>(row..run_end, &mut a.stepper, &mut b.stepper, color, size.width, sink);
+            span_rows::<false, true, _, _>(row..run_end, &mut a.stepper, &mut b.stepper, color, width, sink);
         } else {
-            span_rows::<false, false, _>(row..run_end, &mut a.stepper, &mut b.stepper, color, size.width, sink);
+            span_rows::<false, false, _, _>(row..run_end, &mut a.stepper, &mut b.stepper, color, width, sink);
         }
         row = run_end;
         if row >= rows.end {
             return;
         }
         if a.end_row == row {
-            let Some(next) = forward.seek(row) else { return };
+            let Some(next) = next_a else { return };
             a = next;
+            next_a = forward.seek_after(&a, rows.end);
         }
         if b.end_row == row {
-            let Some(next) = backward.seek(row) else { return };
+            let Some(next) = next_b else { return };
             b = next;
+            next_b = backward.seek_after(&b, rows.end);
         }
     }
 }
@@ -126,19 +174,19 @@ pub(super) fn columns_fit(min_x: i32, max_x: i32, width: i32) -> bool {
 
 /// [`span_rows`] for `left` never right of `right`.
 #[inline(always)]
-fn emit_ordered<S: SpanSink + ?Sized>(
+fn emit_ordered<E: Crossing, S: SpanSink + ?Sized>(
     rows: Range<i64>,
-    left: &mut EdgeStepper,
-    right: &mut EdgeStepper,
+    left: &mut E,
+    right: &mut E,
     clip: bool,
     color: u8,
     width: i32,
     sink: &mut S,
 ) {
     if clip {
-        span_rows::<true, true, _>(rows, left, right, color, width, sink);
+        span_rows::<true, true, _, _>(rows, left, right, color, width, sink);
     } else {
-        span_rows::<true, false, _>(rows, left, right, color, width, sink);
+        span_rows::<true, false, _, _>(rows, left, right, color, width, sink);
     }
 }
 
@@ -149,10 +197,10 @@ fn emit_ordered<S: SpanSink + ?Sized>(
 /// Clamping every crossing keeps the inside test of each visible pixel
 /// unchanged (see [`visible_column`]).
 #[inline(always)]
-pub(super) fn span_rows<const ORDERED: bool, const CLIP: bool, S: SpanSink + ?Sized>(
+pub(super) fn span_rows<const ORDERED: bool, const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(
     rows: Range<i64>,
-    a: &mut EdgeStepper,
-    b: &mut EdgeStepper,
+    a: &mut E,
+    b: &mut E,
     color: u8,
     width: i32,
     sink: &mut S,
@@ -160,8 +208,9 @@ pub(super) fn span_rows<const ORDERED: bool, const CLIP: bool, S: SpanSink + ?Si
     // Local copies: the steppers then need not be stored on every row.
     let (mut a_, mut b_) = (*a, *b);
     for row in rows {
+        let (a_column, b_column) = (a_.column(), b_.column());
         let (start, end) =
-            if ORDERED { (a_.column, b_.column) } else { (a_.column.min(b_.column), a_.column.max(b_.column)) };
+            if ORDERED { (a_column, b_column) } else { (a_column.min(b_column), a_column.max(b_column)) };
         // Without `CLIP` both are in `0..=width`, so they fit an `i32`.
         let (start, end) =
             if CLIP { (visible_column(start, width), visible_column(end, width)) } else { (start as i32, end as i32) };
@@ -193,15 +242,26 @@ struct Chain<'a> {
 }
 
 /// A chain's edge on the current row, and the row it ends before.
-struct ChainEdge {
-    stepper: EdgeStepper,
+struct ChainEdge<E> {
+    stepper: E,
     end_row: i64,
 }
 
 impl Chain<'_> {
+    /// The edge [`Chain::seek`] takes where `edge` ends, if that is above
+    /// `end`; `None` otherwise, or if the chain runs out of edges.
+    #[inline(always)]
+    fn seek_after<E: Crossing>(&mut self, edge: &ChainEdge<E>, end: i64) -> Option<ChainEdge<E>> {
+        if edge.end_row < end {
+            self.seek(edge.end_row)
+        } else {
+            None
+        }
+    }
+
     /// Takes edges until one meets `row`, and puts its stepper on that row.
     /// `None` only if the chain runs out of edges.
-    fn seek(&mut self, row: i64) -> Option<ChainEdge> {
+    fn seek<E: Crossing>(&mut self, row: i64) -> Option<ChainEdge<E>> {
         let last = self.contour.len() - 1;
         while self.edges_left > 0 {
             self.edges_left -= 1;
@@ -215,11 +275,8 @@ impl Chain<'_> {
             self.vertex = next;
             let end_row = first_sample_at_or_after(bottom.y.into());
             if first_sample_at_or_after(top.y.into()) <= row && row < end_row {
-                let stepper = if end_row - row == 1 {
-                    EdgeStepper::at_last_row(top, bottom, row)
-                } else {
-                    EdgeStepper::at_row(top, bottom, row)
-                };
+                let stepper =
+                    if end_row - row == 1 { E::at_last_row(top, bottom, row) } else { E::at_row(top, bottom, row) };
                 return Some(ChainEdge { stepper, end_row });
             }
         }
