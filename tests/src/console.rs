@@ -156,8 +156,8 @@ impl Dump {
         ensure!(payload.len() == DUMP_LEN, "a dump has {DUMP_LEN} bytes, this one {}", payload.len());
         let (pixels, dac) = payload.split_at(FRAMEBUFFER_LEN);
         let mut palette = [[0; 3]; ENTRIES];
-        for (entry, rgb) in palette.iter_mut().zip(dac.chunks_exact(3)) {
-            entry.copy_from_slice(rgb);
+        for (entry, rgb) in palette.iter_mut().zip(dac.as_chunks::<3>().0) {
+            *entry = *rgb;
         }
         Ok(Self { pixels: pixels.to_vec(), palette })
     }

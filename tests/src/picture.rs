@@ -42,7 +42,7 @@ impl Image {
     /// An image of palette indices whose palette is a VGA DAC's (6-bit
     /// levels), widened with `c6_to_8` exactly as QEMU shows it.
     pub fn from_dac(width: u32, height: u32, indices: Vec<u8>, dac: &[[u8; 3]; ENTRIES]) -> Result<Self> {
-        let palette = to_rgb8(dac).chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        let palette = to_rgb8(dac).as_chunks::<3>().0.to_vec();
         Self::indexed(width, height, indices, palette)
     }
 
@@ -134,8 +134,7 @@ impl Image {
             let mut reader = png::Decoder::new(BufReader::new(File::open(path)?)).read_info()?;
             let info = reader.info();
             let (width, height, color_type, depth) = (info.width, info.height, info.color_type, info.bit_depth);
-            let palette: Option<Vec<Rgb>> =
-                info.palette.as_ref().map(|plte| plte.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect());
+            let palette: Option<Vec<Rgb>> = info.palette.as_ref().map(|plte| plte.as_chunks::<3>().0.to_vec());
             ensure!(depth == png::BitDepth::Eight, "bit depth {depth:?}; only 8 is read");
             let mut data = vec![0; reader.output_buffer_size().context("image too large")?];
             let frame = reader.next_frame(&mut data)?;
@@ -144,9 +143,7 @@ impl Image {
                 png::ColorType::Indexed => {
                     Self::indexed(width, height, data, palette.context("indexed PNG without PLTE")?)
                 }
-                png::ColorType::Rgb => {
-                    Self::rgb(width, height, data.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
-                }
+                png::ColorType::Rgb => Self::rgb(width, height, data.as_chunks::<3>().0.to_vec()),
                 other => bail!("colour type {other:?}; only indexed and RGB are read"),
             }
         };

@@ -37,7 +37,7 @@ pub fn parse_ppm(bytes: &[u8]) -> Result<Image> {
     let expected = width as usize * height as usize * 3;
     ensure!(data.len() == expected, "PPM {width}x{height} needs {expected} bytes of samples, has {}", data.len());
     let scale = |v: u8| (u32::from(v) * 255 / maxval) as u8;
-    Image::rgb(width, height, data.chunks_exact(3).map(|c| [scale(c[0]), scale(c[1]), scale(c[2])]).collect())
+    Image::rgb(width, height, data.as_chunks::<3>().0.iter().map(|rgb| rgb.map(scale)).collect())
 }
 
 #[cfg(test)]

@@ -98,8 +98,9 @@ impl Explorer {
         let bytes: Vec<u8> =
             value.as_array().context("no pixels")?.iter().map(|v| v.as_u64().unwrap_or(256) as u8).collect();
         ensure!(bytes.len() == 320 * 200 * 4, "the canvas has {} bytes, not 320x200 RGBA", bytes.len());
-        ensure!(bytes.chunks_exact(4).all(|p| p[3] == 255), "the canvas has transparent pixels");
-        Image::rgb(320, 200, bytes.chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect())
+        let rgba = bytes.as_chunks::<4>().0;
+        ensure!(rgba.iter().all(|&[_, _, _, alpha]| alpha == 255), "the canvas has transparent pixels");
+        Image::rgb(320, 200, rgba.iter().map(|&[r, g, b, _]| [r, g, b]).collect())
     }
 
     /// Opens the scene file `text` through the page's text box and button.

@@ -1,9 +1,12 @@
-//! `cargo xtask lint`: formatting and clippy, as CI runs them. The host
-//! crates are linted with the toolchain that runs the xtask; the kernel,
-//! which only builds with the pinned nightly for bare metal, with that
-//! nightly. Warnings are errors. Installs rustfmt and clippy where missing
-//! (the minimal rustup profile has neither), and libcairo's headers, which
-//! the lab's Cairo peer builds against.
+//! `cargo xtask lint`: formatting and clippy, as CI runs them. Clippy runs
+//! with the pinned nightly, over the host crates and the kernel (for bare
+//! metal), so its lints are the same on every machine: the default stable
+//! toolchain moves on, and each release's clippy brings lints of its own.
+//! Formatting is checked with the host toolchain's rustfmt, whose output
+//! does not change between releases. Warnings are errors. Installs rustfmt,
+//! the pinned nightly and its clippy where missing (the minimal rustup
+//! profile has neither tool), and libcairo's headers, which the lab's Cairo
+//! peer builds against.
 
 use std::process::Command;
 
@@ -16,17 +19,16 @@ use harness::workspace;
 pub fn lint() -> Result<()> {
     // Under `cargo xtask`, rustup names the running toolchain in
     // RUSTUP_TOOLCHAIN, so this adds the components to that one.
-    run_streaming(Command::new("rustup").args(["component", "add", "rustfmt", "clippy"]))
-        .context("failed to install rustfmt and clippy")?;
-    // Clippy builds the lab, whose Cairo peer links the system libcairo.
-    ensure_cairo()?;
-    for mut command in [fmt_check(), host_clippy()] {
-        run_streaming(&mut command)?;
-    }
+    run_streaming(Command::new("rustup").args(["component", "add", "rustfmt"])).context("failed to install rustfmt")?;
+    run_streaming(&mut fmt_check())?;
     ensure_toolchain()?;
     run_streaming(pinned("rustup").args(["component", "add", "clippy"]))
         .context("failed to install clippy for the pinned nightly")?;
-    run_streaming(&mut kernel_clippy())?;
+    // Clippy builds the lab, whose Cairo peer links the system libcairo.
+    ensure_cairo()?;
+    for mut command in [host_clippy(), kernel_clippy()] {
+        run_streaming(&mut command)?;
+    }
     eprintln!("xtask: formatted, and clippy finds nothing in the host crates or the kernel");
     Ok(())
 }
@@ -39,13 +41,16 @@ fn fmt_check() -> Command {
     command
 }
 
+/// Clippy on every host crate with the pinned nightly, in the nightly's
+/// own target directory.
 fn host_clippy() -> Command {
-    let mut command = host();
+    let mut command = pinned("cargo");
     command.args(["clippy", "--workspace"]);
     for package in NIGHTLY_ONLY {
         command.args(["--exclude", package]);
     }
-    command.args(["--all-targets", "--", "-D", "warnings"]);
+    command.arg("--all-targets").arg("--target-dir").arg(workspace::nightly_target_dir());
+    command.args(["--", "-D", "warnings"]);
     command
 }
 
@@ -65,12 +70,15 @@ mod tests {
     use harness::process::command_line;
 
     #[test]
-    fn host_clippy_covers_every_host_crate_and_denies_warnings() {
+    fn host_clippy_covers_every_host_crate_with_the_pinned_nightly_and_denies_warnings() {
         let line = command_line(&host_clippy());
         assert!(
-            line.ends_with(" clippy --workspace --exclude kernel --exclude boot --all-targets -- -D warnings"),
+            line.starts_with(
+                "cargo +nightly-2026-10-01 clippy --workspace --exclude kernel --exclude boot --all-targets"
+            ),
             "{line}"
         );
+        assert!(line.ends_with(" -- -D warnings"), "{line}");
     }
 
     #[test]

@@ -133,7 +133,7 @@ mod tests {
     use raster::{Point, Refusal};
 
     fn count_colour(rgba: &[u8], colour: [u8; 3]) -> usize {
-        rgba.chunks_exact(4).filter(|p| p[..3] == colour).count()
+        rgba.as_chunks::<4>().0.iter().filter(|&&[r, g, b, _]| [r, g, b] == colour).count()
     }
 
     #[test]
