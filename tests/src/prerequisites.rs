@@ -108,7 +108,9 @@ const CHROMIUM_PACKAGES: [&str; 2] = ["chromium", "chromium-driver"];
 pub fn ensure_chromium() -> Result<()> {
     static DONE: OnceLock<Result<(), String>> = OnceLock::new();
     once_per_process(&DONE, || {
-        ensure_debian_packages("chromium and chromedriver", &CHROMIUM_PACKAGES, || on_path(&[CHROMIUM, CHROMEDRIVER]))
+        ensure_debian_packages("Chromium (chromium and chromedriver)", &CHROMIUM_PACKAGES, || {
+            on_path(&[CHROMIUM, CHROMEDRIVER])
+        })
     })
 }
 
