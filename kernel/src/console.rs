@@ -135,10 +135,8 @@ impl Console<'_> {
                 let start = demo::Start { entry: index.unwrap_or(0), stay: index.is_some(), method };
                 self.demo = Some(start);
                 let from = ENTRIES_IN_ORDER[start.entry].name;
-                match method {
-                    Some(method) => ok(format_args!("demo from={from} stay={} method={method}", start.stay)),
-                    None => ok(format_args!("demo from={from} stay={} method=own", start.stay)),
-                }
+                let method = method.map_or("own", MethodId::name);
+                ok(format_args!("demo from={from} stay={} method={method}", start.stay))
             }
             Command::VgaCheck => {
                 let mismatches = vga::verify(self.screen.palette());

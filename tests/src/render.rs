@@ -16,10 +16,13 @@ use crate::picture::Image;
 
 /// The show entry called `name`.
 pub fn show_entry(name: &str) -> Result<&'static Entry> {
-    show::entry(name).with_context(|| {
-        let valid: Vec<&str> = ENTRIES_IN_ORDER.iter().map(|e| e.name).collect();
-        format!("unknown show entry `{name}`; valid entries: {}", valid.join(", "))
-    })
+    show::entry(name).with_context(|| format!("unknown show entry `{name}`; valid entries: {}", entry_names()))
+}
+
+/// The names of the show's entries, in demo order, `, `-separated, for
+/// error messages.
+pub fn entry_names() -> String {
+    ENTRIES_IN_ORDER.iter().map(|entry| entry.name).collect::<Vec<_>>().join(", ")
 }
 
 /// The names of the built-in scenes, `, `-separated, for error messages.

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
 use harness::checks::{screen_matches_dump, show_matches_host_render, source_matches_host_render};
-use harness::render::{SceneFile, SceneSource};
+use harness::render::{entry_names, SceneFile, SceneSource};
 use harness::workspace::target_dir;
 use harness::{build_image, Display, Medium, Qemu, QemuOptions};
 use protocol::Command;
@@ -40,8 +40,7 @@ impl OnScreen {
         if Path::new(name).is_file() {
             return SceneFile::read(Path::new(name)).map(OnScreen::File);
         }
-        let entries: Vec<&str> = ENTRIES_IN_ORDER.iter().map(|entry| entry.name).collect();
-        bail!("`{name}` is neither an entry of the show nor a scene file; the entries are {}", entries.join(", "))
+        bail!("`{name}` is neither an entry of the show nor a scene file; the entries are {}", entry_names())
     }
 }
 
