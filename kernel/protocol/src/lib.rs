@@ -1,6 +1,6 @@
 //! The serial protocol between the kernel and the host, shared by both
-//! sides so they cannot drift apart. The README's "The serial protocol"
-//! section is the prose version of this crate.
+//! sides so they cannot drift apart. `docs/protocol.md` is the prose
+//! version of this crate.
 //!
 //! Host to kernel: one ASCII command per line (`\n`, a `\r` before it is
 //! ignored), at most [`MAX_LINE`] bytes ([`Command`], in `commands`). Kernel
