@@ -185,6 +185,23 @@ pub fn poly_line(polygon: &Polygon) -> String {
     line
 }
 
+/// The operations of `scene` as a scene file, one line each, that
+/// [`parse`] reads back to the very same operations.
+pub fn write(scene: &Scene) -> String {
+    let mut text = String::new();
+    for op in &scene.ops {
+        match op {
+            Op::Clear(color) => {
+                // Writing to a String cannot fail.
+                let _ = write!(text, "clear {color}");
+            }
+            Op::Fill(polygon) => text.push_str(&poly_line(polygon)),
+        }
+        text.push('\n');
+    }
+    text
+}
+
 /// A decimal number of pixels to subpixels, rounded to nearest, halves up.
 fn parse_coordinate(text: &str) -> Result<i32, LineError> {
     let bad = || LineError::BadVertex(String::from(text));
@@ -281,6 +298,17 @@ mod tests {
         assert_eq!(pixels(-1), "-0.00390625");
         assert_eq!(pixels(i32::MAX), "8388607.99609375");
         assert_eq!(pixels(i32::MIN), "-8388608");
+    }
+
+    #[test]
+    fn a_written_scene_parses_back_to_the_same_operations() {
+        let text = "clear 9\npoly color=5 rule=nonzero 0,0 10.5,0 5,7.25 | 1,1 2,1 2,2\nclear 0\n";
+        let scene = parse("t", text).unwrap();
+        assert_eq!(write(&scene), text);
+        for page in crate::builtin::ALL {
+            let scene = page.scene();
+            assert_eq!(parse(page.name, &write(&scene)).unwrap().ops, scene.ops, "{}", page.name);
+        }
     }
 
     #[test]
