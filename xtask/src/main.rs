@@ -4,6 +4,7 @@
 
 mod dump;
 mod explore;
+mod fuzz;
 mod kbench;
 mod lab;
 mod lint;
@@ -35,5 +36,6 @@ fn main() -> Result<()> {
         Action::Lint => lint::lint(),
         Action::Kbench(opt) => kbench::kbench(&opt),
         Action::Explore(opt) => explore::explore(&opt),
+        Action::Fuzz(opt) => fuzz::fuzz(&opt),
     }
 }

@@ -53,6 +53,11 @@ pub enum Action {
     /// page), serves it on 127.0.0.1 and prints its address; with --out,
     /// writes it to DIR and stops.
     Explore(ExploreOpt),
+    /// Fuzzes with libFuzzer (cargo-fuzz, pinned nightly): every target, or
+    /// the one named, for --seconds each; prints executions and coverage
+    /// per target and fails on any crash, naming its input. Corpora,
+    /// crashes and logs go to target/fuzz.
+    Fuzz(FuzzOpt),
 }
 
 #[derive(Args, Debug)]
@@ -177,6 +182,16 @@ pub struct ExploreOpt {
     /// to copy beside the page, whose figures it then shows.
     #[arg(long, value_name = "FILE")]
     pub results: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+pub struct FuzzOpt {
+    /// How long each target runs, in seconds.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..))]
+    pub seconds: u32,
+    /// One target (scene_file, command, methods, exact_reference,
+    /// explorer); all of them, one after the other, if none is named.
+    pub target: Option<String>,
 }
 
 /// `cargo xtask COMMAND ARGS` parsed, for the commands' tests.
