@@ -16,7 +16,7 @@ use scenes::{builtin, file, Op, Scene};
 
 use crate::exit::exit_qemu;
 use crate::video::Screen;
-use crate::{bench, demo, fault, pci, player, serial, vga};
+use crate::{bench, demo, fault, heap, pci, player, serial, vga};
 
 /// Tells the host the kernel is up: a `LOG` frame per VGA register or DAC
 /// entry that did not read back as written, then `READY` naming the
@@ -96,7 +96,7 @@ impl Console<'_> {
 
     fn run(&mut self, command: Command<'_>) -> Reply {
         match command {
-            Command::Ping => ok(Pong { losses: serial::losses() }),
+            Command::Ping => ok(Pong { losses: serial::losses(), heap: heap::state() }),
             Command::List => Ok((FrameKind::List, listing().into_bytes())),
             Command::Draw { scene, method } => {
                 let scene = builtin_scene(scene)?;

@@ -17,7 +17,7 @@ mod replies;
 
 pub use commands::{Command, CommandError, FaultKind};
 pub use frames::{FrameHeader, FrameKind};
-pub use replies::{LineLosses, PciId, Pong, Ready, ShowReply, PONG};
+pub use replies::{HeapState, LineLosses, PciId, Pong, Ready, ShowReply, PONG};
 
 /// Longest command line the kernel accepts, terminator excluded.
 pub const MAX_LINE: usize = 4096;

@@ -113,7 +113,19 @@ pub fn dictionary() -> Vec<String> {
             .map(String::from),
     );
     words.extend(
-        ["dropped=", "display=", "none", "vga_mismatches=", "color=", "rule=", "nonzero", "|"].map(String::from),
+        [
+            "dropped=",
+            "heap_used=",
+            "heap_free_largest=",
+            "display=",
+            "none",
+            "vga_mismatches=",
+            "color=",
+            "rule=",
+            "nonzero",
+            "|",
+        ]
+        .map(String::from),
     );
     words
 }
