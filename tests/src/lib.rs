@@ -32,6 +32,7 @@ pub mod qemu;
 pub mod qmp;
 pub mod render;
 pub mod serial;
+pub mod soak;
 pub mod webdriver;
 pub mod workspace;
 

@@ -12,6 +12,7 @@ mod opt;
 mod record;
 mod render;
 mod run;
+mod soak;
 mod test;
 
 use anyhow::Result;
@@ -37,5 +38,6 @@ fn main() -> Result<()> {
         Action::Kbench(opt) => kbench::kbench(&opt),
         Action::Explore(opt) => explore::explore(&opt),
         Action::Fuzz(opt) => fuzz::fuzz(&opt),
+        Action::Soak(opt) => soak::soak(&opt),
     }
 }

@@ -58,6 +58,11 @@ pub enum Action {
     /// per target and fails on any crash, naming its input. Corpora,
     /// crashes and logs go to target/fuzz.
     Fuzz(FuzzOpt),
+    /// Boots the kernel and plays the whole show through SHOW with every
+    /// method, --cycles times; after each cycle prints the heap (PING) and
+    /// fails if it holds more or its largest free block is smaller than
+    /// after the first cycle, or if any frame's figures changed.
+    Soak(SoakOpt),
 }
 
 #[derive(Args, Debug)]
@@ -192,6 +197,16 @@ pub struct FuzzOpt {
     /// One target (scene_file, command, methods, exact_reference,
     /// explorer); all of them, one after the other, if none is named.
     pub target: Option<String>,
+}
+
+#[derive(Args, Debug)]
+pub struct SoakOpt {
+    /// How many times to play the show with every method.
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(2..))]
+    pub cycles: u32,
+    /// Play every K-th frame of each entry (1: every frame).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    pub step: u32,
 }
 
 /// `cargo xtask COMMAND ARGS` parsed, for the commands' tests.
