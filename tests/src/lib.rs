@@ -19,7 +19,6 @@ pub mod bootloader;
 pub mod browser;
 pub mod cargo;
 pub mod checks;
-pub mod explorer;
 pub mod image;
 mod once;
 pub mod picture;

@@ -6,10 +6,10 @@ use std::sync::OnceLock;
 use std::time::Duration;
 
 use anyhow::{ensure, Context, Result};
+use explorer_site::{write_page, PageServer};
 use harness::browser::webdriver::Session;
 use harness::browser::Browser;
 use harness::compare_images;
-use harness::explorer::{write_page, PageServer};
 use harness::picture::Image;
 use harness::render::{builtin_scene, render};
 use harness::workspace;
