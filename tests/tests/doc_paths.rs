@@ -89,12 +89,12 @@ fn every_path_the_docs_and_comments_name_exists() -> Result<()> {
     let root = workspace::root();
     let mut missing = Vec::new();
     // This file's own examples of missing paths are its test data.
-    let files: Vec<PathBuf> = sources(&root).into_iter().filter(|file| !file.ends_with(file!())).collect();
+    let files: Vec<PathBuf> = sources(root).into_iter().filter(|file| !file.ends_with(file!())).collect();
     assert!(files.iter().any(|file| file.ends_with("README.md")), "the README was not read");
     for file in &files {
         let text = std::fs::read_to_string(file).with_context(|| format!("failed to read {}", file.display()))?;
-        let shown = file.strip_prefix(&root).unwrap_or(file).display().to_string();
-        for (line, cited) in missing_citations(&root, crate_dir(&root, file).as_deref(), &text) {
+        let shown = file.strip_prefix(root).unwrap_or(file).display().to_string();
+        for (line, cited) in missing_citations(root, crate_dir(root, file).as_deref(), &text) {
             missing.push(format!("{shown}:{line} names {cited}, which does not exist"));
         }
     }
@@ -110,9 +110,9 @@ fn a_gone_file_is_caught_and_a_present_one_is_not() {
                 tests/hostile.rs and kernel/raster/tests/exact_*.rs, docs/$s.gif\n\
                 rm docs/*.screen.png\nxtask/nothing_*.rs";
     assert_eq!(
-        missing_citations(&root, Some(&raster), text),
+        missing_citations(root, Some(&raster), text),
         [(1, "kernel/raster/tests/gone.rs".to_string()), (4, "xtask/nothing_*.rs".to_string())]
     );
     // Outside raster, its crate-relative citation is not found.
-    assert_eq!(missing_citations(&root, None, "tests/hostile.rs"), [(1, "tests/hostile.rs".to_string())]);
+    assert_eq!(missing_citations(root, None, "tests/hostile.rs"), [(1, "tests/hostile.rs".to_string())]);
 }
