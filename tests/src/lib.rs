@@ -30,5 +30,5 @@ pub mod workspace;
 pub use image::build_image;
 pub use picture::compare::compare_images;
 pub use picture::{render, Image};
-pub use qemu::console::{Console, Dump, Listing, Reply, Shown};
+pub use qemu::console::{Console, Dump, Listing, Reply};
 pub use qemu::{Adapter, Clock, Display, Medium, Qemu, QemuOptions};
