@@ -1,5 +1,7 @@
-//! Every repository path the docs and the code's comments name exists: a
-//! file that moved or went away leaves no citation behind.
+//! Every repository path the docs and the code's comments name exists, and
+//! every link between the Markdown pages leads to a file and a heading that
+//! are there: a file or section that moved or went away leaves no citation
+//! behind.
 //!
 //! A path is a token that starts with one of the repository's top-level
 //! folders (`kernel/`, `boot/`, `xtask/`, `tests/`, `docs/`, `.ci/`,
@@ -115,4 +117,79 @@ fn a_gone_file_is_caught_and_a_present_one_is_not() {
     );
     // Outside raster, its crate-relative citation is not found.
     assert_eq!(missing_citations(root, None, "tests/hostile.rs"), [(1, "tests/hostile.rs".to_string())]);
+}
+
+/// A heading's anchor as GitHub makes it: lower case, punctuation dropped
+/// (but `-` and `_`), spaces turned into `-`.
+fn anchor(heading: &str) -> String {
+    heading
+        .trim()
+        .to_lowercase()
+        .chars()
+        .filter(|c| c.is_alphanumeric() || matches!(c, '-' | '_' | ' '))
+        .map(|c| if c == ' ' { '-' } else { c })
+        .collect()
+}
+
+fn anchors(markdown: &str) -> Vec<String> {
+    markdown
+        .lines()
+        .filter_map(|line| line.trim_start_matches('#').strip_prefix(' ').filter(|_| line.starts_with('#')))
+        .map(anchor)
+        .collect()
+}
+
+/// The links of the Markdown page `page` that lead nowhere: to a file that
+/// is not there, or to a heading its page does not have. Web addresses are
+/// not followed.
+fn broken_links(page: &Path, text: &str) -> Vec<String> {
+    let link = Regex::new(r"\]\(([^)\s]+)\)").expect("a valid pattern");
+    let folder = page.parent().expect("a page is in a folder");
+    let mut broken = Vec::new();
+    for found in link.captures_iter(text) {
+        let target = &found[1];
+        if target.contains("://") || target.starts_with("mailto:") {
+            continue;
+        }
+        let (file, heading) = target.split_once('#').unwrap_or((target, ""));
+        let file = if file.is_empty() { page.to_path_buf() } else { folder.join(file) };
+        if !file.exists() {
+            broken.push(format!("{target}: no such file"));
+        } else if !heading.is_empty() && file.extension().is_some_and(|e| e == "md") {
+            let linked = std::fs::read_to_string(&file).unwrap_or_default();
+            if !anchors(&linked).iter().any(|a| a == heading) {
+                broken.push(format!("{target}: no such heading"));
+            }
+        }
+    }
+    broken
+}
+
+#[test]
+fn every_markdown_link_leads_somewhere() -> Result<()> {
+    let root = workspace::root();
+    let pages: Vec<PathBuf> =
+        sources(root).into_iter().filter(|file| file.extension().is_some_and(|e| e == "md")).collect();
+    assert!(pages.iter().any(|page| page.ends_with("docs/methods.md")), "the docs were not read");
+    let mut broken = Vec::new();
+    for page in &pages {
+        let text = std::fs::read_to_string(page).with_context(|| format!("failed to read {}", page.display()))?;
+        let shown = page.strip_prefix(root).unwrap_or(page).display().to_string();
+        broken.extend(broken_links(page, &text).into_iter().map(|problem| format!("{shown}: {problem}")));
+    }
+    assert!(broken.is_empty(), "{} broken links:\n{}", broken.len(), broken.join("\n"));
+    Ok(())
+}
+
+#[test]
+fn a_link_to_a_missing_file_or_heading_is_caught() {
+    let readme = workspace::root().join("README.md");
+    let text = "[ok](docs/methods.md#measured-deviations) [here](#the-methods) [web](https://example.org/x#y)\n\
+                [gone](docs/gone.md) [no heading](docs/methods.md#no-such-section) [self](#nowhere)";
+    assert_eq!(
+        broken_links(&readme, text),
+        ["docs/gone.md: no such file", "docs/methods.md#no-such-section: no such heading", "#nowhere: no such heading"]
+    );
+    assert_eq!(anchor("What the tests prove, adapter by adapter"), "what-the-tests-prove-adapter-by-adapter");
+    assert_eq!(anchor("`exact`: the `i32` limits"), "exact-the-i32-limits");
 }
