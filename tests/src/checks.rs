@@ -5,10 +5,10 @@ use protocol::ShowReply;
 use raster::MethodId;
 use scenes::{builtin, show};
 
-use crate::compare::{compare_images, compare_palettes};
-use crate::console::{Console, Dump};
+use crate::picture::compare::{compare_images, compare_palettes};
+use crate::picture::render::{builtin_scene, render, render_show, show_entry, SceneSource};
 use crate::picture::Image;
-use crate::render::{builtin_scene, render, render_show, show_entry, SceneSource};
+use crate::qemu::console::{Console, Dump};
 
 /// QEMU shows each mode-13h pixel as a 2x2 block of its 640x400 screen.
 pub const SCREEN_SCALE: u32 = 2;

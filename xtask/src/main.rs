@@ -3,7 +3,6 @@
 //! library, shared with the tests.
 
 mod dump;
-mod explore;
 mod fuzz;
 mod kbench;
 mod lab;
@@ -36,7 +35,7 @@ fn main() -> Result<()> {
         Action::Lab(opt) => lab::lab(&opt),
         Action::Lint => lint::lint(),
         Action::Kbench(opt) => kbench::kbench(&opt),
-        Action::Explore(opt) => explore::explore(&opt),
+        Action::Explore(opt) => explorer_site::explore(opt.out.as_deref(), opt.results.as_deref()),
         Action::Fuzz(opt) => fuzz::fuzz(&opt),
         Action::Soak(opt) => soak::soak(&opt),
     }

@@ -9,9 +9,9 @@ use raster::{MethodId, SCREEN};
 use scenes::palette::ENTRIES;
 use scenes::show;
 
+use super::serial::{Frame, FrameReader};
+use crate::picture::render::SceneFile;
 use crate::picture::Image;
-use crate::render::SceneFile;
-use crate::serial::{Frame, FrameReader};
 
 /// Longest wait for the READY frame: SeaBIOS, the bootloader's stages and
 /// the mode set under TCG, on a loaded 2-core machine.
