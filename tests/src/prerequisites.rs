@@ -129,14 +129,21 @@ pub fn ensure_cairo() -> Result<()> {
 /// The cargo-fuzz release `cargo xtask fuzz` installs when none is there.
 pub const CARGO_FUZZ_VERSION: &str = "0.13.2";
 
+/// Makes sure a C++ compiler is there for libFuzzer, which the fuzz
+/// targets' `libfuzzer-sys` compiles: installs Debian's `g++` as
+/// [`ensure_qemu`] installs QEMU.
+pub fn ensure_cxx() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || ensure_debian_packages("a C++ compiler (for libFuzzer)", &["g++"], || on_path(&["c++"])))
+}
+
 /// Makes sure `cargo fuzz` (cargo-fuzz, which builds the fuzz targets with
 /// libFuzzer) is installed, installing it from crates.io with `cargo
-/// install --locked` when missing, and that a C++ compiler is there for
-/// libFuzzer itself (Debian's `g++`, as [`ensure_qemu`] installs QEMU).
+/// install --locked` when missing, and a C++ compiler ([`ensure_cxx`]).
 pub fn ensure_cargo_fuzz() -> Result<()> {
     static DONE: OnceLock<Result<(), String>> = OnceLock::new();
     once_per_process(&DONE, || {
-        ensure_debian_packages("a C++ compiler (for libFuzzer)", &["g++"], || on_path(&["c++"]))?;
+        ensure_cxx()?;
         if find_in_path("cargo-fuzz").is_some() {
             return Ok(());
         }

@@ -30,7 +30,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use crate::opt::FuzzOpt;
 
 /// The cargo-fuzz project, from the workspace root.
-const FUZZ_DIR: &str = "tests/fuzz/targets";
+pub const FUZZ_DIR: &str = "tests/fuzz/targets";
 /// Longest one input may take before libFuzzer calls it a hang: far above
 /// any honest input (the slowest, an explorer scene judged by the
 /// reference, takes under a second).

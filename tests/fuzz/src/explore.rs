@@ -1,4 +1,4 @@
-//! The `explorer` target: the explorer page's engine (`xtask/explorer`) on
+//! The `explorer` target: the explorer page's engine (`xtask/explorer/engine`) on
 //! any state its address's fragment or a pasted scene can give it, the
 //! calls the page's script makes through the engine's exports, in their
 //! order: load a built-in page and apply vertex edits (`scene=` and
