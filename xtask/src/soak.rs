@@ -43,6 +43,16 @@ pub fn soak(opt: &SoakOpt) -> Result<()> {
                 cycle.heap
             )
         });
+        if number == 1 {
+            if let Some((shot, figures)) = plan.iter().zip(&cycle.figures).max_by_key(|(_, figures)| figures.allocs) {
+                bar.suspend(|| {
+                    println!(
+                        "most allocations in one frame: {} ({} frame {} with {}, {} polygons)",
+                        figures.allocs, shot.entry.name, shot.frame, shot.method, figures.polygons
+                    )
+                });
+            }
+        }
         let first = cycles.first().unwrap_or(&cycle);
         failures.extend(problems(&plan, settled, first, &cycle, number, NAMED));
         cycles.push(cycle);
