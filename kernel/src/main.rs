@@ -1,6 +1,6 @@
 //! The bare-metal side of the polygon lab: boots from the `bootloader`
 //! crate's BIOS stages (stage 2 patched to leave the card in text mode,
-//! see tests/src/bootloader.rs), puts the VGA in mode 13h with its own
+//! see boot/image/src/bootloader.rs), puts the VGA in mode 13h with its own
 //! register writes, runs the demo (the show), and serves the host's
 //! commands over COM1 as soon as one arrives.
 //!

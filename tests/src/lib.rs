@@ -15,19 +15,14 @@
 //! # }
 //! ```
 
-pub mod bootloader;
 pub mod browser;
-pub mod cargo;
 pub mod checks;
 pub mod compare;
 pub mod console;
 pub mod explorer;
-pub mod image;
-mod once;
 pub mod picture;
 pub mod ppm;
 pub mod prerequisites;
-pub mod process;
 pub mod qemu;
 pub mod qmp;
 pub mod render;
@@ -35,8 +30,10 @@ pub mod serial;
 pub mod webdriver;
 pub mod workspace;
 
+/// The image build and the process helpers live with the boot stages
+/// (boot/image); the harness boots what it builds.
+pub use boot_image::{build_image, cargo, process};
 pub use compare::compare_images;
 pub use console::{Console, Dump, Listing, Reply, Shown};
-pub use image::build_image;
 pub use picture::Image;
 pub use qemu::{Adapter, Clock, Display, Medium, Qemu, QemuOptions};

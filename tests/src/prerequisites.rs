@@ -1,7 +1,8 @@
-//! Installing what the build and the runs need when it is missing: the
-//! pinned nightly with its components and target, QEMU, and the Cairo
-//! headers the lab's Cairo peer builds against. Machines here set
-//! `RUSTUP_AUTO_INSTALL=0`, so nothing installs itself.
+//! Installing what the runs need when it is missing: QEMU, Chromium and
+//! chromedriver, the wasm32 target, and the Cairo headers the lab's Cairo
+//! peer builds against (the pinned nightly the image builds with is
+//! `boot_image::toolchain`'s). Machines here set `RUSTUP_AUTO_INSTALL=0`,
+//! so nothing installs itself.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -9,15 +10,8 @@ use std::sync::OnceLock;
 
 use anyhow::{bail, Context, Result};
 
-use crate::cargo::{pinned, KERNEL_TARGET, PINNED_TOOLCHAIN};
-use crate::once::once_per_process;
-use crate::process::{output_of, run_streaming};
-
-/// Components of the pinned nightly: `bootloader`'s build script compiles
-/// its BIOS stages with `-Zbuild-std` (rust-src) and links them with LLVM's
-/// tools (llvm-tools-preview). Each with the prefix rustup lists it under
-/// once installed.
-const COMPONENTS: [(&str, &str); 2] = [("rust-src", "rust-src"), ("llvm-tools-preview", "llvm-tools")];
+use boot_image::once::once_per_process;
+use boot_image::process::{output_of, run_streaming};
 
 /// The QEMU binary the harness runs, and the Debian package that has it.
 pub const QEMU: &str = "qemu-system-x86_64";
@@ -27,67 +21,6 @@ const QEMU_PACKAGE: &str = "qemu-system-x86";
 /// libcairo) builds with: the headers and `.pc` file, and pkg-config, which
 /// finds them.
 const CAIRO_PACKAGES: [&str; 2] = ["libcairo2-dev", "pkg-config"];
-
-/// Makes sure the pinned nightly, its components and the kernel target are
-/// installed, installing what is missing (and saying so). Costs two quick
-/// rustup look-ups when everything is there.
-pub fn ensure_toolchain() -> Result<()> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
-    once_per_process(&DONE, || {
-        let toolchains = output_of(Command::new("rustup").args(["toolchain", "list"]))
-            .context("rustup is needed to install the pinned nightly (see https://rustup.rs)")?;
-        let installed = if has_toolchain(&toolchains) {
-            Some(output_of(pinned("rustup").args(["component", "list", "--installed"]))?)
-        } else {
-            None
-        };
-        let commands = install_commands(installed.as_deref());
-        if commands.is_empty() {
-            return Ok(());
-        }
-        eprintln!(
-            "harness: installing what the kernel build needs: Rust toolchain {PINNED_TOOLCHAIN} \
-             (profile minimal) with {} and target {KERNEL_TARGET}",
-            COMPONENTS.map(|(name, _)| name).join(", ")
-        );
-        for mut command in commands {
-            run_streaming(&mut command).context("failed to install the pinned nightly")?;
-        }
-        Ok(())
-    })
-}
-
-fn has_toolchain(rustup_toolchain_list: &str) -> bool {
-    rustup_toolchain_list
-        .lines()
-        .any(|line| line.starts_with(&format!("{PINNED_TOOLCHAIN}-")) || line == PINNED_TOOLCHAIN)
-}
-
-/// The rustup commands that complete the install, given the pinned nightly's
-/// `component list --installed` output (`None`: not installed at all).
-fn install_commands(installed: Option<&str>) -> Vec<Command> {
-    let Some(installed) = installed else {
-        let mut install = Command::new("rustup");
-        install.args(["toolchain", "install", PINNED_TOOLCHAIN, "--profile", "minimal", "--component"]);
-        install.arg(COMPONENTS.map(|(name, _)| name).join(","));
-        install.args(["--target", KERNEL_TARGET]);
-        return vec![install];
-    };
-    let has = |prefix: &str| installed.lines().any(|line| line.trim().starts_with(prefix));
-    let mut commands = Vec::new();
-    let missing: Vec<&str> = COMPONENTS.iter().filter(|(_, prefix)| !has(prefix)).map(|(name, _)| *name).collect();
-    if !missing.is_empty() {
-        let mut add = Command::new("rustup");
-        add.args(["component", "add", "--toolchain", PINNED_TOOLCHAIN]).args(missing);
-        commands.push(add);
-    }
-    if !has(&format!("rust-std-{KERNEL_TARGET}")) {
-        let mut add = Command::new("rustup");
-        add.args(["target", "add", "--toolchain", PINNED_TOOLCHAIN, KERNEL_TARGET]);
-        commands.push(add);
-    }
-    commands
-}
 
 /// Makes sure `qemu-system-x86_64` is on the `PATH`: installs Debian's
 /// `qemu-system-x86` with apt-get when running as root, otherwise fails
@@ -208,51 +141,11 @@ mod tests {
     use super::*;
     use crate::process::command_line;
 
-    fn lines(commands: &[Command]) -> Vec<String> {
-        commands.iter().map(command_line).collect()
-    }
-
-    #[test]
-    fn a_missing_toolchain_is_installed_whole() {
-        assert_eq!(
-            lines(&install_commands(None)),
-            ["rustup toolchain install nightly-2026-10-01 --profile minimal --component rust-src,llvm-tools-preview --target x86_64-unknown-none"]
-        );
-    }
-
-    #[test]
-    fn a_complete_toolchain_needs_nothing() {
-        let installed = "cargo-x86_64-unknown-linux-gnu\nllvm-tools-x86_64-unknown-linux-gnu\nrust-src\n\
-                         rust-std-x86_64-unknown-linux-gnu\nrust-std-x86_64-unknown-none\nrustc-x86_64-unknown-linux-gnu\n";
-        assert!(install_commands(Some(installed)).is_empty());
-    }
-
-    #[test]
-    fn missing_components_and_target_are_added() {
-        let installed = "cargo-x86_64-unknown-linux-gnu\nrust-src\nrustc-x86_64-unknown-linux-gnu\n";
-        assert_eq!(
-            lines(&install_commands(Some(installed))),
-            [
-                "rustup component add --toolchain nightly-2026-10-01 llvm-tools-preview",
-                "rustup target add --toolchain nightly-2026-10-01 x86_64-unknown-none",
-            ]
-        );
-    }
-
     #[test]
     fn the_wasm_target_is_added_to_the_named_toolchain() {
         assert_eq!(
             command_line(&wasm_target_command("stable-x86_64-unknown-linux-gnu")),
             "rustup target add --toolchain stable-x86_64-unknown-linux-gnu wasm32-unknown-unknown"
         );
-    }
-
-    #[test]
-    fn the_toolchain_is_recognised_with_or_without_its_host_suffix() {
-        assert!(has_toolchain(
-            "stable-x86_64-unknown-linux-gnu (default)\nnightly-2026-10-01-x86_64-unknown-linux-gnu\n"
-        ));
-        assert!(has_toolchain("nightly-2026-10-01\n"));
-        assert!(!has_toolchain("nightly-2026-10-011-x86_64-unknown-linux-gnu\nnightly-x86_64-unknown-linux-gnu\n"));
     }
 }

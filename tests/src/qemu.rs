@@ -12,13 +12,13 @@ use anyhow::{anyhow, Context, Result};
 use protocol::{PciId, Ready};
 
 use crate::console::Console;
-use crate::image::build_image;
 use crate::picture::Image;
 use crate::prerequisites::{ensure_qemu, QEMU};
 use crate::process::command_line;
 use crate::qmp::Qmp;
 use crate::serial::{forward_bytes, FrameReader};
 use crate::workspace;
+use boot_image::build_image;
 
 /// Longest wait for QEMU to exit after QMP `quit`.
 pub const QUIT_TIMEOUT: Duration = Duration::from_secs(30);
