@@ -1,10 +1,13 @@
-//! Installing what the runs need when it is missing: QEMU, Chromium and
+//! Installing what the runs need when it is missing: QEMU (and its window
+//! and OVMF, the UEFI firmware, when a run needs them), Chromium and
 //! chromedriver, the wasm32 target, and the Cairo headers the lab's Cairo
 //! peer builds against (the pinned nightly the image builds with is
 //! `boot_image::toolchain`'s). Machines here set `RUSTUP_AUTO_INSTALL=0`,
-//! so nothing installs itself.
+//! so nothing installs itself. Debian packages come with their
+//! dependencies but without their recommendations: exactly the packages
+//! named here, each for the reason its constant says.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
@@ -13,9 +16,19 @@ use anyhow::{bail, Context, Result};
 use boot_image::once::once_per_process;
 use boot_image::process::{output_of, run_streaming};
 
-/// The QEMU binary the harness runs, and the Debian package that has it.
+/// The QEMU binary the harness runs, and the Debian package that has it
+/// (with SeaBIOS and the VGA BIOSes, its dependencies).
 pub const QEMU: &str = "qemu-system-x86_64";
 const QEMU_PACKAGE: &str = "qemu-system-x86";
+/// QEMU's GTK window, a module of its own package: only `cargo xtask run`
+/// with a display opens one.
+const QEMU_WINDOW_PACKAGE: &str = "qemu-system-gui";
+
+/// OVMF, the UEFI firmware QEMU boots UEFI runs with: its code, mapped
+/// read-only, and its empty variable store, which each run copies.
+pub const OVMF_CODE: &str = "/usr/share/OVMF/OVMF_CODE_4M.fd";
+pub const OVMF_VARS: &str = "/usr/share/OVMF/OVMF_VARS_4M.fd";
+const OVMF_PACKAGE: &str = "ovmf";
 
 /// The Debian packages the lab's Cairo peer (`cairo-rs` over the system
 /// libcairo) builds with: the headers and `.pc` file, and pkg-config, which
@@ -28,6 +41,30 @@ const CAIRO_PACKAGES: [&str; 2] = ["libcairo2-dev", "pkg-config"];
 pub fn ensure_qemu() -> Result<()> {
     static DONE: OnceLock<Result<(), String>> = OnceLock::new();
     once_per_process(&DONE, || ensure_debian_packages(QEMU, &[QEMU_PACKAGE], || on_path(&[QEMU])))
+}
+
+/// Makes sure QEMU can open a window (its GTK display module is there, as
+/// `-display help` lists it), installing `qemu-system-gui` as
+/// [`ensure_qemu`] installs QEMU.
+pub fn ensure_qemu_window() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || {
+        ensure_qemu()?;
+        let has_window = || {
+            output_of(Command::new(QEMU).args(["-display", "help"])).is_ok_and(|help| help.lines().any(|l| l == "gtk"))
+        };
+        ensure_debian_packages("QEMU's window (its GTK display)", &[QEMU_WINDOW_PACKAGE], has_window)
+    })
+}
+
+/// Makes sure OVMF's code and variable store are there, installing
+/// Debian's `ovmf` as [`ensure_qemu`] installs QEMU.
+pub fn ensure_ovmf() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || {
+        let present = || [OVMF_CODE, OVMF_VARS].iter().all(|file| Path::new(file).is_file());
+        ensure_debian_packages("OVMF (the UEFI firmware for QEMU)", &[OVMF_PACKAGE], present)
+    })
 }
 
 /// The browser the explorer's tests drive, its WebDriver server, and the
@@ -69,21 +106,27 @@ fn ensure_debian_packages(what: &str, packages: &[&str], present: impl Fn() -> b
     let as_root = output_of(Command::new("id").arg("-u")).is_ok_and(|uid| uid.trim() == "0");
     if !as_root || find_in_path("apt-get").is_none() {
         bail!(
-            "{what} is not installed; install it with:\n    sudo apt-get update && sudo apt-get install -y {packages}"
+            "{what} is not installed; install it with:\n    sudo apt-get update && sudo apt-get install -y \
+             --no-install-recommends {packages}"
         );
     }
     eprintln!("harness: {what} is missing; installing the Debian packages {packages} with apt-get");
     run_streaming(Command::new("apt-get").arg("update"))?;
-    run_streaming(
-        Command::new("apt-get")
-            .args(["install", "-y"])
-            .args(packages.split(' '))
-            .env("DEBIAN_FRONTEND", "noninteractive"),
-    )?;
+    run_streaming(&mut apt_install(packages.split(' ')))?;
     if !present() {
         bail!("{packages} installed, but {what} is still not found");
     }
     Ok(())
+}
+
+/// `apt-get install` of `packages` and their dependencies, without the
+/// packages they merely recommend (for QEMU: its GUI, OVMF, its disk
+/// tools and block backends, and what they pull in), which a run needs
+/// only as named above.
+fn apt_install<'a>(packages: impl IntoIterator<Item = &'a str>) -> Command {
+    let mut install = Command::new("apt-get");
+    install.args(["install", "-y", "--no-install-recommends"]).args(packages).env("DEBIAN_FRONTEND", "noninteractive");
+    install
 }
 
 /// Whether every one of `programs` is on the `PATH`.
@@ -140,6 +183,14 @@ pub fn find_in_path(program: &str) -> Option<PathBuf> {
 mod tests {
     use super::*;
     use crate::process::command_line;
+
+    #[test]
+    fn debian_packages_come_without_their_recommendations() {
+        assert_eq!(
+            command_line(&apt_install(["qemu-system-x86", "ovmf"])),
+            "apt-get install -y --no-install-recommends qemu-system-x86 ovmf"
+        );
+    }
 
     #[test]
     fn the_wasm_target_is_added_to_the_named_toolchain() {
