@@ -17,23 +17,15 @@
 
 pub mod browser;
 pub mod checks;
-pub mod compare;
-pub mod console;
-pub mod explorer;
 pub mod picture;
-pub mod ppm;
 pub mod prerequisites;
 pub mod qemu;
-pub mod qmp;
-pub mod render;
-pub mod serial;
-pub mod webdriver;
 pub mod workspace;
 
 /// The image build and the process helpers live with the boot stages
 /// (boot/image); the harness boots what it builds.
 pub use boot_image::{build_image, cargo, process};
-pub use compare::compare_images;
-pub use console::{Console, Dump, Listing, Reply, Shown};
-pub use picture::Image;
+pub use picture::compare::compare_images;
+pub use picture::{render, Image};
+pub use qemu::console::{Console, Dump, Listing, Reply};
 pub use qemu::{Adapter, Clock, Display, Medium, Qemu, QemuOptions};

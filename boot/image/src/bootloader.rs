@@ -2,7 +2,7 @@
 //! with its BIOS stage 2 patched, so that the display card is still in the
 //! BIOS's text mode when the kernel programs mode 13h. (The UEFI loader is
 //! the registry's, unchanged: under UEFI the kernel undoes the firmware's
-//! mode itself, card by card, see docs/boot.md.)
+//! mode itself, card by card, see kernel/src/card.rs.)
 //!
 //! Why: `bootloader` 0.11's BIOS stage 2 asks the card's VBE BIOS for a
 //! linear-framebuffer mode and switches to it before the kernel runs (and
