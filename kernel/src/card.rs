@@ -12,8 +12,8 @@
 //! table, card by card.
 
 use crate::pci::DisplayController;
-use crate::port::{bochs_vbe, vga, vmware_svga};
-use crate::vga::{CRTC, GRAPHICS, SEQUENCER};
+use crate::port::{bochs_vbe, vmware_svga};
+use crate::vga::{CRTC, SEQUENCER};
 
 /// A card the kernel can return to standard VGA.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -36,8 +36,9 @@ const BOCHS_VBE_IDS: [(u16, u16); 4] = [(0x1234, 0x1111), (0x1b36, 0x0100), (0x1
 const CIRRUS_GD5446: (u16, u16) = (0x1013, 0x00b8);
 const VMWARE_SVGA_II: (u16, u16) = (0x15ad, 0x0405);
 
-/// Dispi register 0 (ID) and 4 (ENABLE); the IDs the interface reports,
-/// 0xB0C0 to 0xB0C5 in today's emulators, 0xB0C0 to 0xB0CF reserved.
+/// Dispi register 0 (ID) and 4 (ENABLE). The interface answers its ID
+/// register with 0xB0C0 plus its version; anything from 0xB0C0 to 0xB0CF
+/// is taken for it.
 const DISPI_ID: u16 = 0;
 const DISPI_ENABLE: u16 = 4;
 const DISPI_IDS: core::ops::RangeInclusive<u16> = 0xB0C0..=0xB0CF;
@@ -45,22 +46,15 @@ const DISPI_IDS: core::ops::RangeInclusive<u16> = 0xB0C0..=0xB0CF;
 /// Cirrus sequencer register 6: writing 0x12 unlocks the extended
 /// registers.
 const CIRRUS_UNLOCK: (u8, u8) = (0x06, 0x12);
-/// The Cirrus extended registers set back to their standard-VGA values,
-/// each 0 (from the GD5446 register reference, and as QEMU's model reads
-/// them): SR7, extended sequencer mode (bit 0: the packed-pixel extended
-/// modes); CR1A, interlace and overlay; CR1B, extended display controls
-/// (address wrap, extended start address, blanking); CR1D, overlay
-/// extended control; GR9 and GRA, the two offset (bank) registers; GRB,
-/// graphics controller mode extensions (the banking granularity). The
-/// firmware's driver had set them; which of them the picture needs was
-/// not narrowed down, all are cleared.
-const CIRRUS_SEQUENCER: [(u8, u8); 1] = [(0x07, 0)];
-const CIRRUS_CRTC: [(u8, u8); 3] = [(0x1A, 0), (0x1B, 0), (0x1D, 0)];
-const CIRRUS_GRAPHICS: [(u8, u8); 3] = [(0x09, 0), (0x0A, 0), (0x0B, 0)];
-/// Reads of the pixel mask in a row that open the hidden DAC register.
-const HIDDEN_DAC_READS: usize = 4;
-/// The hidden DAC register's standard value: 8-bit palette-indexed pixels.
-const HIDDEN_DAC_STANDARD: u8 = 0;
+/// Cirrus sequencer register 7, extended sequencer mode: bit 0 selects the
+/// extended (packed-pixel, linear) modes, in which the card ignores the
+/// VGA's own memory mode. 0: standard VGA.
+const CIRRUS_EXTENDED_MODE: (u8, u8) = (0x07, 0);
+/// Cirrus CRTC register 0x1B, extended display controls: bit 4 is bit 8
+/// of the row offset and bits 0, 2 and 3 are bits 16 to 18 of the display
+/// start address, which the firmware's wide mode set and mode 13h's own
+/// CRTC values cannot reach. 0: rows and start as the VGA registers say.
+const CIRRUS_EXTENDED_DISPLAY: (u8, u8) = (0x1B, 0);
 
 /// Which of the known cards `controller` is, if any. Only VGA-compatible
 /// controllers count; for the Bochs VBE cards the interface must also
@@ -88,23 +82,13 @@ impl Card {
             Card::BochsVbe => disable_dispi(),
             Card::Cirrus => {
                 SEQUENCER.write(CIRRUS_UNLOCK.0, CIRRUS_UNLOCK.1);
-                for (index, value) in CIRRUS_SEQUENCER {
-                    SEQUENCER.write(index, value);
-                }
-                for (index, value) in CIRRUS_CRTC {
-                    CRTC.write(index, value);
-                }
-                for (index, value) in CIRRUS_GRAPHICS {
-                    GRAPHICS.write(index, value);
-                }
-                // Any DAC index access resets the count of pixel-mask reads.
-                vga::DAC_WRITE_INDEX.read();
-                for _ in 0..HIDDEN_DAC_READS {
-                    vga::PEL_MASK.read();
-                }
-                vga::PEL_MASK.write(HIDDEN_DAC_STANDARD);
+                SEQUENCER.write(CIRRUS_EXTENDED_MODE.0, CIRRUS_EXTENDED_MODE.1);
+                CRTC.write(CIRRUS_EXTENDED_DISPLAY.0, CIRRUS_EXTENDED_DISPLAY.1);
             }
             Card::VmwareSvga => {
+                // VMware's and VirtualBox's firmware set their mode through
+                // the SVGA registers; OVMF sets QEMU's model's mode through
+                // the Bochs interface, and leaves the SVGA mode off.
                 vmware_svga::disable(controller.bus, controller.device, controller.function);
                 if has_dispi() {
                     disable_dispi();

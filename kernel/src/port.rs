@@ -67,9 +67,6 @@ pub mod vga {
     pub const SEQUENCER_INDEX: IoPort<u8> = IoPort::new(0x3C4);
     pub const SEQUENCER_DATA: IoPort<u8> = IoPort::new(0x3C5);
     /// DAC read index: the entry that the next reads of [`DAC_DATA`] return.
-    /// The DAC's pixel mask; on Cirrus cards, four reads in a row open
-    /// the hidden DAC register (the pixel format) for the next write.
-    pub const PEL_MASK: IoPort<u8> = IoPort::new(0x3C6);
     pub const DAC_READ_INDEX: IoPort<u8> = IoPort::new(0x3C7);
     /// DAC write index: the entry that the next writes of [`DAC_DATA`] set.
     pub const DAC_WRITE_INDEX: IoPort<u8> = IoPort::new(0x3C8);

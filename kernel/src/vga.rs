@@ -86,7 +86,7 @@ pub struct IndexedRegisters {
 
 pub const SEQUENCER: IndexedRegisters = IndexedRegisters { index: vga::SEQUENCER_INDEX, data: vga::SEQUENCER_DATA };
 pub const CRTC: IndexedRegisters = IndexedRegisters { index: vga::CRTC_INDEX, data: vga::CRTC_DATA };
-pub const GRAPHICS: IndexedRegisters = IndexedRegisters { index: vga::GRAPHICS_INDEX, data: vga::GRAPHICS_DATA };
+const GRAPHICS: IndexedRegisters = IndexedRegisters { index: vga::GRAPHICS_INDEX, data: vga::GRAPHICS_DATA };
 
 impl IndexedRegisters {
     pub fn write(self, index: u8, value: u8) {

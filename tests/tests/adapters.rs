@@ -80,24 +80,37 @@ fn every_page_and_every_entry_reach_the_screen(firmware: Firmware, adapter: Adap
     let mut qemu = boot_on(firmware, adapter, Medium::Disk)?;
     let video = qemu.ready.video;
     let on = |name: &str| format!("{}.{}.{name}", firmware.name(), adapter.name());
-    let mut failures = Vec::new();
+    let (mut failures, mut screens) = (Vec::new(), Vec::new());
     for scene in builtin::ALL.map(|page| page.name) {
         let mut page = || -> Result<()> {
             qemu.console.draw(scene, None)?;
             let dump = qemu.console.dump()?;
-            screen_matches_dump(&on(scene), &dump, &qemu.screendump()?, &video)
+            let screen = qemu.screendump()?;
+            screens.push((screen.width(), screen.height()));
+            screen_matches_dump(&on(scene), &dump, &screen, &video)
         };
         failures.extend(page().err().map(|error| format!("{error:#}")));
     }
     for entry in ENTRIES_IN_ORDER {
         let mut first_frame = || -> Result<()> {
             let (_, dump) = show_matches_host_render(&mut qemu.console, entry.name, 0, None)?;
-            screen_matches_dump(&on(&format!("{}.0", entry.name)), &dump, &qemu.screendump()?, &video)
+            let screen = qemu.screendump()?;
+            screens.push((screen.width(), screen.height()));
+            screen_matches_dump(&on(&format!("{}.0", entry.name)), &dump, &screen, &video)
         };
         failures.extend(first_frame().err().map(|error| format!("{error:#}")));
     }
     let on = label(firmware, adapter);
     ensure!(failures.is_empty(), "{on}: {} failures:\n{}", failures.len(), failures.join("\n"));
+    let pixels: u64 = screens.iter().map(|&(width, height)| u64::from(width) * u64::from(height)).sum();
+    let sizes: std::collections::BTreeSet<_> =
+        screens.iter().map(|(width, height)| format!("{width}x{height}")).collect();
+    eprintln!(
+        "harness: {on}: {}; {} screendumps ({}) equal to the dumps, {pixels} pixels, 0 differ",
+        qemu.ready,
+        screens.len(),
+        sizes.into_iter().collect::<Vec<_>>().join(", ")
+    );
     Ok(())
 }
 

@@ -153,7 +153,7 @@ mod tests {
     use std::fs;
 
     use harness::render::render_show;
-    use harness::Adapter;
+    use protocol::Firmware;
 
     use super::*;
     use crate::opt::{parse_command, Action};
@@ -178,15 +178,26 @@ mod tests {
     }
 
     #[test]
-    fn defaults_are_the_whole_show_on_the_standard_vga_from_the_disk() {
+    fn defaults_are_the_whole_show_under_the_bios_on_the_standard_vga_from_the_disk() {
         let opt = parse(&[]).unwrap();
-        assert_eq!((opt.scene, opt.method, opt.vga, opt.usb, opt.out), (None, None, Adapter::Std, false, None));
+        assert_eq!(
+            (opt.scene, opt.method, opt.firmware, opt.vga, opt.usb, opt.out),
+            (None, None, Firmware::Bios, Adapter::Std, false, None)
+        );
     }
 
     #[test]
     fn unknown_names_are_refused_with_the_valid_ones_before_qemu_starts() {
         let vga = parse(&["--vga", "qxl"]).unwrap_err().to_string();
-        assert!(vga.contains("unknown display adapter `qxl`; the adapters are std, cirrus, vmware"), "{vga}");
+        assert!(
+            vga.contains(
+                "unknown display adapter `qxl`; the adapters are std, cirrus, vmware, qxl-vga, virtio-vga, ati-vga, \
+                 bochs-display, ramfb, none"
+            ),
+            "{vga}"
+        );
+        let firmware = parse(&["--firmware", "efi"]).unwrap_err().to_string();
+        assert!(firmware.contains("unknown firmware `efi`; the firmwares are bios, uefi"), "{firmware}");
         let method = parse(&["--method", "fastest"]).unwrap_err().to_string();
         assert!(method.contains("unknown method; the methods are abrash_float, "), "{method}");
         let scene = run(&parse(&["--scene", "no-such-entry", "--headless"]).unwrap()).unwrap_err().to_string();
@@ -203,13 +214,15 @@ mod tests {
     }
 
     #[test]
-    fn a_page_with_one_method_boots_from_the_usb_stick_on_the_vmware_card() -> Result<()> {
+    fn a_page_with_one_method_boots_from_the_usb_stick_under_uefi_on_ramfb() -> Result<()> {
         let dir = tempfile::tempdir()?;
-        let written =
-            run_headless(&["--scene", "abrash38-2", "--method", "wgt", "--usb", "--vga", "vmware"], dir.path())?;
+        let args = ["--scene", "abrash38-2", "--method", "wgt", "--usb", "--firmware", "uefi", "--vga", "ramfb"];
+        let written = run_headless(&args, dir.path())?;
         assert_eq!(written, ["abrash38-2.png"]);
         // The PNG is the kernel's dump, which `run` checked against the
-        // host render and QEMU's screendump; here it is read back from disk.
+        // host render and QEMU's screendump (the whole ramfb framebuffer,
+        // the frame scaled and centred in it); here it is read back from
+        // disk.
         let page = show::entry("abrash38-2").expect("a page of the show");
         let expected = render_show(page, 0, MethodId::Wgt.method(), 0);
         let written = harness::Image::read_png(&dir.path().join("abrash38-2.png"))?;
