@@ -15,6 +15,7 @@
 //! # }
 //! ```
 
+pub mod bochs;
 pub mod browser;
 pub mod checks;
 pub mod picture;

@@ -30,6 +30,16 @@ pub const OVMF_CODE: &str = "/usr/share/OVMF/OVMF_CODE_4M.fd";
 pub const OVMF_VARS: &str = "/usr/share/OVMF/OVMF_VARS_4M.fd";
 const OVMF_PACKAGE: &str = "ovmf";
 
+/// Bochs 2.7, the second emulator (`bochs.rs`), and the Debian packages
+/// it needs: the emulator; its terminal display, the smallest package
+/// that meets its need for a display library (else apt picks the
+/// wxWidgets one); its own BIOS and VGA BIOSes, which it would otherwise
+/// take from SeaBIOS.
+pub const BOCHS: &str = "bochs";
+pub const BOCHS_BIOS: &str = "/usr/share/bochs/BIOS-bochs-latest";
+pub const BOCHS_CIRRUS_VGA_BIOS: &str = "/usr/share/vgabios/vgabios-cirrus.bin";
+const BOCHS_PACKAGES: [&str; 4] = ["bochs", "bochs-term", "bochsbios", "vgabios"];
+
 /// The Debian packages the lab's Cairo peer (`cairo-rs` over the system
 /// libcairo) builds with: the headers and `.pc` file, and pkg-config, which
 /// finds them.
@@ -54,6 +64,17 @@ pub fn ensure_qemu_window() -> Result<()> {
             output_of(Command::new(QEMU).args(["-display", "help"])).is_ok_and(|help| help.lines().any(|l| l == "gtk"))
         };
         ensure_debian_packages("QEMU's window (its GTK display)", &[QEMU_WINDOW_PACKAGE], has_window)
+    })
+}
+
+/// Makes sure Bochs, its BIOS and its Cirrus VGA BIOS are there,
+/// installing them as [`ensure_qemu`] installs QEMU.
+pub fn ensure_bochs() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || {
+        let present =
+            || on_path(&[BOCHS]) && [BOCHS_BIOS, BOCHS_CIRRUS_VGA_BIOS].iter().all(|f| Path::new(f).is_file());
+        ensure_debian_packages("Bochs (with its BIOS and VGA BIOS)", &BOCHS_PACKAGES, present)
     })
 }
 

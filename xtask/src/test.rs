@@ -7,13 +7,18 @@ use boot_image::cargo::NIGHTLY_ONLY;
 use boot_image::process::run_streaming;
 use boot_image::toolchain::ensure_toolchain;
 use boot_image::{build_image, IMAGE_ENV};
-use harness::prerequisites::{ensure_cairo, ensure_chromium, ensure_qemu, ensure_wasm_target};
+use harness::prerequisites::{
+    ensure_bochs, ensure_cairo, ensure_chromium, ensure_ovmf, ensure_qemu, ensure_wasm_target,
+};
 
 use crate::opt::TestOpt;
 
 pub fn test(opt: &TestOpt) -> Result<()> {
     ensure_toolchain()?;
     ensure_qemu()?;
+    // The adapter matrix boots OVMF too, and one test boots Bochs.
+    ensure_ovmf()?;
+    ensure_bochs()?;
     // The explorer page's tests: its engine is built for wasm32 and run in
     // headless Chromium.
     ensure_wasm_target()?;
