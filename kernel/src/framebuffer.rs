@@ -21,15 +21,14 @@ use crate::vga::Palette;
 const FRAME_WIDTH: usize = SCREEN.width as usize;
 const FRAME_HEIGHT: usize = SCREEN.height as usize;
 
-/// How one pixel's colour is laid out in the framebuffer's bytes.
+/// How one pixel's colour is laid out in the framebuffer's bytes: the two
+/// formats bootloader's UEFI loader hands over (it refuses the others).
 #[derive(Clone, Copy)]
 enum Layout {
     /// Red, green, blue bytes in this order, then padding.
     Rgb,
     /// Blue, green, red, then padding (UEFI's usual 32-bit format).
     Bgr,
-    /// One grey level.
-    Grey,
 }
 
 /// The firmware's framebuffer and where the frame goes in it.
@@ -46,20 +45,19 @@ pub struct Presenter {
 
 impl Presenter {
     /// Takes `framebuffer` over, blacks it out and centres the frame in it.
-    /// `None` if its pixel format is one this kernel does not encode or it
+    /// `None` if its pixel format is not RGB or BGR in 3 or 4 bytes, or it
     /// is smaller than the frame.
     pub fn new(framebuffer: FrameBuffer) -> Option<Self> {
         let info = framebuffer.info();
         let layout = match info.pixel_format {
             PixelFormat::Rgb => Layout::Rgb,
             PixelFormat::Bgr => Layout::Bgr,
-            PixelFormat::U8 => Layout::Grey,
             _ => return None,
         };
         let bytes_per_pixel = info.bytes_per_pixel;
-        // Bytes a pixel needs, and the most `encode` fills.
-        let minimum = if matches!(layout, Layout::Grey) { 1 } else { 3 };
-        let encodable = minimum..=4;
+        // Three colour bytes, and at most one of padding, which `encode`
+        // fills.
+        let encodable = 3..=4;
         let scale = (info.width / FRAME_WIDTH).min(info.height / FRAME_HEIGHT);
         let row_bytes = info.stride.checked_mul(bytes_per_pixel)?;
         let last_byte =
@@ -117,11 +115,6 @@ impl Presenter {
             match self.layout {
                 Layout::Rgb => [red, green, blue, 0],
                 Layout::Bgr => [blue, green, red, 0],
-                // ITU-R BT.601 luma, in 8-bit fixed point.
-                Layout::Grey => {
-                    let luma = (77 * u32::from(red) + 150 * u32::from(green) + 29 * u32::from(blue)) >> 8;
-                    [u8::try_from(luma).unwrap_or(u8::MAX), 0, 0, 0]
-                }
             }
         })
     }

@@ -142,7 +142,10 @@ matrix! {
 
 #[test]
 fn the_matrix_is_every_card_each_firmware_can_drive() {
-    let names = |firmware| Adapter::proven_under(firmware).iter().map(|adapter| adapter.name()).collect::<Vec<_>>();
+    let names = |firmware| {
+        let proven = Adapter::ALL.into_iter().filter(|adapter| adapter.proven_under(firmware));
+        proven.map(Adapter::name).collect::<Vec<_>>()
+    };
     assert_eq!(names(Firmware::Bios), ["std", "cirrus", "vmware", "qxl-vga", "virtio-vga", "ati-vga", "none"]);
     assert_eq!(names(Firmware::Uefi), ["std", "cirrus", "vmware", "qxl-vga", "virtio-vga", "bochs-display", "ramfb"]);
 }

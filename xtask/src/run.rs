@@ -9,7 +9,7 @@ use harness::checks::{screen_matches_dump, show_matches_host_render, source_matc
 use harness::prerequisites::ensure_qemu_window;
 use harness::render::{entry_names, SceneFile, SceneSource};
 use harness::workspace::target_dir;
-use harness::{build_image, Adapter, Clock, Display, Medium, Qemu, QemuOptions};
+use harness::{build_image, Clock, Display, Medium, Qemu, QemuOptions};
 use protocol::Command;
 use raster::MethodId;
 use scenes::show::{self, Entry, ENTRIES_IN_ORDER};
@@ -52,7 +52,7 @@ pub fn run(opt: &RunOpt) -> Result<()> {
         file.commands(method.unwrap_or(file.scene.method))?;
     }
     let medium = if opt.usb { Medium::UsbStick } else { Medium::Disk };
-    if !Adapter::proven_under(opt.firmware).contains(&opt.vga) {
+    if !opt.vga.proven_under(opt.firmware) {
         eprintln!(
             "xtask: note: the adapter matrix does not cover --vga {} under --firmware {}; running it anyway",
             opt.vga.name(),
@@ -153,6 +153,7 @@ mod tests {
     use std::fs;
 
     use harness::render::render_show;
+    use harness::Adapter;
     use protocol::Firmware;
 
     use super::*;
