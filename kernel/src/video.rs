@@ -81,17 +81,17 @@ impl Screen {
     /// Panics if the bootloader did not map physical memory (main.rs's
     /// config asks for it): 0xA0000 would be out of reach.
     pub fn open(boot_info: &'static mut BootInfo, firmware: Firmware, display: Option<DisplayController>) -> Self {
-        let vga_usable = vga::responds()
-            && match firmware {
-                Firmware::Bios => true,
-                Firmware::Uefi => match display.and_then(|display| Some((card::identify(&display)?, display))) {
-                    Some((card, display)) => {
-                        card.undo_firmware_mode(&display);
-                        true
-                    }
-                    None => false,
-                },
-            };
+        let vga_usable = match firmware {
+            Firmware::Bios => vga::responds(),
+            // Not a port of an unknown card is touched, the VGA's included.
+            Firmware::Uefi => match display.and_then(|display| Some((card::identify(&display)?, display))) {
+                Some((card, display)) if vga::responds() => {
+                    card.undo_firmware_mode(&display);
+                    true
+                }
+                Some(_) | None => false,
+            },
+        };
         let mut screen = if vga_usable {
             vga::set_mode_13h();
             Self::on(vga_window(boot_info), Output::Vga)
