@@ -60,8 +60,9 @@ impl Presenter {
         let encodable = 3..=4;
         let scale = (info.width / FRAME_WIDTH).min(info.height / FRAME_HEIGHT);
         let row_bytes = info.stride.checked_mul(bytes_per_pixel)?;
-        let last_byte =
-            (info.height.checked_sub(1)?).checked_mul(row_bytes)?.checked_add(info.width * bytes_per_pixel)?;
+        let last_byte = (info.height.checked_sub(1)?)
+            .checked_mul(row_bytes)?
+            .checked_add(info.width.checked_mul(bytes_per_pixel)?)?;
         if scale == 0 || !encodable.contains(&bytes_per_pixel) || info.stride < info.width || last_byte > info.byte_len
         {
             return None;

@@ -78,8 +78,9 @@ impl Screen {
     ///   stages set no framebuffer mode);
     /// - else nothing.
     ///
-    /// Panics if the bootloader did not map physical memory (main.rs's
-    /// config asks for it): 0xA0000 would be out of reach.
+    /// Panics on the VGA path if the bootloader did not map physical
+    /// memory (main.rs's config asks for it): 0xA0000 would be out of
+    /// reach.
     pub fn open(boot_info: &'static mut BootInfo, firmware: Firmware, display: Option<DisplayController>) -> Self {
         let vga_usable = match firmware {
             Firmware::Bios => vga::responds(),
