@@ -17,7 +17,7 @@ use scenes::{builtin, file, Op, Scene};
 use crate::exit::exit_qemu;
 use crate::pci::DisplayController;
 use crate::video::Screen;
-use crate::{bench, demo, fault, player, serial};
+use crate::{bench, demo, fault, heap, player, serial};
 
 /// Tells the host the kernel is up: on the VGA path a `LOG` frame per
 /// register or DAC entry that did not read back as written, then `READY`
@@ -98,7 +98,7 @@ impl Console<'_> {
 
     fn run(&mut self, command: Command<'_>) -> Reply {
         match command {
-            Command::Ping => ok(Pong { losses: serial::losses() }),
+            Command::Ping => ok(Pong { losses: serial::losses(), heap: heap::state() }),
             Command::List => Ok((FrameKind::List, listing().into_bytes())),
             Command::Draw { scene, method } => {
                 let scene = builtin_scene(scene)?;

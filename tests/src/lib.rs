@@ -21,6 +21,7 @@ pub mod checks;
 pub mod picture;
 pub mod prerequisites;
 pub mod qemu;
+pub mod soak;
 pub mod workspace;
 
 /// The image build and the process helpers live with the boot stages

@@ -1,8 +1,8 @@
 //! Installing what the runs need when it is missing: QEMU (and its window
 //! and OVMF, the UEFI firmware, when a run needs them), Chromium and
-//! chromedriver, the wasm32 target, and the Cairo headers the lab's Cairo
-//! peer builds against (the pinned nightly the image builds with is
-//! `boot_image::toolchain`'s). Machines here set `RUSTUP_AUTO_INSTALL=0`,
+//! chromedriver, the wasm32 target, the Cairo headers the lab's Cairo peer
+//! builds against, and cargo-fuzz with a C++ compiler for libFuzzer (the
+//! pinned nightly the image builds with is `boot_image::toolchain`'s). Machines here set `RUSTUP_AUTO_INSTALL=0`,
 //! so nothing installs itself. Debian packages come with their
 //! dependencies but without their recommendations: exactly the packages
 //! named here, each for the reason its constant says.
@@ -117,6 +117,41 @@ pub fn ensure_cairo() -> Result<()> {
     })
 }
 
+/// The cargo-fuzz release `cargo xtask fuzz` installs when none is there.
+pub const CARGO_FUZZ_VERSION: &str = "0.13.2";
+
+/// Makes sure a C++ compiler is there for libFuzzer, which the fuzz
+/// targets' `libfuzzer-sys` compiles: installs Debian's `g++` as
+/// [`ensure_qemu`] installs QEMU.
+pub fn ensure_cxx() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || ensure_debian_packages("a C++ compiler (for libFuzzer)", &["g++"], || on_path(&["c++"])))
+}
+
+/// Makes sure `cargo fuzz` (cargo-fuzz, which builds the fuzz targets with
+/// libFuzzer) is installed, installing it from crates.io with `cargo
+/// install --locked` when missing, and a C++ compiler ([`ensure_cxx`]).
+pub fn ensure_cargo_fuzz() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || {
+        ensure_cxx()?;
+        if find_in_path("cargo-fuzz").is_some() {
+            return Ok(());
+        }
+        eprintln!(
+            "harness: installing cargo-fuzz {CARGO_FUZZ_VERSION} from crates.io (cargo install), \
+             which builds and runs the fuzz targets"
+        );
+        run_streaming(&mut cargo_fuzz_install_command()).context("failed to install cargo-fuzz")
+    })
+}
+
+fn cargo_fuzz_install_command() -> Command {
+    let mut install = crate::cargo::host();
+    install.args(["install", "cargo-fuzz", "--locked", "--version", CARGO_FUZZ_VERSION]);
+    install
+}
+
 /// Installs `packages` with apt-get unless `present` says `what` is there
 /// already; without root (or apt-get) fails with the command to run.
 fn ensure_debian_packages(what: &str, packages: &[&str], present: impl Fn() -> bool) -> Result<()> {
@@ -219,5 +254,10 @@ mod tests {
             command_line(&wasm_target_command("stable-x86_64-unknown-linux-gnu")),
             "rustup target add --toolchain stable-x86_64-unknown-linux-gnu wasm32-unknown-unknown"
         );
+    }
+
+    #[test]
+    fn cargo_fuzz_is_installed_at_its_pinned_version_from_the_lock_file() {
+        assert!(command_line(&cargo_fuzz_install_command()).ends_with(" install cargo-fuzz --locked --version 0.13.2"));
     }
 }

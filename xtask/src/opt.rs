@@ -55,6 +55,16 @@ pub enum Action {
     /// page), serves it on 127.0.0.1 and prints its address; with --out,
     /// writes it to DIR and stops.
     Explore(ExploreOpt),
+    /// Fuzzes with libFuzzer (cargo-fuzz, pinned nightly): every target, or
+    /// the one named, for --seconds each; prints executions and coverage
+    /// per target and fails on any crash, naming its input. Corpora,
+    /// crashes and logs go to target/fuzz.
+    Fuzz(FuzzOpt),
+    /// Boots the kernel and plays the whole show through SHOW with every
+    /// method, --cycles times; after each cycle prints the heap (PING) and
+    /// fails if it holds more or its largest free block is smaller than
+    /// after the first cycle, or if any frame's figures changed.
+    Soak(SoakOpt),
 }
 
 #[derive(Args, Debug)]
@@ -188,6 +198,26 @@ pub struct ExploreOpt {
 /// The firmware `name` names; otherwise an error listing them.
 fn firmware_named(name: &str) -> anyhow::Result<Firmware> {
     Firmware::from_name(name).with_context(|| format!("unknown firmware `{name}`; the firmwares are bios, uefi"))
+}
+
+#[derive(Args, Debug)]
+pub struct FuzzOpt {
+    /// How long each target runs, in seconds.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..))]
+    pub seconds: u32,
+    /// One target (scene_file, command, methods, exact_reference,
+    /// explorer); all of them, one after the other, if none is named.
+    pub target: Option<String>,
+}
+
+#[derive(Args, Debug)]
+pub struct SoakOpt {
+    /// How many times to play the show with every method.
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(2..))]
+    pub cycles: u32,
+    /// Play every K-th frame of each entry (1: every frame).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    pub step: u32,
 }
 
 /// `cargo xtask COMMAND ARGS` parsed, for the commands' tests.

@@ -111,18 +111,43 @@ impl fmt::Display for LineLosses {
     }
 }
 
+/// The kernel heap as it stands: `used`, the bytes its allocations hold
+/// (each rounded up as the allocator rounds it), and `free_largest`, the
+/// largest block one allocation could get now. Text: `heap_used=N
+/// heap_free_largest=M`. A heap that leaks grows `used`; one that
+/// fragments shrinks `free_largest` though `used` is back where it was.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct HeapState {
+    pub used: usize,
+    pub free_largest: usize,
+}
+
+impl HeapState {
+    fn read(fields: &mut Fields<'_>) -> Option<Self> {
+        Some(Self { used: fields.parsed("heap_used")?, free_largest: fields.parsed("heap_free_largest")? })
+    }
+}
+
+impl fmt::Display for HeapState {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "heap_used={} heap_free_largest={}", self.used, self.free_largest)
+    }
+}
+
 /// The word a `PING` answer starts with.
 pub const PONG: &str = "pong";
 
-/// The `OK` text of `PING`: `pong overruns=N dropped=M`.
+/// The `OK` text of `PING`: `pong overruns=N dropped=M heap_used=U
+/// heap_free_largest=L`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Pong {
     pub losses: LineLosses,
+    pub heap: HeapState,
 }
 
 impl fmt::Display for Pong {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{PONG} {}", self.losses)
+        write!(f, "{PONG} {} {}", self.losses, self.heap)
     }
 }
 
@@ -131,7 +156,8 @@ impl Pong {
     pub fn parse(text: &str) -> Option<Self> {
         let mut fields = Fields::new(text.strip_prefix(PONG)?.strip_prefix(' ')?);
         let losses = LineLosses::read(&mut fields)?;
-        fields.end().then_some(Self { losses })
+        let heap = HeapState::read(&mut fields)?;
+        fields.end().then_some(Self { losses, heap })
     }
 }
 
@@ -304,11 +330,13 @@ mod tests {
     #[test]
     fn pongs_and_readies_round_trip_and_reject_garbage() {
         let losses = LineLosses { overruns: 2, dropped: 0 };
-        let pong = Pong { losses };
-        assert_eq!(pong.to_string(), "pong overruns=2 dropped=0");
+        let pong = Pong { losses, heap: HeapState { used: 70_000, free_largest: 4_100_000 } };
+        assert_eq!(pong.to_string(), "pong overruns=2 dropped=0 heap_used=70000 heap_free_largest=4100000");
         assert_eq!(Pong::parse(&pong.to_string()), Some(pong));
         assert_eq!(Pong::parse("pong"), None);
-        assert_eq!(Pong::parse("pong dropped=0 overruns=2"), None);
+        assert_eq!(Pong::parse("pong overruns=2 dropped=0"), None);
+        assert_eq!(Pong::parse("pong overruns=2 dropped=0 heap_free_largest=1 heap_used=2"), None);
+        assert_eq!(Pong::parse("pong dropped=0 overruns=2 heap_used=2 heap_free_largest=1"), None);
         assert!(!losses.none() && LineLosses::default().none());
 
         let display = Some(PciId { vendor: 0x1013, device: 0x00b8 });
