@@ -21,8 +21,9 @@ use std::time::{Duration, Instant};
 
 use ::fuzz::{Target, TARGETS};
 use anyhow::{bail, Context, Result};
+use boot_image::toolchain::ensure_toolchain;
 use harness::cargo::pinned;
-use harness::prerequisites::{ensure_cargo_fuzz, ensure_toolchain};
+use harness::prerequisites::ensure_cargo_fuzz;
 use harness::process::{command_line, run_streaming};
 use harness::workspace;
 use indicatif::{ProgressBar, ProgressStyle};

@@ -13,10 +13,11 @@
 use std::process::Command;
 
 use anyhow::{Context, Result};
-use harness::cargo::{host, pinned, NightlyBuild, KERNEL_TARGET, NIGHTLY_ONLY};
-use harness::prerequisites::{ensure_cairo, ensure_cxx, ensure_toolchain};
-use harness::process::run_streaming;
-use harness::workspace;
+use boot_image::cargo::{host, pinned, NightlyBuild, KERNEL_TARGET, NIGHTLY_ONLY};
+use boot_image::process::run_streaming;
+use boot_image::toolchain::ensure_toolchain;
+use boot_image::workspace;
+use harness::prerequisites::{ensure_cairo, ensure_cxx};
 
 pub fn lint() -> Result<()> {
     // Under `cargo xtask`, rustup names the running toolchain in
@@ -93,7 +94,7 @@ fn kernel_clippy() -> Command {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use harness::process::command_line;
+    use boot_image::process::command_line;
 
     #[test]
     fn host_clippy_covers_every_host_crate_with_the_pinned_nightly_and_denies_warnings() {

@@ -15,8 +15,8 @@ mod soak;
 mod test;
 
 use anyhow::Result;
+use boot_image::build_image;
 use clap::Parser;
-use harness::build_image;
 
 use crate::opt::{Action, Cli};
 

@@ -294,7 +294,7 @@ impl Console {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use protocol::{FrameHeader, HeapState};
+    use protocol::{Firmware, FrameHeader, HeapState, Video};
     use std::sync::mpsc::{self, Sender};
     use std::sync::{Arc, Mutex};
 
@@ -328,12 +328,15 @@ mod tests {
     fn commands_go_out_as_lines_and_replies_come_back_typed() {
         let (mut console, sent, _keep) = console(&[
             (FrameKind::Log, b"vga: CRTC 0x11 reads 0x0e"),
-            (FrameKind::Ready, b"display=1234:1111 vga_mismatches=1 overruns=0 dropped=0"),
+            (FrameKind::Ready, b"firmware=uefi display=1234:1111 video=vga13h vga_mismatches=1 overruns=0 dropped=0"),
             (FrameKind::Ok, b"pong overruns=3 dropped=1 heap_used=96 heap_free_largest=4096"),
             (FrameKind::List, b"scene abrash38-1\nshow race 240\nmethod abrash_float\n"),
         ]);
         let ready = console.wait_ready().unwrap();
-        assert_eq!((ready.display.unwrap().to_string(), ready.vga_mismatches), ("1234:1111".to_string(), 1));
+        assert_eq!(
+            (ready.firmware, ready.display.unwrap().to_string(), ready.video),
+            (Firmware::Uefi, "1234:1111".to_string(), Video::Vga13h { mismatches: 1 })
+        );
         let pong = console.pong().unwrap();
         assert_eq!(pong.losses, LineLosses { overruns: 3, dropped: 1 });
         assert_eq!(pong.heap, HeapState { used: 96, free_largest: 4096 });
