@@ -53,9 +53,11 @@ pub struct Convention {
 pub enum Heap {
     /// Never: its state is a fixed size and lives on the stack.
     Never,
-    /// Only for polygons that are not monotone in y (exact's active edge
-    /// table); triangles and convex polygons take nothing.
-    BeyondConvex,
+    /// Only for polygons of very many edges, whose tables do not fit on
+    /// the stack (`exact`: over 256 edges, or over 64 that may be 512 px
+    /// or longer), and then not at all from a caller's scratch that has
+    /// grown to them (`exact::fill_auto_with`).
+    ManyEdges,
     /// For every polygon: the port keeps its per-polygon tables in `Vec`s,
     /// where the original called `malloc` or used static arrays.
     EveryPolygon,
@@ -65,7 +67,7 @@ impl Heap {
     pub const fn name(self) -> &'static str {
         match self {
             Heap::Never => "never",
-            Heap::BeyondConvex => "beyond convex",
+            Heap::ManyEdges => "only polygons of over 256 edges",
             Heap::EveryPolygon => "every polygon",
         }
     }

@@ -116,11 +116,15 @@ impl Framebuffer {
 /// Sets every byte of `bytes` to `color`, as a span store: a span of up
 /// to 64 bytes is two stores of its width class (1, 4, 8, 16 or 32 bytes;
 /// the wide ones may be split into 16-byte stores on the baseline target),
-/// overlapping in the middle, with no loop and no call; a longer one is one
-/// `memset`, whose library version picks the widest stores the machine
-/// has. A `memset` call costs more than the whole store on the short spans
-/// that most polygons are made of, and less than a loop of 16-byte stores
-/// on long ones (whose exit is mispredicted once a span).
+/// overlapping in the middle, with no loop and no call. A longer one is,
+/// where the build targets a CPU with AVX2 (`-C target-cpu=native` on a
+/// recent x86-64, as `cargo xtask lab` builds), a loop of 64-byte blocks
+/// and one last block ending where the span does, all inline; elsewhere
+/// one `memset`, whose library version picks the widest stores the
+/// machine has. A `memset` call costs more than the whole store on the
+/// short spans that most polygons are made of, and more than inline
+/// 32-byte stores on rows a few hundred bytes long (`docs/lab.md`); with
+/// 16-byte stores only, the call is the cheaper.
 #[inline(always)]
 pub fn set_bytes(bytes: &mut [u8], color: u8) {
     let n = bytes.len();
@@ -143,6 +147,11 @@ pub fn set_bytes(bytes: &mut [u8], color: u8) {
     } else if n <= 64 {
         bytes[..32].copy_from_slice(&[color; 32]);
         bytes[n - 32..].copy_from_slice(&[color; 32]);
+    } else if cfg!(target_feature = "avx2") {
+        for block in bytes.as_chunks_mut::<64>().0 {
+            *block = [color; 64];
+        }
+        bytes[n - 64..].copy_from_slice(&[color; 64]);
     } else {
         bytes.fill(color);
     }

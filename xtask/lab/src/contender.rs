@@ -3,20 +3,23 @@
 
 use std::hint::black_box;
 
-use raster::methods::exact::Path;
+use raster::methods::exact::{fill_auto_with, Path, Scratch};
 use raster::reference::SampleOffset;
-use raster::{Framebuffer, Method, Polygon, SpanSink, SCREEN};
+use raster::{fill_auto, Framebuffer, Method, Polygon, SpanSink, SCREEN};
 
 use crate::corpus::Family;
 use crate::peers::Peer;
 
-/// A method of `raster`, a peer library, or one of `exact`'s paths asked
-/// for alone (only in "what modelling costs": not one of [`Contender::all`]).
+/// A method of `raster`, a peer library, or, only in "what modelling
+/// costs" (not one of [`Contender::all`]), one of `exact`'s paths asked
+/// for alone or `fill_auto`; those two fill with a [`Scratch`] kept from
+/// polygon to polygon, as a program drawing frame after frame would.
 #[derive(Clone, Copy)]
 pub enum Contender {
     Method(&'static dyn Method),
     Peer(Peer),
     Path(Path),
+    Auto,
 }
 
 impl Contender {
@@ -31,6 +34,7 @@ impl Contender {
             Contender::Method(m) => m.info().name,
             Contender::Peer(p) => p.name(),
             Contender::Path(path) => path.name(),
+            Contender::Auto => "fill_auto",
         }
     }
 
@@ -45,6 +49,7 @@ impl Contender {
             Contender::Method(m) => m.info().source,
             Contender::Peer(p) => p.source(),
             Contender::Path(_) => "ours: one of exact's paths alone",
+            Contender::Auto => "ours: exact's classification, then the path it picks",
         }
     }
 
@@ -58,6 +63,7 @@ impl Contender {
                 Peer::EmbeddedGraphics => "whole-pixel vertices; i32 scanline intersections, edges drawn".to_string(),
             },
             Contender::Path(path) => format!("exact's {} path; refuses polygons outside its class", path.name()),
+            Contender::Auto => "exact's fill_auto, with a scratch kept between polygons".to_string(),
         }
     }
 
@@ -66,7 +72,7 @@ impl Contender {
         match self {
             Contender::Method(m) => SampleOffset::of(&m.info().convention),
             Contender::Peer(p) => p.sample(),
-            Contender::Path(_) => SampleOffset::CENTRE,
+            Contender::Path(_) | Contender::Auto => SampleOffset::CENTRE,
         }
     }
 
@@ -74,7 +80,7 @@ impl Contender {
     pub fn accepts(&self, family: &Family) -> bool {
         match self {
             // A path is given every polygon: it must refuse what it cannot fill.
-            Contender::Method(_) | Contender::Path(_) => true,
+            Contender::Method(_) | Contender::Path(_) | Contender::Auto => true,
             Contender::Peer(p) => family.polygons.iter().all(|polygon| p.accepts(polygon)),
         }
     }
@@ -85,6 +91,7 @@ impl Contender {
             Contender::Method(m) => m.fill(polygon, sink).map_err(|refusal| refusal.describe()),
             Contender::Peer(p) => p.draw(polygon, sink),
             Contender::Path(path) => path.fill(polygon, sink).map_err(|refusal| refusal.describe()),
+            Contender::Auto => fill_auto(polygon, sink).map_err(|refusal| refusal.describe()),
         }
     }
 
@@ -116,10 +123,20 @@ impl Contender {
             Contender::Peer(p) => p.pass(polygons),
             Contender::Path(path) => {
                 let polygons = polygons.to_vec();
-                let mut screen = Framebuffer::new(SCREEN);
+                let (mut screen, mut scratch) = (Framebuffer::new(SCREEN), Scratch::new());
                 Box::new(move || {
                     for polygon in &polygons {
-                        let _ = path.fill(polygon, &mut screen);
+                        let _ = path.fill_with(polygon, &mut screen, &mut scratch);
+                    }
+                    black_box(&mut screen);
+                })
+            }
+            Contender::Auto => {
+                let polygons = polygons.to_vec();
+                let (mut screen, mut scratch) = (Framebuffer::new(SCREEN), Scratch::new());
+                Box::new(move || {
+                    for polygon in &polygons {
+                        let _ = fill_auto_with(polygon, &mut screen, &mut scratch);
                     }
                     black_box(&mut screen);
                 })

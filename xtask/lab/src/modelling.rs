@@ -59,7 +59,7 @@ impl Lane {
     fn contender(self) -> Option<Contender> {
         match self {
             Lane::Path(path) => Some(Contender::Path(path)),
-            Lane::Auto => Some(Contender::Method(MethodId::Exact.method())),
+            Lane::Auto => Some(Contender::Auto),
             Lane::Dispatch | Lane::Classify => None,
         }
     }
@@ -99,7 +99,9 @@ pub struct PathRow {
     pub failures: Option<u64>,
     /// Only where the lane takes every polygon of the family.
     pub ns_per_polygon: Option<f64>,
-    /// Heap allocations per polygon (`None` where they are not counted).
+    /// Heap allocations per polygon once the lane has run over the family
+    /// (a scratch has grown to the largest polygon), `None` where they are
+    /// not counted.
     pub allocations_per_polygon: Option<f64>,
     /// For a path: the polygons `fill_auto` sends down it.
     pub chosen_by_fill_auto: Option<u64>,
@@ -150,8 +152,10 @@ pub fn measure(family: &Family, timing: Timing, progress: &(dyn Fn() + Sync)) ->
         .zip(&takes_all)
         .map(|(&(lane, contender, tally), &takes)| {
             let ns = if takes { times.pop().flatten() } else { None };
-            // The pass is made first: only the fills' own allocations count.
-            let pass = lane.run(&polygons, contender);
+            // The pass is made and run once first: only the fills' own
+            // allocations in a steady state count, not a scratch growing.
+            let mut pass = lane.run(&polygons, contender);
+            pass();
             let allocations = heap::per_item(polygons.len(), pass);
             PathRow {
                 family: family.name,

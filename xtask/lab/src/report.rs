@@ -167,8 +167,10 @@ fn modelling_tables(out: &mut String, results: &Results) {
         "## What modelling costs\n\nEach family drawn by `{EXACT}` through each of its paths alone (a path refuses \
          polygons outside its class), by `fill_auto` (its classification, then the path it picks), and classified \
          alone: `dispatch` is `fill_auto`'s own classification, `classify` is `raster::classify` (every class, \
-         simplicity included). Cells: time per polygon, time over the cheapest path's that takes the whole family, \
-         heap allocations per polygon; ← marks the path `fill_auto` picks, with how many polygons.\n"
+         simplicity included). The paths and `fill_auto` keep one `Scratch` from polygon to polygon, as a program \
+         drawing frame after frame would. Cells: time per polygon, time over the cheapest path's that takes the \
+         whole family, heap allocations per polygon once the lane has gone over the family (a scratch grown to the \
+         largest polygon allocates no more); ← marks the path `fill_auto` picks, with how many polygons.\n"
     );
     let lanes = crate::modelling::Lane::ALL.map(|lane| lane.name());
     let _ = writeln!(out, "| family | {} |\n|---|{}", lanes.join(" | "), "---:|".repeat(lanes.len()));

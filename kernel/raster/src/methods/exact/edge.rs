@@ -59,7 +59,7 @@ pub(super) fn visible_column(column: i64, width: i32) -> i32 {
 /// own x range (below 2^24 in size) on every row the edge meets, and moves
 /// at most `|dx| / dy + 1 < 2^33` per step, so it fits an `i64` even a step
 /// past the edge's last row, where the fills leave it unused.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(super) struct EdgeStepper {
     /// First pixel column at or right of the crossing on the current row.
     pub column: i64,
@@ -187,7 +187,7 @@ impl EdgeStepper {
 
 /// What the row loops need of an edge: its crossing column on the current
 /// row, and the move to the next row.
-pub(super) trait Crossing: Copy {
+pub(super) trait Crossing: Copy + Default + core::fmt::Debug {
     /// The edge from `top` down to `bottom` on scan line `row`, which it
     /// must meet.
     fn at_row(top: Point, bottom: Point, row: i64) -> Self;
@@ -256,7 +256,7 @@ const SHORT: i64 = 1 << 17;
 /// `t < dy`; `x_top * 2^27` is below `2^58` for any `i32`, and the position
 /// stays within a pixel of the edge's x range (in `i32`) on its rows, or a
 /// step past them: under `2^59` in size, so no `i64` overflows.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(super) struct ShortEdge {
     /// The crossing, rounded up, plus `1 - 2^-25` px, in `2^-35` px.
     position: i64,

@@ -37,9 +37,11 @@
 mod active_edges;
 mod edge;
 mod monotone;
+mod tables;
 
 use active_edges::fill_active_edges;
 use monotone::{fill_monotone, fill_triangle};
+pub use tables::Scratch;
 
 use crate::classify::{is_monotone, Shape};
 use crate::geometry::{FillRule, Point, Polygon};
@@ -63,7 +65,7 @@ static INFO: MethodInfo = MethodInfo {
         "i32 vertices in 1/256 px; i64 edge setup (i128 for edges over 2^23 px), i64 error-term stepping (exact fixed point for polygons under 512 px); no floats",
     handles: Class::Complex,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
-    heap: Heap::BeyondConvex,
+    heap: Heap::ManyEdges,
 };
 
 impl Builtin for Exact {
@@ -116,6 +118,27 @@ impl Path {
     /// Fills `polygon` exactly by this path, or refuses it with
     /// [`Refusal::OutsideClass`] if it is not of the path's class.
     pub fn fill<S: SpanSink + ?Sized>(self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
+        self.fill_in(polygon, sink, None)
+    }
+
+    /// [`Path::fill`] with the caller's [`Scratch`] for polygons too large
+    /// for the tables the active-edge path keeps on the stack.
+    pub fn fill_with<S: SpanSink + ?Sized>(
+        self,
+        polygon: &Polygon,
+        sink: &mut S,
+        scratch: &mut Scratch,
+    ) -> Result<(), Refusal> {
+        self.fill_in(polygon, sink, Some(scratch))
+    }
+
+    /// [`Path::fill_with`], with or without a caller's scratch.
+    fn fill_in<S: SpanSink + ?Sized>(
+        self,
+        polygon: &Polygon,
+        sink: &mut S,
+        scratch: Option<&mut Scratch>,
+    ) -> Result<(), Refusal> {
         if !self.takes(polygon) {
             return Err(Refusal::OutsideClass);
         }
@@ -129,7 +152,7 @@ impl Path {
                 fill_monotone(contour, polygon.color, size, sink);
                 Ok(())
             }
-            _ => fill_active_edges(polygon, size, sink),
+            _ => fill_active_edges(polygon, size, sink, scratch),
         }
     }
 }
@@ -190,6 +213,30 @@ pub fn choose_path(polygon: &Polygon) -> Option<Path> {
 /// Simple and complex polygons share that path, so telling them apart would
 /// cost without saving anything.
 pub fn fill_auto<S: SpanSink + ?Sized>(polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
+    fill_auto_in(polygon, sink, None)
+}
+
+/// [`fill_auto`] with the caller's [`Scratch`], for polygons too large
+/// for the tables the active-edge path keeps on the stack (over 256 edges,
+/// or over 64 when they may be 512 px or longer): kept from fill to fill,
+/// it allocates only when a polygon needs more room than every one before
+/// it, so a caller drawing frame after frame allocates nothing once it has
+/// drawn the largest polygon.
+pub fn fill_auto_with<S: SpanSink + ?Sized>(
+    polygon: &Polygon,
+    sink: &mut S,
+    scratch: &mut Scratch,
+) -> Result<(), Refusal> {
+    fill_auto_in(polygon, sink, Some(scratch))
+}
+
+/// [`fill_auto_with`], with or without a caller's scratch.
+#[inline(always)]
+fn fill_auto_in<S: SpanSink + ?Sized>(
+    polygon: &Polygon,
+    sink: &mut S,
+    scratch: Option<&mut Scratch>,
+) -> Result<(), Refusal> {
     let size = sink.size();
     if size.width <= 0 || size.height <= 0 {
         return Ok(());
@@ -204,7 +251,7 @@ pub fn fill_auto<S: SpanSink + ?Sized>(polygon: &Polygon, sink: &mut S) -> Resul
             fill_monotone(contour, polygon.color, size, sink);
             Ok(())
         }
-        Route::ActiveEdges => fill_active_edges(polygon, size, sink),
+        Route::ActiveEdges => fill_active_edges(polygon, size, sink, scratch),
     }
 }
 
