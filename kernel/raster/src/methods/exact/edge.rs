@@ -34,10 +34,11 @@ pub(super) fn visible_rows(top_y: i32, bottom_y: i32, height: i32) -> Range<i64>
 /// A pixel column clamped to the target's `0..=width`. Clamping every
 /// crossing keeps the inside test of each visible pixel unchanged: a
 /// crossing left of the target still counts for all of it, one right of it
-/// for none.
+/// for none. (Not `clamp`, whose check that the bounds are in order
+/// would be made on every row: `width` is never negative here.)
 #[inline(always)]
 pub(super) fn visible_column(column: i64, width: i32) -> i32 {
-    column.clamp(0, width.into()) as i32
+    column.max(0).min(width.into()) as i32
 }
 
 /// An edge walking down the scan lines it meets.
