@@ -10,6 +10,17 @@ use raster::{fill_auto, Framebuffer, Method, Polygon, SpanSink, SCREEN};
 use crate::corpus::Family;
 use crate::peers::Peer;
 
+/// How a contender decides which pixels are in: what the lab judges it
+/// against "under its own convention".
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Own {
+    /// At one sample point a pixel, in subpixels from its corner.
+    Sample(SampleOffset),
+    /// By the part of the pixel covered: in where it is above
+    /// `threshold / 255` ([`crate::area`]).
+    Coverage { threshold: u8 },
+}
+
 /// A method of `raster`, a peer library, or, only in "what modelling
 /// costs" (not one of [`Contender::all`]), one of `exact`'s paths asked
 /// for alone or `fill_auto`; those two fill with a [`Scratch`] kept from
@@ -57,22 +68,19 @@ impl Contender {
     pub fn summary(&self) -> String {
         match self {
             Contender::Method(m) => format!("{}; {}", m.info().numeric, m.info().convention.summary),
-            Contender::Peer(p) => match p {
-                Peer::TinySkia => "f32 path, 26.6 fixed-point edges; pixel centres".to_string(),
-                Peer::Cairo => "f64 path, 24.8 fixed-point edges; pixel centres".to_string(),
-                Peer::EmbeddedGraphics => "whole-pixel vertices; i32 scanline intersections, edges drawn".to_string(),
-            },
+            Contender::Peer(p) => p.summary().to_string(),
             Contender::Path(path) => format!("exact's {} path; refuses polygons outside its class", path.name()),
             Contender::Auto => "exact's fill_auto, with a scratch kept between polygons".to_string(),
         }
     }
 
-    /// Where it samples a pixel: its own convention, for the reference.
-    pub fn sample(&self) -> SampleOffset {
+    /// How it decides which pixels are in: its own convention, for the
+    /// reference.
+    pub fn own(&self) -> Own {
         match self {
-            Contender::Method(m) => SampleOffset::of(&m.info().convention),
-            Contender::Peer(p) => p.sample(),
-            Contender::Path(_) | Contender::Auto => SampleOffset::CENTRE,
+            Contender::Method(m) => Own::Sample(SampleOffset::of(&m.info().convention)),
+            Contender::Peer(p) => p.own(),
+            Contender::Path(_) | Contender::Auto => Own::Sample(SampleOffset::CENTRE),
         }
     }
 

@@ -1,5 +1,5 @@
 //! The polygon-fill lab (`cargo xtask lab`): every method of `raster`, the
-//! peers (tiny-skia, Cairo, embedded-graphics) and three bounds (memset,
+//! peers (tiny-skia, Cairo, embedded-graphics, vello_cpu) and three bounds (memset,
 //! span stores, the dyn-sink replay) on one seeded corpus; accuracy against
 //! `raster::reference`, speed in wall-clock time; results.json, report.md
 //! and the charts under the output directory.
@@ -21,9 +21,11 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 
+pub mod area;
 pub mod charts;
 pub mod contender;
 pub mod corpus;
+pub mod goals;
 pub mod heap;
 pub mod measure;
 pub mod modelling;
@@ -105,6 +107,7 @@ fn measure_corpus(quick: bool, budget: Budget, timing: Timing) -> Results {
     bar.set_message("modelling the show");
     results.show_modelling = modelling::measure_show(timing);
     bar.finish_and_clear();
+    results.goals = goals::measure(&results);
     results
 }
 
