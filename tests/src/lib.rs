@@ -36,7 +36,7 @@ pub mod webdriver;
 pub mod workspace;
 
 pub use compare::compare_images;
-pub use console::{Console, Dump, Listing, Reply, Shown};
+pub use console::{BenchRow, Console, Dump, Listing, Reply, Shown};
 pub use image::build_image;
 pub use picture::Image;
 pub use qemu::{Adapter, Clock, Display, Medium, Qemu, QemuOptions};

@@ -112,6 +112,30 @@ pub enum Refusal {
 }
 
 impl Refusal {
+    pub const ALL: [Refusal; 5] = [
+        Refusal::MultipleContours,
+        Refusal::OutOfRange,
+        Refusal::TooManyVertices,
+        Refusal::OutOfMemory,
+        Refusal::OutsideClass,
+    ];
+
+    /// One word for it, in the protocol's replies.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Refusal::MultipleContours => "multiple-contours",
+            Refusal::OutOfRange => "out-of-range",
+            Refusal::TooManyVertices => "too-many-vertices",
+            Refusal::OutOfMemory => "out-of-memory",
+            Refusal::OutsideClass => "outside-class",
+        }
+    }
+
+    /// The refusal [`Refusal::name`] gives `name`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Refusal::ALL.into_iter().find(|refusal| refusal.name() == name)
+    }
+
     pub const fn describe(self) -> &'static str {
         match self {
             Refusal::MultipleContours => "several contours, method takes one",
@@ -120,5 +144,19 @@ impl Refusal {
             Refusal::OutOfMemory => "out of memory",
             Refusal::OutsideClass => "outside the path's class",
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_refusal_has_a_name_of_its_own_that_parses_back() {
+        for refusal in Refusal::ALL {
+            assert_eq!(Refusal::from_name(refusal.name()), Some(refusal));
+            assert!(!refusal.name().contains(' '), "{}", refusal.name());
+        }
+        assert_eq!(Refusal::from_name("refused"), None);
     }
 }

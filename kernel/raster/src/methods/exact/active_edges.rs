@@ -21,6 +21,8 @@
 //! does instead ([`emit_by_columns`]). Where the tables live is
 //! [`tables`](super::tables)' business: nothing here allocates.
 
+use core::ops::Range;
+
 use crate::geometry::{FillRule, Polygon};
 use crate::method::Refusal;
 use crate::sink::{Size, SpanSink};
@@ -155,25 +157,90 @@ fn walk<const NON_ZERO: bool, const CLIP: bool, E: Crossing, S: SpanSink + ?Size
                 columns[k] = target.width;
                 planned = plan::<NON_ZERO, _>(&active[..k], runs);
             }
-            (row, settled) = if let ([a, b], [Run { open: 0, close: 1 }]) = (&mut active[..k], &runs[..planned]) {
+            if let ([a, b], [Run { open: 0, close: 1 }]) = (&mut active[..k], &runs[..planned]) {
                 two_chains::<CLIP, _, _>(row..end, [a, b], edges, target, sink);
+                row = end;
                 columns[0] = visible::<CLIP>(a.stepper.column(), target.width);
                 columns[1] = visible::<CLIP>(b.stepper.column(), target.width);
-                (end, columns[0] <= columns[1])
+                settled = columns[0] <= columns[1];
+                continue;
+            }
+            // Up to the next vertex every edge stays the same straight line.
+            let segment = row..next_vertex_row(&active[..k]).min(end);
+            let (active, columns) = (&mut active[..k], &mut columns[..=k]);
+            // Fewer rows than this walk faster by rows.
+            const FEW: i64 = 3;
+            let paired = rows_in_pairs(segment.clone(), active, &runs[..planned]);
+            if paired > FEW {
+                let rows = row..row + paired;
+                for run in &runs[..planned] {
+                    let (left, right) = active.split_at_mut(run.close as usize);
+                    let (a, b) = (&mut left[run.open as usize].stepper, &mut right[0].stepper);
+                    span_rows::<true, CLIP, _, _>(rows.clone(), a, b, target.color, target.width, sink);
+                }
+                row = rows.end;
             } else {
-                let tables = Tables {
-                    edges: &mut [],
-                    chains: &mut [],
-                    starts: &mut [],
-                    active: &mut active[..k],
-                    columns: &mut columns[..=k],
-                    runs,
-                    wide: None,
-                };
-                rows_in_order::<NON_ZERO, CLIP, _, _>(row..end, tables, edges, &mut planned, target, sink)
-            };
+                let tables =
+                    Tables { edges: &mut [], chains: &mut [], starts: &mut [], active, columns, runs, wide: None };
+                let sorted;
+                (row, sorted) =
+                    rows_in_order::<NON_ZERO, CLIP, _, _>(segment.clone(), tables, &mut planned, target, sink);
+                if !sorted {
+                    settled = false;
+                    continue;
+                }
+            }
+            // At the vertex, chains whose edge ended go on with their next.
+            let (mut in_order, mut previous) = (true, 0);
+            for (chain, column) in active.iter_mut().zip(columns.iter_mut()) {
+                chain.resume(row, edges);
+                *column = visible::<CLIP>(chain.stepper.column(), target.width);
+                in_order &= previous <= *column;
+                previous = *column;
+            }
+            settled = in_order;
         }
     }
+}
+
+/// For how many of `rows` (the rows up to the next vertex, so every edge
+/// is one straight line over them) the runs of `active` can be walked one
+/// after the other, each as two edges: none where some crossing opens or
+/// closes no run (or one reaches the right border), or where the
+/// crossings' positions ([`Crossing::position_in`]) are not in order on
+/// the first row; else up to the first row where two neighbours' positions
+/// swap, if they do. Positions are linear in the row, so they stay in
+/// order until then, and so do the columns: each run's opening crossing is
+/// never right of its closing one. (Finding where two neighbours swap is
+/// one division, for those that do.)
+#[inline(always)]
+fn rows_in_pairs<E: Crossing>(rows: Range<i64>, active: &[Active<E>], runs: &[Run]) -> i64 {
+    if 2 * runs.len() != active.len() || runs.iter().any(|run| run.close as usize == active.len()) {
+        return 0;
+    }
+    let (count, last) = (rows.end - rows.start, rows.end - rows.start - 1);
+    let mut hold = count;
+    // The previous crossing's position on the first row and its step.
+    let mut previous: Option<(i64, i64)> = None;
+    for chain in active {
+        let (Some(first), Some(next)) = (chain.stepper.position_in(0), chain.stepper.position_in(1)) else {
+            return 0;
+        };
+        let step = next - first;
+        if let Some((previous_first, previous_step)) = previous {
+            let (gap, closing) = (first - previous_first, previous_step - step);
+            if gap < 0 {
+                return 0;
+            }
+            // The gap closes by `closing` a row: it is below zero first on
+            // row `gap / closing + 1`, if that is not past the last.
+            if closing > 0 && gap / closing < last {
+                hold = hold.min(gap / closing + 1);
+            }
+        }
+        previous = Some((first, step));
+    }
+    hold
 }
 
 /// Two chains with the inside between them, outside right of both, over
@@ -182,7 +249,7 @@ fn walk<const NON_ZERO: bool, const CLIP: bool, E: Crossing, S: SpanSink + ?Size
 /// their vertices, where each chain takes its next edge.
 #[inline(always)]
 fn two_chains<const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(
-    rows: core::ops::Range<i64>,
+    rows: Range<i64>,
     [a, b]: [&mut Active<E>; 2],
     edges: &[tables::Edge<E>],
     target: Target,
@@ -224,23 +291,23 @@ fn plan<const NON_ZERO: bool, E>(active: &[Active<E>], runs: &mut [Run]) -> usiz
     count + usize::from(is_inside::<NON_ZERO>(winding))
 }
 
-/// Emits the runs of `tables` on each of `rows` and steps the edges,
+/// Emits the runs of `tables` on each of `rows` (rows up to a vertex, so
+/// every edge goes on over them) and steps the edges to the row after,
 /// keeping them in order (and `planned`, the count of runs, with it) where
-/// a few of them cross, until the rows end or until the order needs a
-/// full sort; returns that row and whether the edges are in order there.
+/// a few of them cross; returns that row, or an earlier one where the
+/// order needs a full sort, and whether the edges are sorted there.
 /// `tables.columns` are the edges' visible columns on the first row, and
 /// the right border.
 #[inline(always)]
 fn rows_in_order<const NON_ZERO: bool, const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(
-    rows: core::ops::Range<i64>,
+    rows: Range<i64>,
     tables: Tables<'_, E>,
-    edges: &[tables::Edge<E>],
     planned: &mut usize,
     target: Target,
     sink: &mut S,
 ) -> (i64, bool) {
     let Tables { active, columns, runs, .. } = tables;
-    let (mut row, mut vertex_row) = (rows.start, next_vertex_row(active));
+    let mut row = rows.start;
     loop {
         for run in &runs[..*planned] {
             let (start, end) = (columns[run.open as usize], columns[run.close as usize]);
@@ -250,27 +317,20 @@ fn rows_in_order<const NON_ZERO: bool, const CLIP: bool, E: Crossing, S: SpanSin
             }
         }
         row += 1;
-        // Only a row where some edge ends needs the test for each edge.
-        if row == vertex_row {
-            for chain in active.iter_mut() {
-                chain.advance(row, edges);
-            }
-            vertex_row = next_vertex_row(active);
-        } else {
+        if row == rows.end {
+            // The caller takes each chain past the vertex, then its column.
             for chain in active.iter_mut() {
                 chain.stepper.step();
             }
+            return (row, true);
         }
         // Visible columns are never negative.
         let (mut in_order, mut previous) = (true, 0);
-        let columns_now = &mut columns[..active.len()];
-        for (chain, column) in active.iter().zip(columns_now.iter_mut()) {
+        for (chain, column) in active.iter_mut().zip(columns.iter_mut()) {
+            chain.stepper.step();
             *column = visible::<CLIP>(chain.stepper.column(), target.width);
             in_order &= previous <= *column;
             previous = *column;
-        }
-        if row == rows.end {
-            return (row, in_order);
         }
         if !in_order {
             // Under the even-odd rule the runs pair the crossings in order
@@ -282,7 +342,6 @@ fn rows_in_order<const NON_ZERO: bool, const CLIP: bool, E: Crossing, S: SpanSin
             if NON_ZERO {
                 *planned = plan::<NON_ZERO, _>(active, runs);
             }
-            vertex_row = next_vertex_row(active);
         }
     }
 }
