@@ -1,4 +1,4 @@
-//! The protocol server on COM1 (kernel/protocol/src/lib.rs is the spec):
+//! The protocol server on COM1 (the `protocol` crate is the spec):
 //! one command line in, one frame out. Whatever arrives, the console
 //! answers and keeps serving: a bad line gets an `ERR` frame naming the
 //! problem, an over-long one is thrown away up to its newline, and no byte

@@ -1,13 +1,14 @@
 //! The end-to-end checks that the integration tests and the xtask share.
 
 use anyhow::{ensure, Context, Result};
+use protocol::ShowReply;
 use raster::MethodId;
 use scenes::{builtin, show};
 
-use crate::compare::{compare_images, compare_palettes};
-use crate::console::{Console, Dump, Shown};
+use crate::picture::compare::{compare_images, compare_palettes};
+use crate::picture::render::{builtin_scene, render, render_show, show_entry, SceneSource};
 use crate::picture::Image;
-use crate::render::{builtin_scene, render, render_show, show_entry, SceneSource};
+use crate::qemu::console::{Console, Dump};
 
 /// QEMU shows each mode-13h pixel as a 2x2 block of its 640x400 screen.
 pub const SCREEN_SCALE: u32 = 2;
@@ -49,13 +50,13 @@ pub fn show_matches_host_render(
     entry: &str,
     frame: u32,
     method: Option<MethodId>,
-) -> Result<(Shown, Dump)> {
+) -> Result<(ShowReply<'static>, Dump)> {
     let entry = show_entry(entry)?;
     let drawn_with = method.unwrap_or(entry.method_at(frame));
     let name = format!("{}.{frame}.{drawn_with}.show", entry.name);
     let reply = console.show(entry.name, frame, method).with_context(|| format!("kernel failed to show {name}"))?;
     let asked = (entry.name, entry.wrap(frame), drawn_with);
-    let said = (reply.entry.as_str(), reply.frame, reply.method);
+    let said = (reply.entry, reply.frame, reply.method);
     ensure!(said == asked, "{name}: the kernel says it showed {said:?}, not {asked:?}");
     let dump = console.dump()?;
     let expected = render_show(entry, frame, drawn_with.method(), reply.cycles);

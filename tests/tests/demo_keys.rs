@@ -20,7 +20,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::{bail, ensure, Context, Result};
 use harness::checks::{as_on_screen, SCREEN_SCALE};
-use harness::compare::{compare_image_rows, images_match_in_rows};
+use harness::picture::compare::{compare_image_rows, images_match_in_rows};
 use harness::render::{render_show, show_entry};
 use harness::{Image, Qemu, QemuOptions, Reply};
 use protocol::Command;

@@ -6,12 +6,13 @@ use std::sync::OnceLock;
 use std::time::Duration;
 
 use anyhow::{ensure, Context, Result};
+use explorer_site::{write_page, PageServer};
+use harness::browser::webdriver::Session;
 use harness::browser::Browser;
-use harness::explorer::{write_page, PageServer};
+use harness::compare_images;
 use harness::picture::Image;
 use harness::render::{builtin_scene, render};
 use harness::workspace;
-use harness::{compare_images, webdriver::Session};
 use raster::{CoverageSink, MethodId, Point, SCREEN};
 use serde_json::json;
 

@@ -4,7 +4,7 @@
 
 use anyhow::{ensure, Result};
 use harness::checks::dump_matches_host_render;
-use harness::compare::compare_palettes;
+use harness::picture::compare::compare_palettes;
 use harness::{Qemu, QemuOptions};
 use protocol::Command;
 use raster::MethodId;

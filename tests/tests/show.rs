@@ -7,7 +7,8 @@
 
 use anyhow::{bail, ensure, Result};
 use harness::checks::show_matches_host_render;
-use harness::{Qemu, QemuOptions, Reply, Shown};
+use harness::{Qemu, QemuOptions, Reply};
+use protocol::ShowReply;
 use raster::{Heap, MethodId};
 use scenes::show::{self, Entry, ENTRIES_IN_ORDER};
 
@@ -25,8 +26,8 @@ fn sampled_frames(entry: &Entry) -> Vec<u32> {
 /// says it takes nothing for convex polygons (the show's own polygons all
 /// are). The faithful ports that keep per-polygon tables in `Vec`s
 /// (`Heap::EveryPolygon`) allocate on every frame, and say so.
-fn own_method_problems(reply: &Shown, again: bool) -> Vec<String> {
-    let Shown { entry, frame, method, allocs, polygons, refused, strays, .. } = reply;
+fn own_method_problems(reply: &ShowReply, again: bool) -> Vec<String> {
+    let ShowReply { entry, frame, method, allocs, polygons, refused, strays, .. } = reply;
     let mut problems = Vec::new();
     if *refused != 0 || *strays != 0 {
         problems.push(format!("{entry} frame {frame} with its own {method}: refused={refused} strays={strays}"));

@@ -3,7 +3,6 @@
 //! library, shared with the tests.
 
 mod dump;
-mod explore;
 mod kbench;
 mod lab;
 mod lint;
@@ -34,6 +33,6 @@ fn main() -> Result<()> {
         Action::Lab(opt) => lab::lab(&opt),
         Action::Lint => lint::lint(),
         Action::Kbench(opt) => kbench::kbench(&opt),
-        Action::Explore(opt) => explore::explore(&opt),
+        Action::Explore(opt) => explorer_site::explore(opt.out.as_deref(), opt.results.as_deref()),
     }
 }

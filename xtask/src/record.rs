@@ -10,8 +10,9 @@ use std::path::Path;
 use anyhow::{bail, ensure, Context, Result};
 use harness::checks::show_matches_host_render;
 use harness::render::show_entry;
-use harness::{Clock, Console, Dump, Qemu, QemuOptions, Shown};
+use harness::{Clock, Console, Dump, Qemu, QemuOptions};
 use indicatif::{ProgressBar, ProgressStyle};
+use protocol::ShowReply;
 use raster::{MethodId, SCREEN};
 use scenes::palette::{to_rgb8, ENTRIES};
 use scenes::show::{Entry, FRAMES_PER_SECOND};
@@ -85,7 +86,7 @@ impl<'a> Recording<'a> {
     /// Films the frames through `console` (`SHOW`, `DUMP`) into the
     /// partial file, renamed to `out` once complete, with a progress bar;
     /// returns the kernel's replies.
-    pub fn film(self, console: &mut Console) -> Result<Vec<Shown>> {
+    pub fn film(self, console: &mut Console) -> Result<Vec<ShowReply<'static>>> {
         let Self { out, partial, .. } = self;
         let Some((&first, rest)) = self.frames.split_first() else { bail!("no frames to record") };
         let bar = ProgressBar::new(self.frames.len() as u64).with_style(
@@ -152,7 +153,7 @@ fn shoot(
     frame: u32,
     method: Option<MethodId>,
     verify: bool,
-) -> Result<(Shown, Dump)> {
+) -> Result<(ShowReply<'static>, Dump)> {
     if verify {
         return show_matches_host_render(console, entry.name, frame, method);
     }
@@ -164,7 +165,7 @@ fn shoot(
 /// order first met: frames, the median and the largest rdtsc ticks of a
 /// frame's draw (emulated instructions), and the median allocations per
 /// frame.
-pub fn summary(shown: &[Shown]) -> String {
+pub fn summary(shown: &[ShowReply]) -> String {
     let mut methods: Vec<MethodId> = Vec::new();
     for reply in shown {
         if !methods.contains(&reply.method) {
@@ -309,8 +310,8 @@ mod tests {
 
     #[test]
     fn the_summary_gives_each_method_its_median_and_largest_cycles() {
-        let reply = |method: MethodId, cycles: u64, allocs: u64| Shown {
-            entry: String::from("race"),
+        let reply = |method: MethodId, cycles: u64, allocs: u64| ShowReply {
+            entry: "race",
             frame: 0,
             method,
             cycles,

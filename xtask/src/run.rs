@@ -202,7 +202,7 @@ mod tests {
         let page = show::entry("abrash38-2").expect("a page of the show");
         let expected = render_show(page, 0, MethodId::Wgt.method(), 0);
         let written = harness::Image::read_png(&dir.path().join("abrash38-2.png"))?;
-        harness::compare::compare_image_rows("run.abrash38-2.wgt", &expected, &written, 0..188)?;
+        harness::picture::compare::compare_image_rows("run.abrash38-2.wgt", &expected, &written, 0..188)?;
         Ok(())
     }
 

@@ -1,5 +1,5 @@
 // The explorer page's script. All the geometry is the `raster` and `scenes`
-// code in explorer.wasm (xtask/explorer/src/exports.rs documents the calls);
+// code in explorer.wasm (xtask/explorer/engine/src/exports.rs documents the calls);
 // this script only draws what the module returns, handles the pointer, and
 // keeps the address's fragment in step with the state.
 "use strict";

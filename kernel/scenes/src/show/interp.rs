@@ -23,8 +23,8 @@
 //! below 2^63 (see [`Plane::new`]); a triangle beyond the bounds is refused
 //! as [`Refusal::OutOfRange`], a triangle of zero area draws nothing.
 
+use super::scratch::Scratch;
 use super::trig::div_round;
-use super::Scratch;
 use crate::scene::DrawReport;
 use raster::geometry::{Point, SUBPIXEL_BITS, SUBPIXEL_ONE};
 use raster::sink::{Framebuffer, Size, SpanSink};

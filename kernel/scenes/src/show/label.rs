@@ -12,7 +12,7 @@ use core::fmt::{self, Write};
 
 use font8x8::legacy::BASIC_LEGACY;
 
-use super::Entry;
+use super::entries::Entry;
 use raster::sink::SpanSink;
 
 /// A glyph's width and height in pixels.
@@ -120,7 +120,7 @@ fn put(target: &mut dyn SpanSink, x_start: i32, y: i32, x_end: i32, color: u8) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::show::ENTRIES_IN_ORDER;
+    use crate::show::entries::{entry, ENTRIES_IN_ORDER};
     use raster::sink::{self, Framebuffer, SCREEN};
 
     const BACKGROUND: u8 = 3;
@@ -157,7 +157,7 @@ mod tests {
 
     #[test]
     fn labels_stay_in_their_rows() {
-        let race = super::super::entry("race").unwrap();
+        let race = entry("race").unwrap();
         let mut target = screen();
         draw_labels(&mut target, race, 41, "lamothe_fixed", u64::MAX);
         let mut touched = 0;
@@ -204,8 +204,8 @@ mod tests {
 
     #[test]
     fn still_entries_have_no_frame_counter() {
-        let still = super::super::entry("wgt-triangle").unwrap();
-        let animated = super::super::entry("lamothe-rotate").unwrap();
+        let still = entry("wgt-triangle").unwrap();
+        let animated = entry("lamothe-rotate").unwrap();
         let right_edge = |entry: &Entry| {
             let mut target = screen();
             draw_labels(&mut target, entry, 0, "wgt", 7);

@@ -16,8 +16,8 @@
 //! `Draw_Filled_Polygon2D` does not clip, "all vertex points must be within
 //! the clipping region".
 
+use super::scratch::Scratch;
 use super::trig::{angle_at, offset, polar, rotate, TURN};
-use super::Scratch;
 use crate::scene::DrawReport;
 use raster::geometry::Point;
 use raster::sink::Framebuffer;
@@ -95,7 +95,7 @@ mod tests {
     use raster::sink::SCREEN;
 
     fn frame(frame: u32, method: &dyn Method) -> (Framebuffer, DrawReport) {
-        super::super::drawn_alone(draw, frame, method)
+        super::super::scratch::drawn_alone(draw, frame, method)
     }
 
     #[test]

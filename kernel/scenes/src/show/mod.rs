@@ -2,216 +2,41 @@
 //! and what the host renders to check it byte for byte.
 //!
 //! An [`Entry`] is one scene of the show: a still page of a seed (the
-//! [`builtin`] table's) or an animation. Frame `f` of an entry is a pure
+//! [`builtin`](crate::builtin) table's) or an animation. Frame `f` of an entry is a pure
 //! function of `(entry, f, method)`, drawn into a [`Stage`] whose memory is
 //! allocated once, so the kernel draws frame after frame without touching
 //! the heap. Labels (scene, method, measured cycles) are drawn afterwards
 //! by [`Stage::label`], with the cycles the kernel measured: the host gets
 //! them from the kernel's reply and renders the same pixels.
+//!
+//! The types the animations share live in modules of their own, beside
+//! them: the entries (`entries`), the pace (`pace`), the palette's ramps
+//! (`ramp`) and the reusable polygon (`scratch`).
 
+mod entries;
 mod interp;
 mod label;
 mod lamothe;
+mod pace;
 mod race;
+mod ramp;
+mod scratch;
 mod shaded;
 mod trig;
 
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::builtin::{self, Builtin};
-use crate::palette::{ENTRIES, VGA_DEFAULT};
 use crate::scene::{DrawReport, Scene};
-use raster::geometry::{Point, Polygon};
+use entries::Kind;
 use raster::sink::{self, Framebuffer, SpanSink, SCREEN};
-use raster::{Method, MethodId};
+use raster::Method;
+use scratch::Scratch;
 
-/// Frames per second the show is paced at: every second retrace of mode
-/// 13h's 70 Hz refresh.
-pub const FRAMES_PER_SECOND: u32 = 35;
-/// How long a still page stays up in the demo, in frames (3 seconds).
-pub const STILL_FRAMES: u32 = 3 * FRAMES_PER_SECOND;
-
-/// What an entry draws.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Kind {
-    /// A built-in scene, the same on every frame.
-    Still(Builtin),
-    /// LaMothe's rotation test: a convex n-gon and quads turning 360 degrees.
-    LamotheRotate,
-    /// The WGT triangle, Gouraud shaded through a palette ramp.
-    WgtGouraud,
-    /// A texture-mapped quad, texels from palette ramps.
-    WgtTexture,
-    /// Pendleton's Z-buffered 3D polygons that intersect.
-    PendletonDepth,
-    /// One scene drawn by every method in turn.
-    Race,
-}
-
-/// One scene of the show.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Entry {
-    pub name: &'static str,
-    /// Distinct frames; frame numbers wrap around modulo this. 1 for stills.
-    pub frames: u32,
-    /// The method of the scene's source.
-    pub method: MethodId,
-    kind: Kind,
-}
-
-impl Entry {
-    /// A still page: the built-in scene, with its name and its method.
-    const fn still(builtin: Builtin) -> Self {
-        Self { name: builtin.name, frames: 1, method: builtin.method, kind: Kind::Still(builtin) }
-    }
-
-    const fn animation(name: &'static str, frames: u32, method: MethodId, kind: Kind) -> Self {
-        Self { name, frames, method, kind }
-    }
-
-    /// Whether frames differ from each other.
-    pub fn is_animated(&self) -> bool {
-        self.frames > 1
-    }
-
-    /// How many frames the demo shows this entry for before moving on.
-    pub fn demo_frames(&self) -> u32 {
-        if self.is_animated() {
-            self.frames
-        } else {
-            STILL_FRAMES
-        }
-    }
-
-    /// Frame `frame` as the entry draws it: frame numbers wrap around its
-    /// [`Entry::frames`].
-    pub fn wrap(&self, frame: u32) -> u32 {
-        frame % self.frames.max(1)
-    }
-
-    /// The method that draws frame `frame` when the viewer picked none: the
-    /// source's method, or for the race the method whose turn it is.
-    pub fn method_at(&self, frame: u32) -> MethodId {
-        match self.kind {
-            Kind::Race => race::method_at(self.wrap(frame)),
-            _ => self.method,
-        }
-    }
-}
-
-/// The show in demo order.
-pub const ENTRIES_IN_ORDER: &[Entry] = &[
-    Entry::still(builtin::ABRASH38_1),
-    Entry::still(builtin::ABRASH38_2),
-    Entry::still(builtin::ABRASH38_3),
-    Entry::still(builtin::ABRASH40_1),
-    Entry::still(builtin::ABRASH40_2),
-    Entry::still(builtin::ABRASH40_3),
-    Entry::still(builtin::ABRASH40_4),
-    Entry::still(builtin::LAMOTHE_TRIANGLE),
-    Entry::animation("lamothe-rotate", lamothe::FRAMES, MethodId::Lamothe, Kind::LamotheRotate),
-    Entry::still(builtin::WGT_TRIANGLE),
-    Entry::animation("wgt-gouraud", shaded::GOURAUD_FRAMES, MethodId::Wgt, Kind::WgtGouraud),
-    Entry::animation("wgt-texture", shaded::TEXTURE_FRAMES, MethodId::Wgt, Kind::WgtTexture),
-    Entry::animation("pendleton-zbuffer", shaded::DEPTH_FRAMES, MethodId::Pendleton, Kind::PendletonDepth),
-    Entry::animation("race", race::FRAMES, MethodId::Exact, Kind::Race),
-];
-
-/// The entry called `name`.
-pub fn entry(name: &str) -> Option<&'static Entry> {
-    ENTRIES_IN_ORDER.iter().find(|e| e.name == name)
-}
-
-/// First palette index of the show's colour ramps.
-pub const RAMP_BASE: u8 = 128;
-/// Levels per ramp, darkest first.
-pub const RAMP_LEVELS: u8 = 32;
-
-/// The show's four colour ramps, at `RAMP_BASE + ramp * RAMP_LEVELS`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Ramp {
-    Red = 0,
-    Green = 1,
-    Blue = 2,
-    Gold = 3,
-}
-
-impl Ramp {
-    /// The palette index of `level` (clamped to `0..RAMP_LEVELS`).
-    pub const fn color(self, level: i32) -> u8 {
-        let level = if level < 0 {
-            0
-        } else if level >= RAMP_LEVELS as i32 {
-            RAMP_LEVELS as i32 - 1
-        } else {
-            level
-        };
-        RAMP_BASE + self as u8 * RAMP_LEVELS + level as u8
-    }
-
-    /// Full-brightness colour, 6-bit red, green, blue.
-    const fn top(self) -> [u8; 3] {
-        match self {
-            Ramp::Red => [63, 12, 8],
-            Ramp::Green => [10, 63, 16],
-            Ramp::Blue => [12, 28, 63],
-            Ramp::Gold => [63, 52, 12],
-        }
-    }
-}
-
-/// The show's palette: the VGA default for entries 0-127 (every still page
-/// uses only those) and four ramps of [`RAMP_LEVELS`] from black to full
-/// colour in 128-255, for shading and textures.
-pub const PALETTE: [[u8; 3]; ENTRIES] = {
-    let mut palette = VGA_DEFAULT;
-    let ramps = [Ramp::Red, Ramp::Green, Ramp::Blue, Ramp::Gold];
-    let mut r = 0;
-    while r < ramps.len() {
-        let top = ramps[r].top();
-        let mut level = 0;
-        while level < RAMP_LEVELS as usize {
-            let mut c = 0;
-            while c < 3 {
-                // Linear from black (level 0) to `top` (the last level).
-                let value = top[c] as usize * level / (RAMP_LEVELS as usize - 1);
-                palette[ramps[r].color(level as i32) as usize][c] = value as u8;
-                c += 1;
-            }
-            level += 1;
-        }
-        r += 1;
-    }
-    palette
-};
-
-/// Reusable polygon storage: filled in place each frame, so that after the
-/// first frame no vertex list is allocated again.
-pub(crate) struct Scratch {
-    polygon: Polygon,
-}
-
-/// Vertices a scratch polygon holds without growing.
-const SCRATCH_VERTICES: usize = 64;
-
-impl Scratch {
-    fn new() -> Self {
-        Self { polygon: Polygon { contours: vec![Vec::with_capacity(SCRATCH_VERTICES)], ..Polygon::default() } }
-    }
-
-    /// The scratch polygon set to one contour of `points` in `color`
-    /// (even-odd rule).
-    pub(crate) fn polygon(&mut self, points: impl IntoIterator<Item = Point>, color: u8) -> &Polygon {
-        self.polygon.contours.truncate(1);
-        let contour = &mut self.polygon.contours[0];
-        contour.clear();
-        contour.extend(points);
-        self.polygon.color = color;
-        self.polygon.rule = raster::geometry::FillRule::EvenOdd;
-        &self.polygon
-    }
-}
+pub use entries::{entry, Entry, ENTRIES_IN_ORDER};
+pub use pace::{FRAMES_PER_SECOND, STILL_FRAMES};
+pub use ramp::{Ramp, PALETTE, RAMP_BASE, RAMP_LEVELS};
+pub use shaded::Modelling;
 
 /// All the memory a frame needs, allocated once.
 pub struct Stage {
@@ -322,29 +147,6 @@ pub fn draw_labels(target: &mut dyn SpanSink, entry: &Entry, frame: u32, method:
     label::draw_labels(target, entry, entry.wrap(frame), method.info().name, cycles);
 }
 
-/// How much a shaded frame models ("model no more than a scene needs",
-/// measured by the lab).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Modelling {
-    /// What the entry needs: flat shading one attribute, texture two, the
-    /// Z-buffered scene two and its depth buffer.
-    Needed,
-    /// Four interpolated attributes and a depth buffer, whatever it needs.
-    Forced,
-}
-
-/// What one animation's `draw` puts on a fresh screen with fresh scratch.
-#[cfg(test)]
-fn drawn_alone(
-    draw: fn(u32, &dyn Method, &mut Scratch, &mut Framebuffer) -> DrawReport,
-    frame: u32,
-    method: &dyn Method,
-) -> (Framebuffer, DrawReport) {
-    let mut target = Framebuffer::new(SCREEN);
-    let report = draw(frame, method, &mut Scratch::new(), &mut target);
-    (target, report)
-}
-
 #[cfg(test)]
 mod tests {
     use alloc::vec::Vec;
@@ -420,33 +222,5 @@ mod tests {
         sink::clear(&mut elsewhere, 9);
         assert_eq!(stage.draw_still(rotate, &Exact, &mut elsewhere).polygons, 0);
         assert!(elsewhere.pixels().iter().all(|&p| p == 0));
-    }
-
-    #[test]
-    fn the_race_gives_every_method_a_turn_and_stills_keep_their_source_s() {
-        let race = entry("race").unwrap();
-        let turns: Vec<MethodId> = (0..race.frames).map(|f| race.method_at(f)).collect();
-        for method in MethodId::ALL {
-            assert!(turns.contains(&method), "{method} never races");
-        }
-        for still in ENTRIES_IN_ORDER.iter().filter(|e| !e.is_animated()) {
-            let builtin = builtin::named(still.name).expect("a still is a built-in scene");
-            assert_eq!(still.method_at(7), builtin.method, "{}", still.name);
-        }
-    }
-
-    #[test]
-    fn the_palette_keeps_the_vga_default_below_the_ramps_and_ramps_climb() {
-        assert_eq!(PALETTE[..usize::from(RAMP_BASE)], VGA_DEFAULT[..usize::from(RAMP_BASE)]);
-        for ramp in [Ramp::Red, Ramp::Green, Ramp::Blue, Ramp::Gold] {
-            assert_eq!(PALETTE[usize::from(ramp.color(0))], [0, 0, 0]);
-            assert_eq!(PALETTE[usize::from(ramp.color(i32::MAX))], ramp.top());
-            for level in 1..i32::from(RAMP_LEVELS) {
-                let (below, here) =
-                    (PALETTE[usize::from(ramp.color(level - 1))], PALETTE[usize::from(ramp.color(level))]);
-                assert!((0..3).all(|c| below[c] <= here[c]), "{ramp:?} level {level}");
-            }
-        }
-        assert_eq!(Ramp::Gold.color(-5), Ramp::Gold.color(0));
     }
 }

@@ -12,8 +12,10 @@
 //! stay visible while it is on.
 
 use super::lamothe::regular;
+use super::pace::FRAMES_PER_SECOND;
+use super::ramp::Ramp;
+use super::scratch::Scratch;
 use super::trig::{angle_at, offset, polar, TURN};
-use super::{Ramp, Scratch, FRAMES_PER_SECOND};
 use crate::scene::DrawReport;
 use raster::geometry::Point;
 use raster::sink::Framebuffer;
@@ -79,7 +81,7 @@ mod tests {
     use alloc::vec::Vec;
 
     fn frame(frame: u32, method: &dyn Method) -> (Framebuffer, DrawReport) {
-        super::super::drawn_alone(draw, frame, method)
+        super::super::scratch::drawn_alone(draw, frame, method)
     }
 
     #[test]

@@ -19,12 +19,24 @@
 //! its first.
 
 use super::interp::{Painter, Vertex};
+use super::ramp::Ramp;
+use super::scratch::Scratch;
 use super::trig::{angle_at, div_round, offset, rotate, sin_cos, unscale, TURN};
-use super::{Modelling, Ramp, Scratch};
 use crate::scene::DrawReport;
 use raster::geometry::{Point, SUBPIXEL_BITS};
 use raster::sink::{Framebuffer, SpanSink};
 use raster::Method;
+
+/// How much a shaded frame models ("model no more than a scene needs",
+/// measured by the lab).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Modelling {
+    /// What the entry needs: flat shading one attribute, texture two, the
+    /// Z-buffered scene two and its depth buffer.
+    Needed,
+    /// Four interpolated attributes and a depth buffer, whatever it needs.
+    Forced,
+}
 
 pub(super) const GOURAUD_FRAMES: u32 = 120;
 pub(super) const TEXTURE_FRAMES: u32 = 120;
@@ -304,7 +316,9 @@ mod tests {
     use alloc::vec::Vec;
 
     use super::*;
-    use crate::show::{entry, Entry, Modelling, Stage, RAMP_BASE, RAMP_LEVELS};
+    use crate::show::entries::{entry, Entry};
+    use crate::show::ramp::{RAMP_BASE, RAMP_LEVELS};
+    use crate::show::Stage;
     use raster::coverage::CoverageSink;
     use raster::geometry::Polygon;
     use raster::methods::exact::Exact;

@@ -2,6 +2,10 @@
 //! child process (killed on drop, every wait bounded) and its channels:
 //! COM1 on the child's stdin/stdout, QMP on a unix socket.
 
+pub mod console;
+pub mod qmp;
+pub mod serial;
+
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, ExitStatus, Stdio};
@@ -11,14 +15,14 @@ use std::time::{Duration, Instant};
 use anyhow::{anyhow, Context, Result};
 use protocol::{PciId, Ready};
 
-use crate::console::Console;
 use crate::image::build_image;
 use crate::picture::Image;
 use crate::prerequisites::{ensure_qemu, QEMU};
 use crate::process::command_line;
-use crate::qmp::Qmp;
-use crate::serial::{forward_bytes, FrameReader};
 use crate::workspace;
+use console::Console;
+use qmp::Qmp;
+use serial::{forward_bytes, FrameReader};
 
 /// Longest wait for QEMU to exit after QMP `quit`.
 pub const QUIT_TIMEOUT: Duration = Duration::from_secs(30);

@@ -7,10 +7,11 @@ use anyhow::{bail, ensure, Context, Result};
 use protocol::{Command, FrameKind, LineLosses, Pong, Ready, ShowReply, BENCH_UNIT_LINE, DUMP_LEN, FRAMEBUFFER_LEN};
 use raster::{MethodId, Refusal, SCREEN};
 use scenes::palette::ENTRIES;
+use scenes::show;
 
+use super::serial::{Frame, FrameReader};
+use crate::picture::render::SceneFile;
 use crate::picture::Image;
-use crate::render::SceneFile;
-use crate::serial::{Frame, FrameReader};
 
 /// Longest wait for the READY frame: SeaBIOS, the bootloader's stages and
 /// the mode set under TCG, on a loaded 2-core machine.
@@ -88,32 +89,6 @@ impl Listing {
             }
         }
         Ok(listing)
-    }
-}
-
-/// The answer to `SHOW`: [`ShowReply`]'s fields, owned (the protocol's
-/// type borrows the reply's text).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Shown {
-    pub entry: String,
-    /// The frame drawn, reduced modulo the entry's frames.
-    pub frame: u32,
-    pub method: MethodId,
-    /// rdtsc cycles of the polygon drawing (labels excluded), the number
-    /// the labels show.
-    pub cycles: u64,
-    /// Heap allocations made while drawing and labelling the frame.
-    pub allocs: u64,
-    pub polygons: usize,
-    pub refused: usize,
-    /// Spans the method emitted outside the screen (a method bug).
-    pub strays: usize,
-}
-
-impl From<ShowReply<'_>> for Shown {
-    fn from(reply: ShowReply<'_>) -> Self {
-        let ShowReply { entry, frame, method, cycles, allocs, polygons, refused, strays } = reply;
-        Self { entry: entry.to_string(), frame, method, cycles, allocs, polygons, refused, strays }
     }
 }
 
@@ -285,13 +260,18 @@ impl Console {
     }
 
     /// Has the kernel show frame `frame` of show entry `entry`, with
-    /// `method` or, for `None`, the entry's own method for that frame.
-    pub fn show(&mut self, entry: &str, frame: u32, method: Option<MethodId>) -> Result<Shown> {
+    /// `method` or, for `None`, the entry's own method for that frame. The
+    /// reply names an entry of the host's show (`scenes::show`), whose
+    /// name it borrows.
+    pub fn show(&mut self, entry: &str, frame: u32, method: Option<MethodId>) -> Result<ShowReply<'static>> {
         let command = Command::Show { entry, frame, method };
         let text = self.ok(&command)?;
         let reply =
             ShowReply::parse(&text).with_context(|| format!("`{command}` answered OK \"{text}\", not a SHOW reply"))?;
-        Ok(reply.into())
+        let shown = show::entry(reply.entry)
+            .with_context(|| format!("`{command}` answered OK \"{text}\", naming an entry the show does not have"))?;
+        let ShowReply { frame, method, cycles, allocs, polygons, refused, strays, .. } = reply;
+        Ok(ShowReply { entry: shown.name, frame, method, cycles, allocs, polygons, refused, strays })
     }
 
     pub fn dump(&mut self) -> Result<Dump> {
@@ -434,7 +414,7 @@ mod tests {
     }
 
     #[test]
-    fn a_show_reply_comes_back_owned_and_garbage_is_an_error() {
+    fn a_show_reply_names_an_entry_of_the_show_and_garbage_is_an_error() {
         let reply = ShowReply {
             entry: "race",
             frame: 30,
@@ -446,15 +426,18 @@ mod tests {
             strays: 0,
         };
         let text = reply.to_string();
-        let (mut console, sent, _keep) = console(&[(FrameKind::Ok, text.as_bytes()), (FrameKind::Ok, b"drawn")]);
-        let shown = console.show("race", 30, None).unwrap();
-        assert_eq!(
-            (shown.entry.as_str(), shown.frame, shown.method, shown.polygons),
-            ("race", 30, MethodId::AbrashInt, 4)
-        );
+        let stranger = text.replace("entry=race", "entry=rice");
+        let (mut console, sent, _keep) = console(&[
+            (FrameKind::Ok, text.as_bytes()),
+            (FrameKind::Ok, b"drawn"),
+            (FrameKind::Ok, stranger.as_bytes()),
+        ]);
+        assert_eq!(console.show("race", 30, None).unwrap(), reply);
         let error = console.show("race", 0, Some(MethodId::Exact)).unwrap_err().to_string();
         assert_eq!(error, "`SHOW race 0 exact` answered OK \"drawn\", not a SHOW reply");
-        assert_eq!(sent.0.lock().unwrap().as_slice(), b"SHOW race 30\nSHOW race 0 exact\n");
+        let error = console.show("race", 30, None).unwrap_err().to_string();
+        assert_eq!(error, format!("`SHOW race 30` answered OK \"{stranger}\", naming an entry the show does not have"));
+        assert_eq!(sent.0.lock().unwrap().as_slice(), b"SHOW race 30\nSHOW race 0 exact\nSHOW race 30\n");
     }
 
     #[test]

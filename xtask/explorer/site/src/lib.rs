@@ -1,6 +1,8 @@
-//! The explorer page (`cargo xtask explore`): the `explorer` crate built for
-//! `wasm32-unknown-unknown`, beside the hand-written page in
-//! `xtask/explorer/web`, written to a folder and served on 127.0.0.1.
+//! The explorer page (`cargo xtask explore`): the engine (the `explorer`
+//! crate in `../engine`) built for `wasm32-unknown-unknown`, beside the
+//! hand-written page in `../web`, written to a folder and served on
+//! 127.0.0.1. The browser tests (`tests/tests/explorer.rs`) serve it the
+//! same way.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -9,9 +11,9 @@ use std::thread::JoinHandle;
 use anyhow::{anyhow, Context, Result};
 use tiny_http::{Header, Response, Server};
 
-use crate::prerequisites::{ensure_wasm_target, WASM_TARGET};
-use crate::process::run_streaming;
-use crate::workspace;
+use harness::prerequisites::{ensure_wasm_target, WASM_TARGET};
+use harness::process::run_streaming;
+use harness::workspace;
 
 /// The hand-written files of the page, in `xtask/explorer/web`.
 const WEB_FILES: [&str; 3] = ["index.html", "explorer.js", "explorer.css"];
@@ -27,7 +29,7 @@ fn wasm_target_dir() -> PathBuf {
 }
 
 fn wasm_build_command() -> std::process::Command {
-    let mut command = crate::cargo::host();
+    let mut command = harness::cargo::host();
     command.args(["build", "--package", "explorer", "--lib", "--release", "--target", WASM_TARGET]);
     // The workspace keeps line tables in release builds for profiling; the
     // page has no use for them and they would triple the module.
@@ -70,6 +72,23 @@ pub fn write_page(out: &Path, results: Option<&Path>) -> Result<()> {
             _ => {}
         },
     }
+    Ok(())
+}
+
+/// `cargo xtask explore`: writes the page to `out` and prints the folder,
+/// or with no `out` writes it under `target/explorer` and serves it until
+/// the process is stopped, printing its address.
+pub fn explore(out: Option<&Path>, results: Option<&Path>) -> Result<()> {
+    let dir = out.map_or_else(|| workspace::target_dir().join("explorer"), Path::to_path_buf);
+    write_page(&dir, results)?;
+    if out.is_some() {
+        println!("{}", dir.display());
+        return Ok(());
+    }
+    let server = PageServer::start(&dir)?;
+    eprintln!("serving {} on 127.0.0.1 until stopped (Ctrl-C)", dir.display());
+    println!("{}", server.url());
+    server.serve_forever();
     Ok(())
 }
 
@@ -156,7 +175,7 @@ fn page_file(url: &str) -> Option<(&str, &'static str)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::process::command_line;
+    use harness::process::command_line;
 
     #[test]
     fn the_module_is_built_for_wasm32_in_its_own_target_dir() {

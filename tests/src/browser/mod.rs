@@ -1,6 +1,8 @@
 //! Headless Chromium driven through chromedriver, for the explorer page's
 //! tests: the browser is the independent judge of what the page shows.
 
+pub mod webdriver;
+
 use std::net::{SocketAddr, TcpListener};
 use std::path::PathBuf;
 use std::process::{Child, Command, Stdio};
@@ -11,8 +13,8 @@ use serde_json::{json, Value};
 
 use crate::prerequisites::{ensure_chromium, find_in_path, CHROMEDRIVER, CHROMIUM};
 use crate::process::command_line;
-use crate::webdriver::{self, Session};
 use crate::workspace;
+use webdriver::Session;
 
 /// Chromium's flags. This machine's network is closed: without the flags
 /// that stop its background connections (updates, sync, QUIC probes) it

@@ -12,7 +12,7 @@ use scenes::palette::VGA_DEFAULT;
 use scenes::show::{self, Entry, Stage, ENTRIES_IN_ORDER};
 use scenes::{file, Op, Scene};
 
-use crate::picture::Image;
+use super::Image;
 
 /// The show entry called `name`.
 pub fn show_entry(name: &str) -> Result<&'static Entry> {

@@ -2,7 +2,7 @@
 
 use anyhow::{bail, ensure, Context, Result};
 
-use crate::picture::Image;
+use super::Image;
 
 /// Parses a `P6` file with 8-bit samples (maxval 1..=255, scaled to 255 as
 /// netpbm specifies). Header fields are separated by whitespace and may be

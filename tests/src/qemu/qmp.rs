@@ -10,8 +10,8 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, Context, Result};
 use serde_json::{json, Value};
 
+use crate::picture::ppm::parse_ppm;
 use crate::picture::Image;
-use crate::ppm::parse_ppm;
 
 /// Longest wait for QEMU to create the socket, and for any one answer.
 pub const QMP_TIMEOUT: Duration = Duration::from_secs(30);

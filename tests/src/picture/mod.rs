@@ -2,6 +2,10 @@
 //! palette index per pixel), so its PNG (colour type 3) keeps the raw bytes
 //! the kernel wrote, while its palette (`PLTE`) makes it show right.
 
+pub mod compare;
+pub mod ppm;
+pub mod render;
+
 use std::fs::File;
 use std::io::{BufReader, BufWriter};
 use std::path::Path;

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use anyhow::{bail, Result};
 use scenes::palette::ENTRIES;
 
-use crate::picture::{Image, Pixels, Rgb};
+use super::{Image, Pixels, Rgb};
 use crate::workspace;
 
 /// Colour of a differing pixel in a diff image.

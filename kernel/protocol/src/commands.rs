@@ -1,0 +1,284 @@
+//! Host to kernel: the command lines, how they parse, and why one is
+//! rejected.
+
+use core::fmt;
+
+use raster::MethodId;
+
+use crate::{BENCH_DEFAULT_REPEATS, BENCH_MAX_REPEATS, EVERY_ENTRY, MAX_LINE};
+
+/// Which CPU fault the test-only `FAULT` command provokes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FaultKind {
+    Breakpoint,
+    PageFault,
+    DoubleFault,
+    Panic,
+}
+
+impl FaultKind {
+    pub const ALL: [FaultKind; 4] =
+        [FaultKind::Breakpoint, FaultKind::PageFault, FaultKind::DoubleFault, FaultKind::Panic];
+
+    pub const fn name(self) -> &'static str {
+        match self {
+            FaultKind::Breakpoint => "breakpoint",
+            FaultKind::PageFault => "pagefault",
+            FaultKind::DoubleFault => "doublefault",
+            FaultKind::Panic => "panic",
+        }
+    }
+}
+
+/// A host request.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Command<'a> {
+    /// `PING`: answers `OK` with a [`Pong`](crate::Pong), `pong overruns=N dropped=M`.
+    Ping,
+    /// `LIST`: answers a `LIST` frame, lines `scene NAME`, `show NAME FRAMES`
+    /// and `method NAME`.
+    List,
+    /// `DRAW SCENE [METHOD]`: draws a built-in scene; answers `OK`.
+    Draw { scene: &'a str, method: Option<MethodId> },
+    /// `SHOW ENTRY FRAME [METHOD]`: draws frame FRAME of a show entry
+    /// (`scenes::show`) exactly as the demo shows it, labels included, in
+    /// the show's palette; answers `OK` with [`ShowReply`](crate::ShowReply)'s fields.
+    Show { entry: &'a str, frame: u32, method: Option<MethodId> },
+    /// `CLEAR C`: fills the screen with colour C.
+    Clear(u8),
+    /// `POLY METHOD <poly line>`: fills one polygon written as a scene-file
+    /// `poly` line without the keyword, e.g. `POLY exact color=4 0,0 9,0 0,9`.
+    Poly { method: MethodId, spec: &'a str },
+    /// `DUMP`: answers a `DUMP` frame of [`DUMP_LEN`](crate::DUMP_LEN) bytes.
+    Dump,
+    /// `VGACHECK`: reads every mode-13h register and the DAC back; answers
+    /// `OK` or an `ERR` listing the mismatches.
+    VgaCheck,
+    /// `DEMO [ENTRY|*] [METHOD]`: answers `OK`, then plays the demo again
+    /// until the next byte from the host, as it plays after boot; with
+    /// ENTRY (a show entry; `*` is every entry) from that entry, staying on
+    /// it, and with METHOD every entry drawn with that method, as the digit
+    /// keys do.
+    Demo { entry: Option<&'a str>, method: Option<MethodId> },
+    /// `BENCH SCENE [REPEATS]`: draws a built-in scene REPEATS times
+    /// ([`BENCH_DEFAULT_REPEATS`] if absent, 1 to [`BENCH_MAX_REPEATS`])
+    /// with every method; answers a `BENCH` frame.
+    Bench { scene: &'a str, repeats: u8 },
+    /// `EXIT CODE`: leaves QEMU through isa-debug-exit with CODE (0-255).
+    Exit(u8),
+    /// `FAULT KIND`: test only; provokes a fault, which must be reported.
+    Fault(FaultKind),
+}
+
+/// Why a command line was rejected.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CommandError<'a> {
+    Empty,
+    NotAscii,
+    TooLong,
+    Unknown(&'a str),
+    MissingArgument(&'static str),
+    BadArgument(&'a str),
+    /// A method name that is none of [`MethodId::ALL`]'s.
+    UnknownMethod(&'a str),
+    ExtraArgument(&'a str),
+}
+
+impl fmt::Display for CommandError<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CommandError::Empty => write!(f, "empty command"),
+            CommandError::NotAscii => write!(f, "command is not printable ASCII"),
+            CommandError::TooLong => write!(f, "command longer than {MAX_LINE} bytes"),
+            CommandError::Unknown(word) => write!(f, "unknown command `{word}`"),
+            CommandError::MissingArgument(what) => write!(f, "missing argument: {what}"),
+            CommandError::BadArgument(word) => write!(f, "bad argument `{word}`"),
+            CommandError::UnknownMethod(word) => write!(f, "`{word}`: {}", raster::UnknownMethod),
+            CommandError::ExtraArgument(word) => write!(f, "unexpected argument `{word}`"),
+        }
+    }
+}
+
+impl<'a> Command<'a> {
+    /// Parses one line (without its terminator).
+    pub fn parse(line: &'a [u8]) -> Result<Self, CommandError<'a>> {
+        if line.len() > MAX_LINE {
+            return Err(CommandError::TooLong);
+        }
+        let line = line.strip_suffix(b"\r").unwrap_or(line);
+        if !line.iter().all(|b| (0x20..0x7f).contains(b) || *b == b'\t') {
+            return Err(CommandError::NotAscii);
+        }
+        let line = core::str::from_utf8(line).map_err(|_| CommandError::NotAscii)?;
+        let mut words = line.split_ascii_whitespace();
+        let name = words.next().ok_or(CommandError::Empty)?;
+        let command = match name {
+            "PING" => Command::Ping,
+            "LIST" => Command::List,
+            "DRAW" => Command::Draw {
+                scene: words.next().ok_or(CommandError::MissingArgument("scene"))?,
+                method: words.next().map(parse_method).transpose()?,
+            },
+            "SHOW" => {
+                let entry = words.next().ok_or(CommandError::MissingArgument("entry"))?;
+                let frame = words.next().ok_or(CommandError::MissingArgument("frame"))?;
+                let frame = frame.parse().map_err(|_| CommandError::BadArgument(frame))?;
+                Command::Show { entry, frame, method: words.next().map(parse_method).transpose()? }
+            }
+            "CLEAR" => Command::Clear(parse_u8(words.next().ok_or(CommandError::MissingArgument("colour"))?)?),
+            "POLY" => {
+                let method = words.next().ok_or(CommandError::MissingArgument("method"))?;
+                let rest = line.trim_start();
+                let rest = rest[name.len()..].trim_start();
+                let spec = rest[method.len()..].trim();
+                if spec.is_empty() {
+                    return Err(CommandError::MissingArgument("polygon"));
+                }
+                return Ok(Command::Poly { method: parse_method(method)?, spec });
+            }
+            "DUMP" => Command::Dump,
+            "BENCH" => {
+                let scene = words.next().ok_or(CommandError::MissingArgument("scene"))?;
+                let repeats = match words.next() {
+                    None => BENCH_DEFAULT_REPEATS,
+                    Some(word) => match parse_u8(word)? {
+                        n @ 1..=BENCH_MAX_REPEATS => n,
+                        _ => return Err(CommandError::BadArgument(word)),
+                    },
+                };
+                Command::Bench { scene, repeats }
+            }
+            "VGACHECK" => Command::VgaCheck,
+            "DEMO" => Command::Demo {
+                entry: words.next().filter(|&entry| entry != EVERY_ENTRY),
+                method: words.next().map(parse_method).transpose()?,
+            },
+            "EXIT" => Command::Exit(parse_u8(words.next().ok_or(CommandError::MissingArgument("code"))?)?),
+            "FAULT" => {
+                let kind = words.next().ok_or(CommandError::MissingArgument("fault kind"))?;
+                let fault =
+                    FaultKind::ALL.into_iter().find(|k| k.name() == kind).ok_or(CommandError::BadArgument(kind))?;
+                Command::Fault(fault)
+            }
+            other => return Err(CommandError::Unknown(other)),
+        };
+        match words.next() {
+            Some(extra) => Err(CommandError::ExtraArgument(extra)),
+            None => Ok(command),
+        }
+    }
+}
+
+fn parse_u8(word: &str) -> Result<u8, CommandError<'_>> {
+    word.parse().map_err(|_| CommandError::BadArgument(word))
+}
+
+fn parse_method(word: &str) -> Result<MethodId, CommandError<'_>> {
+    word.parse().map_err(|_| CommandError::UnknownMethod(word))
+}
+
+impl fmt::Display for Command<'_> {
+    /// The command line as the host sends it (no terminator).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Command::Ping => write!(f, "PING"),
+            Command::List => write!(f, "LIST"),
+            Command::Draw { scene, method: Some(method) } => write!(f, "DRAW {scene} {method}"),
+            Command::Draw { scene, method: None } => write!(f, "DRAW {scene}"),
+            Command::Show { entry, frame, method: Some(method) } => write!(f, "SHOW {entry} {frame} {method}"),
+            Command::Show { entry, frame, method: None } => write!(f, "SHOW {entry} {frame}"),
+            Command::Clear(color) => write!(f, "CLEAR {color}"),
+            Command::Poly { method, spec } => write!(f, "POLY {method} {spec}"),
+            Command::Dump => write!(f, "DUMP"),
+            Command::Bench { scene, repeats } => write!(f, "BENCH {scene} {repeats}"),
+            Command::VgaCheck => write!(f, "VGACHECK"),
+            Command::Demo { entry: None, method: None } => write!(f, "DEMO"),
+            Command::Demo { entry, method: None } => write!(f, "DEMO {}", entry.unwrap_or(EVERY_ENTRY)),
+            Command::Demo { entry, method: Some(method) } => {
+                write!(f, "DEMO {} {method}", entry.unwrap_or(EVERY_ENTRY))
+            }
+            Command::Exit(code) => write!(f, "EXIT {code}"),
+            Command::Fault(kind) => write!(f, "FAULT {}", kind.name()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::string::ToString;
+
+    #[test]
+    fn commands_round_trip_through_their_text() {
+        let commands = [
+            Command::Ping,
+            Command::List,
+            Command::Draw { scene: "abrash38-1", method: Some(MethodId::AbrashFloat) },
+            Command::Draw { scene: "abrash38-2", method: None },
+            Command::Clear(7),
+            Command::Show { entry: "race", frame: 31, method: None },
+            Command::Show { entry: "lamothe-rotate", frame: 0, method: Some(MethodId::Exact) },
+            Command::Poly { method: MethodId::Exact, spec: "color=4 0,0 9.5,0 0,9" },
+            Command::Dump,
+            Command::Bench { scene: "abrash38-3", repeats: 1 },
+            Command::Demo { entry: None, method: None },
+            Command::Demo { entry: Some("race"), method: None },
+            Command::Demo { entry: Some("lamothe-rotate"), method: Some(MethodId::Exact) },
+            Command::Demo { entry: None, method: Some(MethodId::Wgt) },
+            Command::Bench { scene: "abrash38-1", repeats: BENCH_MAX_REPEATS },
+            Command::VgaCheck,
+            Command::Exit(16),
+            Command::Fault(FaultKind::PageFault),
+        ];
+        for command in commands {
+            let text = command.to_string();
+            assert_eq!(Command::parse(text.as_bytes()), Ok(command), "{text}");
+        }
+    }
+
+    #[test]
+    fn bad_lines_are_rejected_with_a_reason() {
+        assert_eq!(Command::parse(b""), Err(CommandError::Empty));
+        assert_eq!(Command::parse(b"  \r"), Err(CommandError::Empty));
+        assert_eq!(Command::parse(b"FROB 1"), Err(CommandError::Unknown("FROB")));
+        assert_eq!(Command::parse(b"CLEAR"), Err(CommandError::MissingArgument("colour")));
+        assert_eq!(Command::parse(b"CLEAR 256"), Err(CommandError::BadArgument("256")));
+        assert_eq!(Command::parse(b"DUMP now"), Err(CommandError::ExtraArgument("now")));
+        assert_eq!(Command::parse(b"POLY exact"), Err(CommandError::MissingArgument("polygon")));
+        assert_eq!(Command::parse(b"FAULT nap"), Err(CommandError::BadArgument("nap")));
+        assert_eq!(Command::parse(b"BENCH"), Err(CommandError::MissingArgument("scene")));
+        assert_eq!(Command::parse(b"BENCH abrash38-1 0"), Err(CommandError::BadArgument("0")));
+        let too_many = std::format!("{}", u16::from(BENCH_MAX_REPEATS) + 1);
+        let line = std::format!("BENCH abrash38-1 {too_many}");
+        assert_eq!(Command::parse(line.as_bytes()), Err(CommandError::BadArgument(&too_many)));
+        assert_eq!(Command::parse(b"BENCH abrash38-1 -1"), Err(CommandError::BadArgument("-1")));
+        assert_eq!(Command::parse(b"BENCH abrash38-1 3 4"), Err(CommandError::ExtraArgument("4")));
+        assert_eq!(Command::parse(b"SHOW race"), Err(CommandError::MissingArgument("frame")));
+        assert_eq!(Command::parse(b"SHOW race -1"), Err(CommandError::BadArgument("-1")));
+        assert_eq!(Command::parse(b"SHOW race 1 exact 2"), Err(CommandError::ExtraArgument("2")));
+        assert_eq!(Command::parse(b"SHOW race 1 exakt"), Err(CommandError::UnknownMethod("exakt")));
+        assert_eq!(Command::parse(b"DEMO * exakt"), Err(CommandError::UnknownMethod("exakt")));
+        assert_eq!(Command::parse(b"DEMO race exact 1"), Err(CommandError::ExtraArgument("1")));
+        assert_eq!(Command::parse(b"DRAW abrash38-1 abrash"), Err(CommandError::UnknownMethod("abrash")));
+        assert_eq!(Command::parse(b"POLY fast color=1 0,0 1,0 0,1"), Err(CommandError::UnknownMethod("fast")));
+        assert_eq!(Command::parse(b"PI\xffNG"), Err(CommandError::NotAscii));
+        assert_eq!(Command::parse(&[b'A'; MAX_LINE + 1]), Err(CommandError::TooLong));
+    }
+
+    #[test]
+    fn an_unknown_method_is_answered_with_the_list_of_methods() {
+        let error = Command::parse(b"DRAW abrash38-1 exakt").unwrap_err().to_string();
+        assert!(error.starts_with("`exakt`: unknown method; the methods are abrash_float,"), "{error}");
+        assert!(error.ends_with(", exact"), "{error}");
+    }
+
+    #[test]
+    fn bench_repeats_default_when_absent() {
+        assert_eq!(
+            Command::parse(b"BENCH abrash38-2"),
+            Ok(Command::Bench { scene: "abrash38-2", repeats: BENCH_DEFAULT_REPEATS })
+        );
+        assert!((1..=BENCH_MAX_REPEATS).contains(&BENCH_DEFAULT_REPEATS));
+    }
+}

@@ -1,0 +1,248 @@
+//! Kernel to host: the texts of the `OK` answers to `SHOW` and `PING`
+//! and of the `READY` frame, each written by `Display` and read back by
+//! `parse`.
+
+use core::fmt;
+
+use raster::MethodId;
+
+/// The `OK` text of `SHOW`: what was drawn and what it cost, as
+/// `entry=E frame=F method=M cycles=C allocs=A polygons=P refused=R strays=S`.
+/// The host renders the same frame with `method` and `cycles` to compare.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ShowReply<'a> {
+    pub entry: &'a str,
+    /// The frame number drawn, already reduced modulo the entry's frames.
+    pub frame: u32,
+    pub method: MethodId,
+    /// rdtsc cycles of the polygon drawing (labels excluded).
+    pub cycles: u64,
+    /// Heap allocations made while drawing and labelling the frame.
+    pub allocs: u64,
+    pub polygons: usize,
+    pub refused: usize,
+    /// Spans the method emitted outside the screen (a method bug).
+    pub strays: usize,
+}
+
+impl fmt::Display for ShowReply<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let Self { entry, frame, method, cycles, allocs, polygons, refused, strays } = self;
+        write!(
+            f,
+            "entry={entry} frame={frame} method={method} cycles={cycles} allocs={allocs} polygons={polygons} refused={refused} strays={strays}"
+        )
+    }
+}
+
+impl<'a> ShowReply<'a> {
+    /// Parses the text written by `Display`; `None` if a field is missing,
+    /// repeated in the wrong order or malformed.
+    pub fn parse(text: &'a str) -> Option<Self> {
+        let mut fields = Fields::new(text);
+        let reply = Self {
+            entry: fields.text("entry")?,
+            frame: fields.parsed("frame")?,
+            method: fields.parsed("method")?,
+            cycles: fields.parsed("cycles")?,
+            allocs: fields.parsed("allocs")?,
+            polygons: fields.parsed("polygons")?,
+            refused: fields.parsed("refused")?,
+            strays: fields.parsed("strays")?,
+        };
+        fields.end().then_some(reply)
+    }
+}
+
+/// Space-separated `key=value` fields read in a fixed order, as the `SHOW`,
+/// `PING` and `READY` texts are written.
+struct Fields<'a> {
+    fields: core::str::Split<'a, char>,
+}
+
+impl<'a> Fields<'a> {
+    fn new(text: &'a str) -> Self {
+        Self { fields: text.split(' ') }
+    }
+
+    /// The value of the next field, if it is called `key`.
+    fn text(&mut self, key: &str) -> Option<&'a str> {
+        let (k, value) = self.fields.next()?.split_once('=')?;
+        (k == key).then_some(value)
+    }
+
+    /// The next field's value parsed, if it is called `key`.
+    fn parsed<T: core::str::FromStr>(&mut self, key: &str) -> Option<T> {
+        self.text(key)?.parse().ok()
+    }
+
+    /// Whether every field has been read.
+    fn end(mut self) -> bool {
+        self.fields.next().is_none()
+    }
+}
+
+/// What the serial line lost on its way into the kernel since boot, as the
+/// kernel counted it: `overruns`, overrun errors in the UART's line status
+/// (a byte arrived while its FIFO was full; each loses at least one byte),
+/// and `dropped`, bytes that found the kernel's receive buffer full. Text:
+/// `overruns=N dropped=M`. `PING` and `READY` report it, so that a log of
+/// a run on a real PC shows any loss.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct LineLosses {
+    pub overruns: u32,
+    pub dropped: u32,
+}
+
+impl LineLosses {
+    fn read(fields: &mut Fields<'_>) -> Option<Self> {
+        Some(Self { overruns: fields.parsed("overruns")?, dropped: fields.parsed("dropped")? })
+    }
+
+    /// Whether nothing was lost.
+    pub fn none(&self) -> bool {
+        *self == Self::default()
+    }
+}
+
+impl fmt::Display for LineLosses {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "overruns={} dropped={}", self.overruns, self.dropped)
+    }
+}
+
+/// The word a `PING` answer starts with.
+pub const PONG: &str = "pong";
+
+/// The `OK` text of `PING`: `pong overruns=N dropped=M`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct Pong {
+    pub losses: LineLosses,
+}
+
+impl fmt::Display for Pong {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{PONG} {}", self.losses)
+    }
+}
+
+impl Pong {
+    /// Parses the text written by `Display`.
+    pub fn parse(text: &str) -> Option<Self> {
+        let mut fields = Fields::new(text.strip_prefix(PONG)?.strip_prefix(' ')?);
+        let losses = LineLosses::read(&mut fields)?;
+        fields.end().then_some(Self { losses })
+    }
+}
+
+/// A PCI function's vendor and device IDs, written `vvvv:dddd` in hex as
+/// `lspci -n` does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PciId {
+    pub vendor: u16,
+    pub device: u16,
+}
+
+impl fmt::Display for PciId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:04x}:{:04x}", self.vendor, self.device)
+    }
+}
+
+impl PciId {
+    fn parse(text: &str) -> Option<Self> {
+        let (vendor, device) = text.split_once(':')?;
+        let hex = |word: &str| (word.len() == 4).then(|| u16::from_str_radix(word, 16).ok()).flatten();
+        Some(Self { vendor: hex(vendor)?, device: hex(device)? })
+    }
+}
+
+/// The payload of the `READY` frame the kernel sends once at boot:
+/// `display=vvvv:dddd vga_mismatches=K overruns=N dropped=M`. `display` is
+/// the first PCI display controller found (`none` if there is none),
+/// `vga_mismatches` the mode-13h registers and DAC entries that did not
+/// read back as written (each one also went out before it in a `LOG`
+/// frame).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct Ready {
+    pub display: Option<PciId>,
+    pub vga_mismatches: usize,
+    pub losses: LineLosses,
+}
+
+impl fmt::Display for Ready {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.display {
+            Some(id) => write!(f, "display={id}")?,
+            None => write!(f, "display=none")?,
+        }
+        write!(f, " vga_mismatches={} {}", self.vga_mismatches, self.losses)
+    }
+}
+
+impl Ready {
+    /// Parses the text written by `Display`.
+    pub fn parse(text: &str) -> Option<Self> {
+        let mut fields = Fields::new(text);
+        let display = match fields.text("display")? {
+            "none" => None,
+            id => Some(PciId::parse(id)?),
+        };
+        let vga_mismatches = fields.parsed("vga_mismatches")?;
+        let losses = LineLosses::read(&mut fields)?;
+        fields.end().then_some(Self { display, vga_mismatches, losses })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::string::ToString;
+
+    #[test]
+    fn show_replies_round_trip_and_reject_garbage() {
+        let reply = ShowReply {
+            entry: "race",
+            frame: 3,
+            method: MethodId::Wgt,
+            cycles: 12345,
+            allocs: 0,
+            polygons: 9,
+            refused: 1,
+            strays: 0,
+        };
+        let text = reply.to_string();
+        assert_eq!(ShowReply::parse(&text), Some(reply));
+        assert_eq!(ShowReply::parse("entry=race frame=3"), None);
+        assert_eq!(ShowReply::parse(&text.replace("cycles=12345", "cycles=x")), None);
+        assert_eq!(ShowReply::parse(&std::format!("{text} extra=1")), None);
+        assert_eq!(ShowReply::parse(&text.replace("method=wgt", "method=wgt2")), None);
+    }
+
+    #[test]
+    fn pongs_and_readies_round_trip_and_reject_garbage() {
+        let losses = LineLosses { overruns: 2, dropped: 0 };
+        let pong = Pong { losses };
+        assert_eq!(pong.to_string(), "pong overruns=2 dropped=0");
+        assert_eq!(Pong::parse(&pong.to_string()), Some(pong));
+        assert_eq!(Pong::parse("pong"), None);
+        assert_eq!(Pong::parse("pong dropped=0 overruns=2"), None);
+        assert!(!losses.none() && LineLosses::default().none());
+
+        let display = Some(PciId { vendor: 0x1013, device: 0x00b8 });
+        let ready = Ready { display, vga_mismatches: 3, losses };
+        assert_eq!(ready.to_string(), "display=1013:00b8 vga_mismatches=3 overruns=2 dropped=0");
+        assert_eq!(Ready::parse(&ready.to_string()), Some(ready));
+        let headless = Ready { display: None, ..ready };
+        assert_eq!(Ready::parse(&headless.to_string()), Some(headless));
+        for garbage in [
+            "display=1013:b8 vga_mismatches=3 overruns=2 dropped=0",
+            "display=1013:00b8 vga_mismatches=3 overruns=2",
+            "display=1013:00b8 vga_mismatches=3 overruns=2 dropped=0 more=1",
+            "vga: 0 mismatches",
+        ] {
+            assert_eq!(Ready::parse(garbage), None, "{garbage}");
+        }
+    }
+}
