@@ -46,8 +46,7 @@ pub use tables::Scratch;
 use crate::classify::{is_monotone, Shape};
 use crate::geometry::{FillRule, Point, Polygon};
 use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::Builtin;
-use crate::methods::MethodId;
+use crate::methods::interface::{Builtin, MethodId};
 use crate::sink::SpanSink;
 
 /// The exact method.
@@ -259,8 +258,8 @@ fn fill_auto_in<S: SpanSink + ?Sized>(
 mod tests {
     use super::*;
     use crate::geometry::Point;
+    use crate::methods::interface::Method;
     use crate::methods::test_support::fill;
-    use crate::methods::Method;
     use crate::sink::Size;
 
     fn draw(polygon: &Polygon) -> alloc::string::String {
