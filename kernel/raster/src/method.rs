@@ -147,6 +147,14 @@ impl Refusal {
     }
 }
 
+impl core::fmt::Display for Refusal {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.describe())
+    }
+}
+
+impl core::error::Error for Refusal {}
+
 #[cfg(test)]
 mod tests {
     use super::*;

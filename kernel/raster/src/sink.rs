@@ -25,6 +25,33 @@ pub const SCREEN: Size = Size { width: 320, height: 200 };
 
 /// Where spans go. A method must only emit spans inside the target:
 /// `0 <= y < height` and `0 <= x_start < x_end <= width` (`x_end` exclusive).
+///
+/// # Examples
+///
+/// A sink of one's own: here one that only counts the pixels of each row,
+/// for a polygon's area without a picture.
+///
+/// ```
+/// use raster::{fill_auto, Polygon, Size, SpanSink};
+///
+/// struct RowLengths(Vec<i32>);
+///
+/// impl SpanSink for RowLengths {
+///     fn size(&self) -> Size {
+///         Size { width: 100, height: self.0.len() as i32 }
+///     }
+///     fn span(&mut self, y: i32, x_start: i32, x_end: i32, _color: u8) {
+///         self.0[y as usize] += x_end - x_start;
+///     }
+/// }
+///
+/// let diamond = Polygon::from_pixels(&[(50, 0), (60, 10), (50, 20), (40, 10)], (0, 0), 1);
+/// let mut lengths = RowLengths(vec![0; 20]);
+/// fill_auto(&diamond, &mut lengths).unwrap();
+/// assert_eq!(lengths.0[0], 1);
+/// assert_eq!(lengths.0[9], 19);
+/// assert_eq!(lengths.0.iter().sum::<i32>(), 200);
+/// ```
 pub trait SpanSink {
     /// The target's size; methods clip to it.
     fn size(&self) -> Size;
@@ -43,6 +70,20 @@ pub fn clear<S: SpanSink + ?Sized>(sink: &mut S, color: u8) {
 /// A byte-per-pixel image in memory: the host's (and the tests') target.
 /// Spans outside it are clipped and counted in [`Framebuffer::stray_spans`]
 /// instead of being written, so a faulty method cannot corrupt memory.
+///
+/// # Examples
+///
+/// ```
+/// use raster::{Framebuffer, Size, SpanSink};
+///
+/// let mut image = Framebuffer::new(Size { width: 4, height: 2 });
+/// image.span(1, 1, 3, 5);
+/// assert_eq!(image.pixels(), &[0, 0, 0, 0, 0, 5, 5, 0]);
+/// assert_eq!(image.get(2, 1), Some(5));
+/// // Outside: clipped, counted, nothing written past the image.
+/// image.span(0, -2, 9, 1);
+/// assert_eq!((image.stray_spans(), image.get(3, 0)), (1, Some(1)));
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Framebuffer {
     size: Size,

@@ -22,6 +22,24 @@ use crate::sink::SpanSink;
 /// method's loops.
 ///
 /// [`id`]: Method::id
+///
+/// # Examples
+///
+/// Every method through the one interface, with what each declines:
+///
+/// ```
+/// use raster::{methods, CoverageSink, Polygon, Refusal, Size};
+///
+/// let mut two = Polygon::from_pixels(&[(0, 0), (4, 0), (0, 4)], (0, 0), 1);
+/// two.contours.push(Polygon::from_pixels(&[(6, 6), (9, 6), (6, 9)], (0, 0), 1).contours.remove(0));
+/// for method in methods::ALL {
+///     let mut drawn = CoverageSink::new(Size { width: 10, height: 10 });
+///     match method.fill(&two, &mut drawn) {
+///         Ok(()) => assert_eq!(drawn.out_of_bounds(), 0),
+///         Err(refusal) => assert_eq!(refusal, Refusal::MultipleContours, "{}", method.info().name),
+///     }
+/// }
+/// ```
 pub trait Method: Sync {
     fn info(&self) -> &'static MethodInfo;
     /// Fills `polygon` into `sink`, or declines it.
@@ -72,6 +90,25 @@ impl<T: Builtin> Method for T {
 
 /// Names one method of [`ALL`](crate::methods::ALL): the typed value a method name becomes once
 /// it is parsed, at the edge (command line, serial line, scene file).
+///
+/// # Examples
+///
+/// Choosing a method by name, and what it says of itself:
+///
+/// ```
+/// use raster::{Class, Framebuffer, MethodId, Polygon, SCREEN};
+///
+/// let method: MethodId = "abrash_int".parse().expect("a method's name");
+/// let info = method.method().info();
+/// assert_eq!((info.name, info.handles), ("abrash_int", Class::Convex));
+/// let triangle = Polygon::from_pixels(&[(10, 10), (60, 20), (20, 50)], (0, 0), 4);
+/// let mut screen = Framebuffer::new(SCREEN);
+/// method.fill(&triangle, &mut screen).unwrap();
+/// assert_eq!(screen.get(20, 20), Some(4));
+///
+/// let unknown = "bresenham".parse::<MethodId>().unwrap_err();
+/// assert!(unknown.to_string().starts_with("unknown method; the methods are abrash_float, "));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum MethodId {
     AbrashFloat,

@@ -116,6 +116,17 @@ impl Path {
 
     /// Fills `polygon` exactly by this path, or refuses it with
     /// [`Refusal::OutsideClass`] if it is not of the path's class.
+    ///
+    /// ```
+    /// use raster::methods::exact::Path;
+    /// use raster::{CoverageSink, Polygon, Refusal, Size};
+    ///
+    /// let square = Polygon::from_pixels(&[(0, 0), (3, 0), (3, 3), (0, 3)], (0, 0), 1);
+    /// let mut drawn = CoverageSink::new(Size { width: 4, height: 4 });
+    /// assert_eq!(Path::Triangle.fill(&square, &mut drawn), Err(Refusal::OutsideClass));
+    /// assert_eq!(Path::Monotone.fill(&square, &mut drawn), Ok(()));
+    /// assert_eq!(drawn.ascii(), "###.\n###.\n###.\n....\n");
+    /// ```
     pub fn fill<S: SpanSink + ?Sized>(self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
         self.fill_in(polygon, sink, None)
     }
@@ -211,6 +222,37 @@ pub fn choose_path(polygon: &Polygon) -> Option<Path> {
 /// contours the two-chain path, everything else the active edge table.
 /// Simple and complex polygons share that path, so telling them apart would
 /// cost without saving anything.
+///
+/// # Examples
+///
+/// A square with a square hole, one contour each: the even-odd rule leaves
+/// the hole empty, and so does the non-zero rule, the hole going round the
+/// other way. Its class is [`Class::Complex`](crate::Class) (several
+/// contours), so it takes the active edge table:
+///
+/// ```
+/// use raster::methods::exact::{choose_path, Path};
+/// use raster::{classify, fill_auto, Class, FillRule, Framebuffer, Point, Polygon, Size};
+///
+/// let square = |from: i32, to: i32| -> Vec<Point> {
+///     [(from, from), (to, from), (to, to), (from, to)].map(|(x, y)| Point::from_pixels(x, y)).to_vec()
+/// };
+/// let mut hole = square(2, 4);
+/// hole.reverse();
+/// let framed = Polygon { contours: vec![square(0, 6), hole], color: 1, rule: FillRule::NonZero };
+/// assert_eq!(classify(&framed), Class::Complex);
+/// assert_eq!(choose_path(&framed), Some(Path::ActiveEdges));
+///
+/// let mut target = Framebuffer::new(Size { width: 6, height: 6 });
+/// fill_auto(&framed, &mut target).unwrap();
+/// let row = |y: usize| &target.pixels()[y * 6..y * 6 + 6];
+/// assert_eq!(row(1), [1, 1, 1, 1, 1, 1]);
+/// assert_eq!(row(3), [1, 1, 0, 0, 1, 1]);
+///
+/// // A triangle takes the triangle path, a convex polygon the two chains.
+/// assert_eq!(choose_path(&Polygon::from_pixels(&[(0, 0), (4, 1), (1, 4)], (0, 0), 1)), Some(Path::Triangle));
+/// assert_eq!(choose_path(&Polygon::new(square(0, 3), 1)), Some(Path::Monotone));
+/// ```
 pub fn fill_auto<S: SpanSink + ?Sized>(polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
     fill_auto_in(polygon, sink, None)
 }
@@ -221,6 +263,30 @@ pub fn fill_auto<S: SpanSink + ?Sized>(polygon: &Polygon, sink: &mut S) -> Resul
 /// it allocates only when a polygon needs more room than every one before
 /// it, so a caller drawing frame after frame allocates nothing once it has
 /// drawn the largest polygon.
+///
+/// # Examples
+///
+/// ```
+/// use raster::{fill_auto_with, Framebuffer, Point, Polygon, Scratch, SCREEN};
+///
+/// // A comb of 150 teeth 1 px wide, hanging from a bar 50 px deep: 600
+/// // edges, too many for the tables on the stack.
+/// let mut comb = vec![Point::from_pixels(0, 0), Point::from_pixels(300, 0)];
+/// for tooth in (0..150).rev() {
+///     let x = 2 * tooth;
+///     comb.extend([Point::from_pixels(x + 1, 100), Point::from_pixels(x, 100)]);
+///     if tooth > 0 {
+///         comb.extend([Point::from_pixels(x, 50), Point::from_pixels(x - 1, 50)]);
+///     }
+/// }
+/// let comb = Polygon::new(comb, 9);
+/// let (mut scratch, mut screen) = (Scratch::new(), Framebuffer::new(SCREEN));
+/// for _frame in 0..3 {
+///     // The first frame grows the scratch; the others take nothing.
+///     fill_auto_with(&comb, &mut screen, &mut scratch).unwrap();
+/// }
+/// assert_eq!((screen.get(1, 25), screen.get(0, 75), screen.get(1, 75)), (Some(9), Some(9), Some(0)));
+/// ```
 pub fn fill_auto_with<S: SpanSink + ?Sized>(
     polygon: &Polygon,
     sink: &mut S,
