@@ -15,24 +15,29 @@
 //!   short (`edge.rs` gives the bounds).
 //! - Range: exact for every `i32` vertex coordinate and every target
 //!   [`Size`](crate::Size), so nothing is refused as out of range; the only
-//!   refusal is [`Refusal::OutOfMemory`] when the edge tables cannot be
-//!   allocated.
+//!   refusal is [`Refusal::OutOfMemory`] when the edge tables of a polygon
+//!   too large for the stack cannot be allocated.
 //! - Classes: all ([`Class::Complex`]): several contours, holes,
 //!   self-intersections, both fill rules.
 //! - Work: rows are clipped to the target before any is visited, so a
 //!   polygon spanning the whole `i32` plane costs the target's rows times
 //!   its edges, never 2^24 rows; no pixel is emitted twice within a fill.
 //!
-//! - Speed: triangles and monotone polygons allocate nothing and cost two
-//!   edge steps and one span per row; the rest cost one pass over the
-//!   crossings per row, sorting only where edges cross (or, where there is
-//!   a crossing for every four columns, summing them per column instead).
+//! - Speed: triangles and monotone polygons cost two edge steps and one
+//!   span per row; the rest walk monotone chains, each inside run as two
+//!   edges between vertices where no crossings swap, else one row at a
+//!   time, sorting only where edges cross (or, where there is a crossing for
+//!   every four columns, summing them per column instead).
+//! - Memory: nothing is allocated for a polygon of up to 256 edges (64
+//!   when they may be 512 px or longer); a larger one takes its tables from
+//!   a [`Scratch`], which the caller may keep ([`fill_auto_with`]).
 //!
 //! Stages, one file each: `edge` (scan lines and exact crossing columns),
 //! `monotone` (the triangle fill and the two-chain path for monotone
-//! polygons), `active_edges` (the edge-table path for the rest). Each is a
-//! [`Path`] that can be asked for alone; the choice between them is
-//! [`fill_auto`]'s ([`choose_path`]).
+//! polygons), `active_edges` (the edge-table path for the rest) over
+//! `tables` (where its tables live, and how they are built and sorted).
+//! Each path is a [`Path`] that can be asked for alone; the choice between
+//! them is [`fill_auto`]'s ([`choose_path`]).
 
 mod active_edges;
 mod edge;
@@ -88,7 +93,7 @@ pub enum Path {
     /// One contour monotone in y (triangles included): two chains from the
     /// top vertex down, one span per row, no allocation.
     Monotone,
-    /// Any polygon: the active edge table, which allocates its tables.
+    /// Any polygon: the active edge table, on the stack or in a [`Scratch`].
     ActiveEdges,
 }
 
