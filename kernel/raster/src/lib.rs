@@ -65,7 +65,7 @@
 //! Every method is named by a [`MethodId`]: a name from the outside (a
 //! command line, a serial line, a file) is parsed into one once, and an
 //! unknown name is an error that lists the known ones; [`Method`] is the
-//! interface over all of them, and [`classify`] tells a polygon's class,
+//! interface over all of them, and [`classify()`] tells a polygon's class,
 //! the most general one a method must handle to fill it.
 //!
 //! What is drawn in polylab (the book pages, scene files, the show) lives
