@@ -5,7 +5,7 @@ mod exact_support;
 
 use exact_support::{
     against_reference, any_polygon, generate_any, nearby_points, polygon_of, prop_assert_matches_reference, Kind,
-    Seeded, PX, TARGET,
+    Seeded, DIRECTIONS, PX, TARGET,
 };
 use proptest::prelude::*;
 use raster::methods::exact::{choose_path, Exact, Path};
@@ -101,24 +101,9 @@ proptest! {
 #[test]
 fn past_failures_match_reference() {
     let contour = |points: &[(i32, i32)]| points.iter().map(|&(x, y)| Point::new(x, y)).collect::<Vec<_>>();
-    let star = [
-        (256, 0),
-        (237, 98),
-        (181, 181),
-        (98, 237),
-        (0, 256),
-        (-98, 237),
-        (-181, 181),
-        (-237, 98),
-        (-256, 0),
-        (-237, -98),
-        (-181, -181),
-        (-98, -237),
-        (0, -256),
-        (874, -2115),
-        (181, -181),
-        (440, -182),
-    ];
+    // A star round the origin whose 14th and 16th points were moved.
+    let mut star = DIRECTIONS;
+    (star[13], star[15]) = ((874, -2115), (440, -182));
     let failures = [
         (contour(&[(0, 128), (-128, -128), (0, 0)]), FillRule::EvenOdd),
         (contour(&[(0, 2944), (0, 3072), (256, 2944)]), FillRule::EvenOdd),

@@ -199,7 +199,7 @@ fn monotone_contour(draws: &mut impl Draws) -> Vec<Point> {
 }
 
 /// Sixteen directions in angular order, scaled to 256.
-const DIRECTIONS: [(i32, i32); 16] = [
+pub const DIRECTIONS: [(i32, i32); 16] = [
     (256, 0),
     (237, 98),
     (181, 181),
