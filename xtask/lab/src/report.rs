@@ -117,7 +117,8 @@ fn modelling_tables(out: &mut String, results: &Results) {
         "## What modelling costs\n\nEach family drawn by `{EXACT}` through each of its paths alone (a path refuses \
          polygons outside its class), by `fill_auto` (its classification, then the path it picks), and classified \
          alone: `dispatch` is `fill_auto`'s own classification, `classify` is `raster::classify` (every class, \
-         simplicity included). The paths and `fill_auto` keep one `Scratch` from polygon to polygon, as a program \
+         simplicity included); `spans unstored` is `fill_auto` into a sink that stores nothing, what finding the \
+         spans costs alone. The paths and `fill_auto` keep one `Scratch` from polygon to polygon, as a program \
          drawing frame after frame would. Cells: time per polygon, time over the cheapest path's that takes the \
          whole family, heap allocations per polygon once the lane has gone over the family (a scratch grown to the \
          largest polygon allocates no more); ← marks the path `fill_auto` picks, with how many polygons.\n"
@@ -140,7 +141,7 @@ fn modelling_tables(out: &mut String, results: &Results) {
                 if let Some(ratio) = r.time_vs_cheapest {
                     let _ = write!(cell, " ({ratio:.2}×)");
                 }
-                if lane == "dispatch" {
+                if lane == "dispatch" || lane == "spans unstored" {
                     if let (Some(ns), Some(total)) = (r.ns_per_polygon, auto.and_then(|a| a.ns_per_polygon)) {
                         let _ = write!(cell, " ({:.0}% of fill_auto)", 100.0 * ns / total);
                     }
