@@ -14,6 +14,7 @@ use protocol::BENCH_UNIT_LINE;
 use raster::methods;
 use scenes::Scene;
 
+use crate::clock;
 use crate::video::Screen;
 
 /// The `BENCH` payload for `scene`: [`BENCH_UNIT_LINE`], then per method
@@ -51,17 +52,9 @@ pub fn run(screen: &mut Screen, scene: &Scene, repeats: u8) -> String {
 /// across the reads, which is enough for whole draws of thousands of
 /// cycles.
 pub fn timed<R>(work: impl FnOnce() -> R) -> (R, u64) {
-    let start = rdtsc();
+    let start = clock::cycles();
     compiler_fence(Ordering::SeqCst);
     let result = work();
     compiler_fence(Ordering::SeqCst);
-    (result, rdtsc().wrapping_sub(start))
-}
-
-/// The time-stamp counter.
-fn rdtsc() -> u64 {
-    // SAFETY: RDTSC only reads the counter into registers; it touches no
-    // memory. Every x86_64 CPU has it, and the kernel runs in ring 0, where
-    // CR4.TSD cannot make it fault.
-    unsafe { core::arch::x86_64::_rdtsc() }
+    (result, clock::cycles().wrapping_sub(start))
 }

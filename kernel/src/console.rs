@@ -9,25 +9,27 @@ use alloc::string::{String, ToString};
 use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt::Write;
-use protocol::{Command, CommandError, FrameKind, Pong, Ready, MAX_LINE};
+use protocol::{Command, CommandError, Firmware, FrameKind, Pong, Ready, MAX_LINE};
 use raster::MethodId;
 use scenes::show::{Stage, ENTRIES_IN_ORDER};
 use scenes::{builtin, file, Op, Scene};
 
 use crate::exit::exit_qemu;
+use crate::pci::DisplayController;
 use crate::video::Screen;
-use crate::{bench, demo, fault, pci, player, serial, vga};
+use crate::{bench, demo, fault, heap, player, serial};
 
-/// Tells the host the kernel is up: a `LOG` frame per VGA register or DAC
-/// entry that did not read back as written, then `READY` naming the
-/// display adapter, counting those mismatches and the bytes the serial
-/// line lost so far.
-pub fn announce(screen: &Screen) {
-    let mismatches = vga::verify(screen.palette());
-    for mismatch in &mismatches {
+/// Tells the host the kernel is up: on the VGA path a `LOG` frame per
+/// register or DAC entry that did not read back as written, then `READY`
+/// naming the firmware, the display controller and the video path (with
+/// the count of those mismatches, or where the frame is presented), and
+/// the bytes the serial line lost so far.
+pub fn announce(screen: &Screen, firmware: Firmware, display: Option<DisplayController>) {
+    for mismatch in screen.mismatches() {
         serial::send_frame(FrameKind::Log, mismatch.to_string().as_bytes());
     }
-    let ready = Ready { display: pci::display_adapter(), vga_mismatches: mismatches.len(), losses: serial::losses() };
+    let ready =
+        Ready { firmware, display: display.map(|display| display.id), video: screen.video(), losses: serial::losses() };
     serial::send_frame(FrameKind::Ready, ready.to_string().as_bytes());
 }
 
@@ -96,7 +98,7 @@ impl Console<'_> {
 
     fn run(&mut self, command: Command<'_>) -> Reply {
         match command {
-            Command::Ping => ok(Pong { losses: serial::losses() }),
+            Command::Ping => ok(Pong { losses: serial::losses(), heap: heap::state() }),
             Command::List => Ok((FrameKind::List, listing().into_bytes())),
             Command::Draw { scene, method } => {
                 let scene = builtin_scene(scene)?;
@@ -138,15 +140,7 @@ impl Console<'_> {
                 let method = method.map_or("own", MethodId::name);
                 ok(format_args!("demo from={from} stay={} method={method}", start.stay))
             }
-            Command::VgaCheck => {
-                let mismatches = vga::verify(self.screen.palette());
-                let summary = vga::summary(&mismatches);
-                if mismatches.is_empty() {
-                    ok(summary)
-                } else {
-                    Err(summary)
-                }
-            }
+            Command::VgaCheck => self.screen.check().and_then(ok),
             Command::Exit(code) => exit_qemu(code),
             Command::Fault(kind) => fault::provoke(kind),
         }

@@ -2,12 +2,15 @@
 //! behind a wrapper that counts allocations (`SHOW` reports how many a
 //! frame made: the show's own code makes none, some methods do). `raster`
 //! allocates (scenes, edge tables) and a dump is a 64,768-byte buffer;
-//! 4 MiB is plenty and costs nothing in the image (it is `.bss`).
+//! 4 MiB is plenty and costs nothing in the image (it is `.bss`). `PING`
+//! reports the heap's state ([`state`]), so a run of hours can show
+//! whether it leaks or fragments.
 
 use core::alloc::{GlobalAlloc, Layout};
 use core::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
-use linked_list_allocator::LockedHeap;
+use linked_list_allocator::{Heap, LockedHeap};
+use protocol::HeapState;
 
 const HEAP_SIZE: usize = 4 * 1024 * 1024;
 
@@ -57,4 +60,58 @@ pub fn init() {
 /// Heap allocations made since boot.
 pub fn allocations() -> u64 {
     ALLOCATOR.allocations.load(Ordering::Relaxed)
+}
+
+/// The heap's bytes in use and the largest block one allocation could get
+/// now, found by trying. The allocator is held locked throughout, so
+/// nothing else allocates in between, and every trial block is given back
+/// at once: the allocator merges it with its neighbours, which leaves its
+/// free list as it was.
+pub fn state() -> HeapState {
+    let mut heap = ALLOCATOR.heap.lock();
+    HeapState { used: heap.used(), free_largest: largest_free_block(&mut heap) }
+}
+
+/// Allocations here are multiples of this (the allocator rounds sizes up
+/// to it and keeps its free blocks aligned to it).
+const GRAIN: usize = core::mem::align_of::<usize>();
+
+/// Whether `heap` has a block for `size` bytes (aligned to [`GRAIN`]).
+fn fits(heap: &mut Heap, size: usize) -> bool {
+    let Ok(layout) = Layout::from_size_align(size, GRAIN) else { return false };
+    match heap.allocate_first_fit(layout) {
+        Ok(block) => {
+            // SAFETY: `block` was just allocated from `heap` with `layout`
+            // and nothing else has seen it.
+            unsafe { heap.deallocate(block, layout) };
+            true
+        }
+        Err(()) => false,
+    }
+}
+
+/// The largest multiple of [`GRAIN`] that `heap` can allocate in one
+/// block. A free block of `B` bytes holds `B` exactly, or anything up to
+/// `B - 16`, but not `B - 8` (the allocator will not leave a remainder too
+/// small for its list node): so the search finds the edge below `B` and
+/// then tries `B`.
+fn largest_free_block(heap: &mut Heap) -> usize {
+    if !fits(heap, GRAIN) {
+        return 0;
+    }
+    // In grains: `low` fits, `high` does not (nothing larger than the free
+    // bytes can).
+    let (mut low, mut high) = (1, heap.free() / GRAIN + 1);
+    while high - low > 1 {
+        let middle = low + (high - low) / 2;
+        if fits(heap, middle * GRAIN) {
+            low = middle;
+        } else {
+            high = middle;
+        }
+    }
+    if fits(heap, (low + 2) * GRAIN) {
+        low += 2;
+    }
+    low * GRAIN
 }

@@ -1,11 +1,13 @@
 //! The bare-metal side of the polygon lab: boots from the `bootloader`
 //! crate's BIOS stages (stage 2 patched to leave the card in text mode,
-//! see tests/src/bootloader.rs), puts the VGA in mode 13h with its own
-//! register writes, runs the demo (the show), and serves the host's
-//! commands over COM1 as soon as one arrives.
+//! see boot/image/src/bootloader.rs) or its UEFI loader, puts the VGA in
+//! mode 13h with its own register writes (after undoing a UEFI firmware's
+//! mode on the cards it knows, `card`) or else presents its 320x200 frame
+//! in the firmware's framebuffer (`framebuffer`), runs the demo (the
+//! show), and serves the host's commands over COM1 as soon as one arrives.
 //!
 //! Hardware access lives in small modules with `// SAFETY:` notes
-//! (`port`, `video`, `heap`, `gdt`, `interrupts`, `fault`, and `bench`'s
+//! (`port`, `video`, `heap`, `gdt`, `interrupts`, `fault`, and `clock`'s
 //! one RDTSC); everything above them is safe code.
 #![no_std]
 #![no_main]
@@ -15,11 +17,15 @@
 extern crate alloc;
 
 mod bench;
+mod card;
+mod clock;
 mod console;
 mod demo;
 mod exit;
 mod fatal;
 mod fault;
+mod firmware;
+mod framebuffer;
 mod gdt;
 mod heap;
 mod interrupts;
@@ -46,19 +52,17 @@ static CONFIG: BootloaderConfig = {
 entry_point!(kernel_main, config = &CONFIG);
 
 fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
+    clock::init();
     serial::init();
     gdt::init();
     interrupts::init();
     heap::init();
-    vga::init();
-    let Some(mut screen) = video::Screen::new(boot_info) else {
-        panic!("the bootloader did not map physical memory, so 0xA0000 is out of reach");
-    };
-    // The text mode the BIOS left had other bytes in video memory.
-    screen.clear(0);
+    let firmware = firmware::of(boot_info);
+    let display = pci::display_controller();
+    let mut screen = video::Screen::open(boot_info, firmware, display);
     serial::enable_receive_interrupt();
     interrupts::enable();
-    console::announce(&screen);
+    console::announce(&screen, firmware, display);
     // The show's memory, allocated once for the demo and `SHOW`.
     let mut stage = scenes::show::Stage::new();
     let first_byte = demo::run(&mut screen, &mut stage, demo::Start::default());

@@ -1,6 +1,6 @@
-//! Elapsed time from the 8253/8254 PIT, by polling: interrupts stay off in
-//! this kernel. The VGA retrace bit cannot time anything under QEMU (it
-//! toggles on every read of 0x3DA), the PIT can.
+//! Elapsed time from the 8253/8254 PIT, by polling (its interrupt stays
+//! masked): the reference `clock` measures the TSC's rate against at boot.
+//! Where there is no PIT its count never moves, which `clock` notices.
 //!
 //! Channel 0 is reprogrammed to mode 2 (rate generator) with reload 0,
 //! i.e. 65,536: it counts down by one per tick at 1.193182 MHz and wraps

@@ -3,11 +3,14 @@
 //! [`play`] is the one way a frame gets there, for the demo and for
 //! `SHOW` alike, so what the host checks is what the demo plays.
 //!
-//! A still page is drawn straight into video memory at 0xA0000, as the
-//! books' listings drew: it is drawn once and then stays. An animation's
-//! frame is drawn off screen and copied whole at a vertical retrace, so
-//! the viewer never sees a frame half drawn over the last one (no
-//! tearing).
+//! A still page is drawn straight into the screen's frame (video memory
+//! at 0xA0000 on a VGA), as the books' listings drew: it is drawn once and
+//! then stays. An animation's frame is drawn off screen and copied whole
+//! at a vertical retrace, so the viewer never sees a frame half drawn over
+//! the last one (no tearing). Where the frame is presented in a firmware's
+//! framebuffer instead (`video`), it is presented at those same moments:
+//! the still page once drawn and labelled, the animation's frame once
+//! copied.
 
 use core::hint::spin_loop;
 
@@ -15,12 +18,8 @@ use protocol::ShowReply;
 use raster::MethodId;
 use scenes::show::{draw_labels, Entry, Stage, FRAMES_PER_SECOND, PALETTE};
 
-use crate::pit::{Stopwatch, TICKS_PER_SECOND};
 use crate::video::Screen;
-use crate::{bench, heap, vga};
-
-/// PIT ticks from one show frame to the next.
-const FRAME_TICKS: u64 = TICKS_PER_SECOND / FRAMES_PER_SECOND as u64;
+use crate::{bench, clock, heap};
 
 /// Puts frame `frame` of `entry`, drawn with `method` and labelled with
 /// the rdtsc cycles the draw took, on the screen in the show's palette,
@@ -47,7 +46,7 @@ pub fn play(
             pacer.wait();
         }
         screen.use_palette(&PALETTE);
-        vga::wait_for_retrace();
+        screen.wait_for_retrace();
         screen.blit(stage.pixels());
         (report, cycles, strays)
     } else {
@@ -59,6 +58,7 @@ pub fn play(
         let (report, cycles) = bench::timed(|| stage.draw_still(entry, method.method(), screen));
         let strays = screen.stray_spans().wrapping_sub(strays);
         draw_labels(screen, entry, frame, method.method(), cycles);
+        screen.present();
         (report, cycles, strays)
     };
     let allocs = heap::allocations().wrapping_sub(allocations);
@@ -74,30 +74,31 @@ pub fn play(
     }
 }
 
-/// Frame times [`FRAMES_PER_SECOND`] apart, from the PIT.
+/// Frame times [`FRAMES_PER_SECOND`] apart, from the kernel's clock.
 pub struct Pacer {
-    stopwatch: Stopwatch,
-    /// PIT ticks since the start at which the next frame is due.
+    /// TSC cycles from one frame to the next.
+    frame_cycles: u64,
+    /// The TSC count at which the next frame is due.
     next: u64,
 }
 
 impl Pacer {
     /// Frame 0 is due now.
     pub fn start() -> Self {
-        Self { stopwatch: Stopwatch::start(), next: 0 }
+        Self { frame_cycles: clock::cycles_per_second() / u64::from(FRAMES_PER_SECOND), next: clock::cycles() }
     }
 
     /// Waits until the next frame is due. A frame more than a frame time
     /// late is shown at once and the count starts again from it: a slow
     /// frame slows the show down rather than making it rush afterwards.
     pub fn wait(&mut self) {
-        let now = self.stopwatch.elapsed_ticks();
-        if now > self.next + FRAME_TICKS {
+        let now = clock::cycles();
+        if now > self.next + self.frame_cycles {
             self.next = now;
         }
-        while self.stopwatch.elapsed_ticks() < self.next {
+        while clock::cycles() < self.next {
             spin_loop();
         }
-        self.next += FRAME_TICKS;
+        self.next += self.frame_cycles;
     }
 }

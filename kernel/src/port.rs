@@ -1,17 +1,22 @@
-//! The I/O ports this kernel touches, and the only place it does port I/O.
+//! The I/O ports this kernel touches, and the only place it grants port
+//! I/O.
 //!
 //! Port I/O is `unsafe` in `x86_64` because a port can reach memory behind
 //! the compiler's back (a DMA controller, a disk, a PCI device's address
 //! decoders). [`IoPort`] can only be made here, for the registers listed
-//! below: VGA, COM1, the PIT, the PS/2 controller, the interrupt
-//! controllers, PCI configuration reads and QEMU's debug-exit device. None
-//! of them moves memory, so reading or writing them from safe code cannot
+//! below: VGA, the Bochs VBE interface, the PIT, the PS/2 controller, the
+//! interrupt controllers, PCI configuration reads and QEMU's debug-exit
+//! device; [`com1`] hands COM1's eight registers to the `uart_16550`
+//! driver, and [`vmware_svga`] writes one register of that card. None of
+//! them moves memory, so reading or writing them from safe code cannot
 //! break memory safety; the worst they do is change the picture, the timer
 //! or the serial line, raise an interrupt (whose vector the IDT handles,
 //! or reports as a fault) or end the machine.
 
 use core::marker::PhantomData;
 
+use uart_16550::backend::PioBackend;
+use uart_16550::Uart16550;
 use x86_64::instructions::port::{Port, PortRead, PortWrite};
 
 /// One whitelisted I/O port, `T` wide (`u8`, `u16` or `u32`).
@@ -77,22 +82,71 @@ pub mod vga {
     pub const INPUT_STATUS_1: IoPort<u8> = IoPort::new(0x3DA);
 }
 
-/// COM1, a 16550 UART (`serial.rs`). With the divisor latch bit of
-/// [`com1::LINE_CONTROL`] set, the first two ports are the baud divisor.
-pub mod com1 {
+/// COM1's base port: its eight registers are 0x3F8 to 0x3FF.
+const COM1_BASE: u16 = 0x3F8;
+
+/// The `uart_16550` driver on COM1 (`serial.rs`), which does the port I/O
+/// on those eight registers itself. It checks that a UART is there before
+/// it sets anything up; where none is, the reads return 0xFF and the
+/// writes go nowhere.
+pub fn com1() -> Uart16550<PioBackend> {
+    // SAFETY: 0x3F8..=0x3FF are COM1's registers on every PC, decoded by
+    // a 16550-compatible UART or by nothing; none of them moves memory (a
+    // UART has no DMA in the PC's wiring). `serial::init` makes the one
+    // driver and keeps it for the whole run.
+    unsafe { Uart16550::new_port(COM1_BASE) }.expect("COM1's registers fit below port 0xFFFF")
+}
+
+/// The Bochs "dispi" VBE interface of QEMU's std, qxl-vga and virtio-vga
+/// cards (and Bochs's and VirtualBox's own): a 16-bit index port and its
+/// data port. On other cards these ports may be vendor registers, so the
+/// kernel writes them only after the card's PCI IDs and the interface's
+/// own ID say it is there (`card.rs`).
+pub mod bochs_vbe {
     use super::IoPort;
 
-    /// Receive buffer when read, transmit holding register when written;
-    /// divisor low byte while the divisor latch is open.
-    pub const DATA: IoPort<u8> = IoPort::new(0x3F8);
-    /// Which events raise the UART's interrupt; divisor high byte while
-    /// the divisor latch is open.
-    pub const INTERRUPT_ENABLE: IoPort<u8> = IoPort::new(0x3F9);
-    pub const FIFO_CONTROL: IoPort<u8> = IoPort::new(0x3FA);
-    pub const LINE_CONTROL: IoPort<u8> = IoPort::new(0x3FB);
-    pub const MODEM_CONTROL: IoPort<u8> = IoPort::new(0x3FC);
-    /// Reading it clears its error bits (overrun among them).
-    pub const LINE_STATUS: IoPort<u8> = IoPort::new(0x3FD);
+    pub const INDEX: IoPort<u16> = IoPort::new(0x1CE);
+    pub const DATA: IoPort<u16> = IoPort::new(0x1CF);
+}
+
+/// The VMware SVGA II card (PCI 15ad:0405, also VirtualBox's VMSVGA),
+/// whose registers sit behind an index and a value port at the I/O base
+/// its BAR 0 names.
+pub mod vmware_svga {
+    use super::{pci, IoPort};
+
+    const VENDOR_DEVICE: u32 = 0x0405_15AD;
+    /// Configuration-space offset of BAR 0.
+    const BAR_0: u8 = 0x10;
+    /// BAR bit 0: the BAR is an I/O port range (else memory).
+    const BAR_IS_IO: u32 = 1;
+    /// Bits 31-2 of an I/O BAR: the base port.
+    const IO_BASE_MASK: u32 = !0b11;
+    /// The value port follows the index port (32-bit ports, 1 apart).
+    const VALUE_OFFSET: u16 = 1;
+    /// SVGA_REG_ENABLE: while set, the card shows its own framebuffer
+    /// and ignores the VGA core; 0 hands the screen back to the VGA.
+    const REG_ENABLE: u32 = 1;
+
+    /// Turns the SVGA mode of the card at `bus`:`device`.`function` off
+    /// (SVGA_REG_ENABLE = 0), if that function is a VMware SVGA II whose
+    /// BAR 0 is an I/O range; returns whether it was. Anything else is
+    /// left alone.
+    pub fn disable(bus: u8, device: u8, function: u8) -> bool {
+        if pci::read_config(bus, device, function, 0) != VENDOR_DEVICE {
+            return false;
+        }
+        let bar = pci::read_config(bus, device, function, BAR_0);
+        let Ok(base) = u16::try_from(bar & IO_BASE_MASK) else { return false };
+        if bar & BAR_IS_IO == 0 || base == 0 {
+            return false;
+        }
+        // The card's own two ports, found through its own BAR: writing
+        // its enable register changes the picture only.
+        IoPort::<u32>::new(base).write(REG_ENABLE);
+        IoPort::<u32>::new(base + VALUE_OFFSET).write(0);
+        true
+    }
 }
 
 /// The two 8259 interrupt controllers of the PC, master and slave.

@@ -1,62 +1,53 @@
 //! COM1, the protocol channel (kernel/protocol): frames out, command bytes
-//! in. Sending polls the UART; receiving is by interrupt (IRQ 4, see
-//! `interrupts.rs`) into a ring buffer, so bytes arriving while the demo
-//! draws a frame or the console answers a command are kept: the UART's
-//! own FIFO holds only 16, about 1.4 ms at 115200 baud.
+//! in, through the `uart_16550` crate's driver. Sending polls the UART;
+//! receiving is by interrupt (IRQ 4, see `interrupts.rs`) into a ring
+//! buffer, so bytes arriving while the demo draws a frame or the console
+//! answers a command are kept: the UART's own FIFO holds only 16, about
+//! 1.4 ms at 115200 baud.
 //!
 //! What is lost anyway is counted ([`losses`]): overrun errors the UART
 //! reports in its line status (a byte arrived with its FIFO full) and
-//! bytes that found the ring full. Every read of the line status goes
-//! through [`line_status`], since reading it clears the overrun bit.
+//! bytes that found the ring full. Reading the line status clears the
+//! overrun bit; the driver keeps the error bits of its own reads and
+//! hands them out with the next `lsr()`, which is where they are counted.
 //!
-//! A PC may have no COM1 at all. Then nothing is set up: frames go nowhere
-//! and no byte ever arrives, so the demo runs on. Reading an absent UART
-//! would return 0xFF, "data ready", and stop the demo for nothing.
+//! A PC may have no COM1 at all. The driver's presence check (the scratch
+//! register holds what is written to it; an absent port reads 0xFF) needs
+//! no timing, so it answers the same on a PC and under any emulator. With
+//! no COM1 nothing is set up: frames go nowhere and no byte ever arrives,
+//! so the demo runs on. Every wait for the transmitter ends by the clock.
 
 use core::fmt::{self, Write};
+use core::hint::spin_loop;
 use core::sync::atomic::{AtomicBool, AtomicU32, AtomicU8, AtomicUsize, Ordering};
 
 use protocol::{FrameHeader, FrameKind, LineLosses};
 use spin::Mutex;
+use uart_16550::backend::PioBackend;
+use uart_16550::spec::registers::{FifoTriggerLevel, IER, LSR};
+use uart_16550::{BaudRate, Config, Uart16550};
 use x86_64::instructions::interrupts;
 
-use crate::port::com1;
+use crate::clock::Deadline;
+use crate::port;
 
-/// Line control: 8 data bits, no parity, 1 stop bit.
-const EIGHT_N_ONE: u8 = 0x03;
-/// Line control bit 7: the first two ports are the baud divisor.
-const DIVISOR_LATCH: u8 = 0x80;
-/// 115200 baud: the UART's 1.8432 MHz clock / 16 / 1.
-const DIVISOR_115200: u8 = 1;
-/// FIFO control: enable and clear both FIFOs, interrupt once 8 bytes wait
-/// (bits 7-6 = 10), leaving 8 bytes of room for the handler to get there.
-const FIFOS_ON_TRIGGER_8: u8 = 0x87;
-/// Modem control: DTR and RTS (a host may wait for them), OUT2, which on a
-/// PC connects the UART's interrupt line to the PIC.
-const DTR_RTS_OUT2: u8 = 0x0B;
-/// Modem control bit 4: loopback, what is sent comes back in.
-const LOOPBACK: u8 = 0x10;
-/// Interrupt enable bit 0: received data available (and, with the FIFO on,
-/// a character timeout when fewer bytes than the trigger wait).
-const RECEIVED_DATA_INTERRUPT: u8 = 0x01;
-/// Line status bits: a byte waits; an overrun error since the last read;
-/// the transmit holding register is empty.
-const DATA_READY: u8 = 0x01;
-const OVERRUN_ERROR: u8 = 0x02;
-const TRANSMIT_EMPTY: u8 = 0x20;
-/// Sent and expected back in loopback to tell a UART from an empty port.
-const LOOPBACK_PROBE: u8 = 0xAE;
-/// Most line-status reads spent waiting for the probe to come back: it
-/// takes one character time, 87 us at 115200 baud, and a port read at
-/// least about 0.3 us.
-const PROBE_MAX_READS: u32 = 4096;
+/// Longest wait for room in the transmitter before the rest of a frame is
+/// given up: 16 bytes take 1.4 ms at 115200 baud, but under QEMU the
+/// transmitter waits for the host to read its end of the line, which a
+/// loaded host may not do for a while. A host that resynchronises on the
+/// next frame header loses one frame, never the kernel.
+const SEND_TIMEOUT_MICROS: u64 = 2_000_000;
 
 /// Bytes the ring holds: a whole command line of `protocol::MAX_LINE` and
 /// the commands a host sends behind it while a long answer (a 64 KB dump)
 /// goes out.
 const RING_LEN: usize = 16 * 1024;
 
-/// Whether COM1 answered the loopback probe and is set up.
+/// COM1's driver, once [`init`] found a UART there. Taken by the
+/// interrupt handler, and by the main flow only with interrupts off, so
+/// neither ever waits for the other.
+static COM1: Mutex<Option<Uart16550<PioBackend>>> = Mutex::new(None);
+/// Whether COM1 is set up, without taking the lock.
 static PRESENT: AtomicBool = AtomicBool::new(false);
 /// Serialises senders: a frame goes out whole.
 static SENDING: Mutex<()> = Mutex::new(());
@@ -71,53 +62,51 @@ static RING: [AtomicU8; RING_LEN] = [const { AtomicU8::new(0) }; RING_LEN];
 static RING_HEAD: AtomicUsize = AtomicUsize::new(0);
 static RING_TAIL: AtomicUsize = AtomicUsize::new(0);
 
-/// Sets COM1 to 115200 baud 8-N-1 with FIFOs, if there is a COM1, its
-/// interrupt still off ([`enable_receive_interrupt`] turns it on once the
-/// IDT and the PIC are ready for it). The bootloader's own serial logging
-/// is off (boot/src/main.rs), so the line is ours alone. QEMU ignores the
-/// speed; on a real PC the host's terminal must match it.
+/// Sets COM1 to 115200 baud 8-N-1 with FIFOs (receive interrupt after 8
+/// bytes, leaving 8 bytes of room for the handler to get there), if there
+/// is a COM1, its interrupt still off ([`enable_receive_interrupt`] turns
+/// it on once the IDT and the PIC are ready for it). The bootloader's own
+/// serial logging is off (boot/src/main.rs), so the line is ours alone.
+/// QEMU ignores the speed; on a real PC the host's terminal must match it.
 pub fn init() {
-    com1::INTERRUPT_ENABLE.write(0);
-    com1::LINE_CONTROL.write(DIVISOR_LATCH);
-    com1::DATA.write(DIVISOR_115200);
-    com1::INTERRUPT_ENABLE.write(0);
-    com1::LINE_CONTROL.write(EIGHT_N_ONE);
-    com1::FIFO_CONTROL.write(FIFOS_ON_TRIGGER_8);
-    com1::MODEM_CONTROL.write(DTR_RTS_OUT2 | LOOPBACK);
-    com1::DATA.write(LOOPBACK_PROBE);
-    let arrived = (0..PROBE_MAX_READS).any(|_| line_status() & DATA_READY != 0);
-    let echoed = arrived && com1::DATA.read() == LOOPBACK_PROBE;
-    com1::MODEM_CONTROL.write(DTR_RTS_OUT2);
-    // The probe may have left the overrun bit or a stray byte behind:
-    // losses count from here.
-    com1::FIFO_CONTROL.write(FIFOS_ON_TRIGGER_8);
-    line_status();
-    OVERRUNS.store(0, Ordering::Relaxed);
-    PRESENT.store(echoed, Ordering::Release);
+    let mut uart = port::com1();
+    let config = Config {
+        baud_rate: BaudRate::Baud115200,
+        fifo_trigger_level: Some(FifoTriggerLevel::Eight),
+        ..Config::DEFAULT
+    };
+    // Fails only where the presence check finds no UART.
+    if uart.init(config).is_ok() {
+        *COM1.lock() = Some(uart);
+        PRESENT.store(true, Ordering::Release);
+    }
 }
 
 /// Lets COM1 raise IRQ 4 when bytes arrive (if there is a COM1).
 pub fn enable_receive_interrupt() {
-    if PRESENT.load(Ordering::Acquire) {
-        com1::INTERRUPT_ENABLE.write(RECEIVED_DATA_INTERRUPT);
-    }
+    with_com1(|uart| uart.enable_interrupts(IER::DATA_READY));
 }
 
-/// Reads the line status, counting an overrun it reports: the one way
-/// this kernel reads it, since the read clears the bit.
-fn line_status() -> u8 {
-    let status = com1::LINE_STATUS.read();
-    if status & OVERRUN_ERROR != 0 {
+/// Runs `work` on COM1's driver with interrupts off; nothing where there
+/// is no COM1.
+fn with_com1<R: Default>(work: impl FnOnce(&mut Uart16550<PioBackend>) -> R) -> R {
+    interrupts::without_interrupts(|| COM1.lock().as_mut().map(work).unwrap_or_default())
+}
+
+/// Counts an overrun in `lsr`, the line status with the error bits the
+/// driver saved since the last `lsr()`.
+fn count_overrun(lsr: LSR) {
+    if lsr.contains(LSR::OVERRUN_ERROR) {
         OVERRUNS.fetch_add(1, Ordering::Relaxed);
     }
-    status
 }
 
 /// The IRQ 4 handler's work: moves every waiting byte from the UART into
 /// the ring (counting those that find it full). Runs with interrupts off.
 pub fn receive_waiting_bytes() {
-    while line_status() & DATA_READY != 0 {
-        let byte = com1::DATA.read();
+    let mut com1 = COM1.lock();
+    let Some(uart) = com1.as_mut() else { return };
+    while let Ok(byte) = uart.try_receive_byte() {
         let tail = RING_TAIL.load(Ordering::Relaxed);
         if tail.wrapping_sub(RING_HEAD.load(Ordering::Acquire)) == RING_LEN {
             DROPPED.fetch_add(1, Ordering::Relaxed);
@@ -126,6 +115,7 @@ pub fn receive_waiting_bytes() {
         RING[tail % RING_LEN].store(byte, Ordering::Relaxed);
         RING_TAIL.store(tail.wrapping_add(1), Ordering::Release);
     }
+    count_overrun(uart.lsr());
 }
 
 /// The next byte from the host, if one has arrived.
@@ -140,7 +130,8 @@ pub fn try_read_byte() -> Option<u8> {
 }
 
 /// The next byte from the host, halting the CPU until an interrupt brings
-/// one. Never returns where there is no COM1.
+/// one. Called only once a byte has come (the console serves a host that
+/// is talking), so it waits for that host, not for a device.
 pub fn read_byte() -> u8 {
     loop {
         // With interrupts off between the look and the `hlt` (`sti; hlt`
@@ -157,6 +148,7 @@ pub fn read_byte() -> u8 {
 
 /// What the line has lost on the way in since boot.
 pub fn losses() -> LineLosses {
+    with_com1(|uart| count_overrun(uart.lsr()));
     LineLosses { overruns: OVERRUNS.load(Ordering::Relaxed), dropped: DROPPED.load(Ordering::Relaxed) }
 }
 
@@ -172,29 +164,46 @@ pub fn send_frame(kind: FrameKind, payload: &[u8]) {
 /// and there is one CPU, so if a frame is being sent, its sender is the
 /// code this fault interrupted, which never runs again: the frame goes out
 /// without waiting for it (it may then land inside a half-sent one; the
-/// host resynchronises on the next header).
+/// host resynchronises on the next header). If the fault struck inside the
+/// driver itself (its lock is held), nothing can be sent; the exit status
+/// still says the run failed.
 pub fn send_fatal(payload: &[u8]) {
-    if PRESENT.load(Ordering::Acquire) {
+    if PRESENT.load(Ordering::Acquire) && !COM1.is_locked() {
         write_frame(FrameKind::Fatal, payload);
     }
 }
 
 fn write_frame(kind: FrameKind, payload: &[u8]) {
     let header = FrameHeader::for_payload(kind, payload);
-    // `Wire` never fails.
-    let _ = writeln!(Wire, "{header}");
-    send_bytes(payload);
-    send_bytes(b"\n");
+    let mut wire = Wire;
+    if writeln!(wire, "{header}").is_ok() && send_bytes(payload).is_ok() {
+        // A frame cut short is ended by nothing: the host's next header
+        // search skips what came of it.
+        let _ = send_bytes(b"\n");
+    }
 }
 
-/// Sends `bytes` as they are, waiting for room before each.
-fn send_bytes(bytes: &[u8]) {
-    for &byte in bytes {
-        while line_status() & TRANSMIT_EMPTY == 0 {
-            core::hint::spin_loop();
+/// The transmitter had no room for [`SEND_TIMEOUT_MICROS`].
+struct Stalled;
+
+/// Sends `bytes` as they are, as many at a time as the transmitter FIFO
+/// takes, waiting (a bounded time) for room before each batch.
+fn send_bytes(mut bytes: &[u8]) -> Result<(), Stalled> {
+    while !bytes.is_empty() {
+        let give_up = Deadline::after_micros(SEND_TIMEOUT_MICROS);
+        loop {
+            let sent = with_com1(|uart| uart.send_bytes(bytes));
+            if sent > 0 {
+                bytes = &bytes[sent..];
+                break;
+            }
+            if give_up.passed() {
+                return Err(Stalled);
+            }
+            spin_loop();
         }
-        com1::DATA.write(byte);
     }
+    Ok(())
 }
 
 /// `fmt::Write` straight to the UART, byte for byte: no `\n` to `\r\n`
@@ -203,7 +212,6 @@ struct Wire;
 
 impl Write for Wire {
     fn write_str(&mut self, text: &str) -> fmt::Result {
-        send_bytes(text.as_bytes());
-        Ok(())
+        send_bytes(text.as_bytes()).map_err(|Stalled| fmt::Error)
     }
 }

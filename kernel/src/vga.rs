@@ -9,7 +9,8 @@
 //! them).
 //!
 //! The card is expected in a standard VGA mode, as the BIOS leaves it
-//! (the image's boot stages never set a VBE mode): these are the standard
+//! (the image's boot stages never set a VBE mode), or as `card.rs` leaves
+//! it after undoing a UEFI firmware's mode: these are the standard
 //! registers only, and a card still in a vendor's extended mode could read
 //! them all back as written and show garbage. [`verify`] proves the
 //! writes, not the picture; the harness proves the picture with QEMU's
@@ -22,6 +23,7 @@ use core::fmt::{self, Write};
 
 use scenes::palette::ENTRIES;
 
+use crate::clock::Deadline;
 use crate::port::{vga, IoPort};
 
 /// Bytes in the DAC: 256 entries of red, green, blue.
@@ -66,26 +68,28 @@ const CRTC_PROTECT_BIT: u8 = 0x80;
 const ATTRIBUTE_VIDEO_ON: u8 = 0x20;
 /// Input status 1 bit 3: the CRT is in vertical retrace.
 const VERTICAL_RETRACE: u8 = 0x08;
-/// Most reads of input status 1 [`wait_for_retrace`] spends on each of its
-/// two waits. A mode-13h frame lasts 14.3 ms (70 Hz) and an ISA or PCI port
-/// read at least about 0.3 us, so a real card gets past either wait well
-/// within this many reads; under QEMU the bit flips on every read; with no
-/// VGA the port may read 0xFF forever, and then the wait ends here.
-const RETRACE_MAX_READS: u32 = 1 << 16;
+/// Longest [`wait_for_retrace`]: two frames of mode 13h's 70 Hz. A card
+/// reaches the start of a retrace within one frame; under QEMU the bit
+/// flips on every read; a card whose bit never changes is waited for no
+/// longer than this.
+const RETRACE_TIMEOUT_MICROS: u64 = 2 * 1_000_000 / 70;
+/// Graphics register 8, the bit mask: read and write on every VGA, and
+/// left as the kernel found it by [`responds`].
+const GRAPHICS_BIT_MASK: u8 = 0x08;
 
 /// An index/data port pair: one register group.
 #[derive(Clone, Copy)]
-struct IndexedRegisters {
+pub struct IndexedRegisters {
     index: IoPort<u8>,
     data: IoPort<u8>,
 }
 
-const SEQUENCER: IndexedRegisters = IndexedRegisters { index: vga::SEQUENCER_INDEX, data: vga::SEQUENCER_DATA };
-const CRTC: IndexedRegisters = IndexedRegisters { index: vga::CRTC_INDEX, data: vga::CRTC_DATA };
+pub const SEQUENCER: IndexedRegisters = IndexedRegisters { index: vga::SEQUENCER_INDEX, data: vga::SEQUENCER_DATA };
+pub const CRTC: IndexedRegisters = IndexedRegisters { index: vga::CRTC_INDEX, data: vga::CRTC_DATA };
 const GRAPHICS: IndexedRegisters = IndexedRegisters { index: vga::GRAPHICS_INDEX, data: vga::GRAPHICS_DATA };
 
 impl IndexedRegisters {
-    fn write(self, index: u8, value: u8) {
+    pub fn write(self, index: u8, value: u8) {
         self.index.write(index);
         self.data.write(value);
     }
@@ -119,8 +123,21 @@ fn read_attribute(index: u8) -> u8 {
 
 /// Puts the card in mode 13h. The DAC is the screen's to load
 /// (`video::Screen`).
-pub fn init() {
+pub fn set_mode_13h() {
     set_mode(&MODE_13H);
+}
+
+/// Whether a VGA answers at the standard ports: the graphics bit-mask
+/// register keeps two patterns written to it (an absent card reads 0xFF),
+/// and is then given its value back. No wait, no timing.
+pub fn responds() -> bool {
+    let old = GRAPHICS.read(GRAPHICS_BIT_MASK);
+    let answers = [0x5A, 0xA5].into_iter().all(|pattern| {
+        GRAPHICS.write(GRAPHICS_BIT_MASK, pattern);
+        GRAPHICS.read(GRAPHICS_BIT_MASK) == pattern
+    });
+    GRAPHICS.write(GRAPHICS_BIT_MASK, old);
+    answers
 }
 
 /// Programs `mode` in the order the registers depend on: the sequencer
@@ -208,20 +225,13 @@ impl fmt::Display for Mismatch {
 
 /// Waits for the start of a vertical retrace, the moment to change the
 /// picture without tearing: while the retrace bit is set (one already
-/// under way), then until it is set. Gives up after [`RETRACE_MAX_READS`]
-/// reads per wait, so it ends on any machine, VGA or not.
+/// under way), then until it is set. Gives up after
+/// [`RETRACE_TIMEOUT_MICROS`] by the clock, so it ends on any machine.
 pub fn wait_for_retrace() {
     let in_retrace = || vga::INPUT_STATUS_1.read() & VERTICAL_RETRACE != 0;
-    for _ in 0..RETRACE_MAX_READS {
-        if !in_retrace() {
-            break;
-        }
-    }
-    for _ in 0..RETRACE_MAX_READS {
-        if in_retrace() {
-            break;
-        }
-    }
+    let give_up = Deadline::after_micros(RETRACE_TIMEOUT_MICROS);
+    while in_retrace() && !give_up.passed() {}
+    while !in_retrace() && !give_up.passed() {}
 }
 
 /// Reads back every register of [`MODE_13H`] and the whole DAC and returns

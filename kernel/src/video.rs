@@ -1,11 +1,24 @@
-//! The mode-13h framebuffer: 64,000 bytes at physical 0xA0000, one byte a
-//! pixel, row after row, and the palette its bytes are shown in.
+//! The screen: the 320x200 frame, one byte a pixel, row after row, and
+//! the palette its bytes are shown in, on whichever path the machine
+//! allows ([`Screen::open`]):
+//! - mode 13h: the frame is video memory at physical 0xA0000 and the
+//!   palette is in the DAC, both set by the kernel's own register writes;
+//! - a firmware's framebuffer: the frame is the kernel's own memory, drawn
+//!   exactly as video memory would be, and presented scaled in the
+//!   framebuffer (`framebuffer.rs`) at the moments a VGA would show it;
+//! - nothing: the frame is the kernel's own memory, shown nowhere.
 //!
-//! Every access is volatile: the compiler sees stores that nobody reads and
-//! would be free to drop or merge them if they were plain writes. A span is
-//! written as aligned 8-byte stores, with 4-, 2- and 1-byte ones only at its
-//! ends: on a real card's bus that is an eighth of the byte writes.
+//! Drawing, the methods, the demo and the protocol are the same on every
+//! path. Every access to the frame is volatile: the compiler sees stores
+//! that nobody reads and would be free to drop or merge them if they were
+//! plain writes. A span is written as aligned 8-byte stores, with 4-, 2-
+//! and 1-byte ones only at its ends: on a real card's bus that is an eighth
+//! of the byte writes.
 
+use alloc::boxed::Box;
+use alloc::format;
+use alloc::string::String;
+use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt;
 use core::mem::{align_of, size_of};
@@ -13,12 +26,15 @@ use core::ops::Range;
 use core::ptr::{self, NonNull};
 
 use bootloader_api::BootInfo;
-use protocol::{DUMP_LEN, FRAMEBUFFER_LEN};
+use protocol::{Firmware, Video, DUMP_LEN, FRAMEBUFFER_LEN};
 use raster::{sink, Method, Size, SpanSink, SCREEN};
 use scenes::palette::VGA_DEFAULT;
 use scenes::{DrawReport, Scene};
-use volatile::VolatilePtr;
+use volatile::{VolatilePtr, VolatileRef};
 
+use crate::card;
+use crate::framebuffer::Presenter;
+use crate::pci::DisplayController;
 use crate::vga::{self, Palette};
 
 /// Physical address of the mode-13h window.
@@ -28,40 +44,152 @@ const FRAMEBUFFER_PHYSICAL: u64 = 0xA0000;
 // 64,000 bytes.
 const _: () = assert!((SCREEN.width * SCREEN.height) as usize == FRAMEBUFFER_LEN);
 
+/// Where the frame is shown.
+enum Output {
+    /// The card in mode 13h; the frame is its video memory.
+    Vga,
+    /// The frame presented in the firmware's framebuffer.
+    Framebuffer(Presenter),
+    /// Nowhere.
+    Nothing,
+}
+
 /// The screen as a span sink. Spans that break the sink contract are not
 /// drawn at all, only counted: nothing is ever written outside the 64,000
 /// bytes.
 pub struct Screen {
+    /// The frame: 0xA0000 on the VGA path, the kernel's memory otherwise.
     pixels: VolatilePtr<'static, [u8]>,
     stray_spans: usize,
-    /// The palette in the DAC, loaded by [`Screen::use_palette`].
+    /// The palette the frame is shown in, set by [`Screen::use_palette`]:
+    /// in the DAC on the VGA path.
     palette: &'static Palette,
+    output: Output,
 }
 
 impl Screen {
-    /// The framebuffer through the bootloader's map of all physical memory
-    /// (`mappings.physical_memory` in main.rs's config), where 0xA0000
-    /// certainly is. `None` if the map is missing. Loads the VGA default
-    /// palette: the BIOS's text mode leaves the DAC set up for text.
-    pub fn new(boot_info: &BootInfo) -> Option<Self> {
-        let offset = boot_info.physical_memory_offset.into_option()?;
-        let start = offset.checked_add(FRAMEBUFFER_PHYSICAL)?;
-        let start = NonNull::new(core::ptr::with_exposed_provenance_mut::<u8>(usize::try_from(start).ok()?))?;
-        let pixels = NonNull::slice_from_raw_parts(start, FRAMEBUFFER_LEN);
-        // SAFETY: the bootloader maps all physical memory at `offset`, so
-        // these 64,000 bytes are the VGA window 0xA0000..0xAFA00: device
-        // memory, valid for volatile reads and writes for the whole run and
-        // never a Rust object, so nothing else holds a reference into it.
-        let pixels = unsafe { VolatilePtr::new(pixels) };
-        vga::load_dac(&VGA_DEFAULT);
-        Some(Self { pixels, stray_spans: 0, palette: &VGA_DEFAULT })
+    /// The screen on the best path the machine allows, cleared to black
+    /// in the VGA default palette:
+    /// - mode 13h where a VGA answers and is in a standard VGA mode: under
+    ///   a BIOS, which leaves it in text mode, any VGA; under UEFI, a card
+    ///   `card.rs` knows, once it has undone the firmware's mode;
+    /// - else the firmware's framebuffer from the boot info, if there is
+    ///   one the presenter can draw in (under UEFI; under a BIOS the boot
+    ///   stages set no framebuffer mode);
+    /// - else nothing.
+    ///
+    /// Panics on the VGA path if the bootloader did not map physical
+    /// memory (main.rs's config asks for it): 0xA0000 would be out of
+    /// reach.
+    pub fn open(boot_info: &'static mut BootInfo, firmware: Firmware, display: Option<DisplayController>) -> Self {
+        let vga_usable = match firmware {
+            Firmware::Bios => vga::responds(),
+            // Not a port of an unknown card is touched, the VGA's included.
+            Firmware::Uefi => match display.and_then(|display| Some((card::identify(&display)?, display))) {
+                Some((card, display)) if vga::responds() => {
+                    card.undo_firmware_mode(&display);
+                    true
+                }
+                Some(_) | None => false,
+            },
+        };
+        let mut screen = if vga_usable {
+            vga::set_mode_13h();
+            Self::on(vga_window(boot_info), Output::Vga)
+        } else {
+            let presenter = match firmware {
+                Firmware::Uefi => boot_info.framebuffer.take().and_then(Presenter::new),
+                Firmware::Bios => None,
+            };
+            let output = presenter.map_or(Output::Nothing, Output::Framebuffer);
+            let frame = VolatileRef::from_mut_ref(Box::leak(vec![0; FRAMEBUFFER_LEN].into_boxed_slice())).into_ptr();
+            Self::on(frame, output)
+        };
+        // The text mode the BIOS left had other bytes in video memory.
+        screen.clear(0);
+        screen
     }
 
-    /// Loads `palette` into the DAC, unless it is already there.
+    /// A screen drawing into `pixels`, shown by `output`, with the VGA
+    /// default palette loaded: the BIOS's text mode leaves the DAC set up
+    /// for text.
+    fn on(pixels: VolatilePtr<'static, [u8]>, output: Output) -> Self {
+        if let Output::Vga = output {
+            vga::load_dac(&VGA_DEFAULT);
+        }
+        Self { pixels, stray_spans: 0, palette: &VGA_DEFAULT, output }
+    }
+
+    /// The path in use, for `READY`: on the VGA path with the count of
+    /// registers and DAC entries that do not read back as written.
+    pub fn video(&self) -> Video {
+        match &self.output {
+            Output::Vga => Video::Vga13h { mismatches: vga::verify(self.palette).len() },
+            Output::Framebuffer(presenter) => Video::Framebuffer(presenter.presentation()),
+            Output::Nothing => Video::None,
+        }
+    }
+
+    /// The `VGACHECK` answer for the path in use: on the VGA path every
+    /// mode-13h register and DAC entry read back (`Err` listing what
+    /// differs); on the others there are no VGA registers in use to check.
+    pub fn check(&self) -> Result<String, String> {
+        match &self.output {
+            Output::Vga => {
+                let mismatches = vga::verify(self.palette);
+                let summary = vga::summary(&mismatches);
+                if mismatches.is_empty() {
+                    Ok(summary)
+                } else {
+                    Err(summary)
+                }
+            }
+            Output::Framebuffer(presenter) => {
+                let p = presenter.presentation();
+                Ok(format!(
+                    "vga: none in use, the frame is presented in the firmware's {}x{} framebuffer at scale {}",
+                    p.width, p.height, p.scale
+                ))
+            }
+            Output::Nothing => Err(String::from("vga: none, and no framebuffer: nothing shows the frame")),
+        }
+    }
+
+    /// The `LOG` lines of [`Screen::check`] before `READY`: each register
+    /// or DAC entry of the VGA path that did not read back as written.
+    pub fn mismatches(&self) -> Vec<vga::Mismatch> {
+        match self.output {
+            Output::Vga => vga::verify(self.palette),
+            Output::Framebuffer(_) | Output::Nothing => Vec::new(),
+        }
+    }
+
+    /// Uses `palette` from now on: loads it into the DAC on the VGA path,
+    /// unless it is already there.
     pub fn use_palette(&mut self, palette: &'static Palette) {
         if self.palette != palette {
-            vga::load_dac(palette);
+            if let Output::Vga = self.output {
+                vga::load_dac(palette);
+            }
             self.palette = palette;
+        }
+    }
+
+    /// Shows the frame as it is now where a VGA would be showing it
+    /// already: presents it in the firmware's framebuffer; nothing to do
+    /// on the other paths.
+    pub fn present(&mut self) {
+        if let Output::Framebuffer(presenter) = &mut self.output {
+            presenter.show(self.pixels, self.palette);
+        }
+    }
+
+    /// Waits for the start of a vertical retrace on the VGA path (the
+    /// moment to copy a whole frame in without tearing); the other paths
+    /// have no retrace to wait for.
+    pub fn wait_for_retrace(&self) {
+        if let Output::Vga = self.output {
+            vga::wait_for_retrace();
         }
     }
 
@@ -71,15 +199,11 @@ impl Screen {
         self.stray_spans
     }
 
-    /// The palette in the DAC: what `vga::verify` must read back.
-    pub fn palette(&self) -> &'static Palette {
-        self.palette
-    }
-
     /// Fills the screen with `color` of the VGA default palette.
     pub fn clear(&mut self, color: u8) {
         self.use_palette(&VGA_DEFAULT);
         sink::clear(self, color);
+        self.present();
     }
 
     /// Draws `scene` with `method` in the VGA default palette and says how
@@ -89,6 +213,7 @@ impl Screen {
         self.use_palette(&VGA_DEFAULT);
         self.stray_spans = 0;
         let report = scene.draw(method, self);
+        self.present();
         Drawn { report, stray_spans: self.stray_spans }
     }
 
@@ -99,15 +224,21 @@ impl Screen {
     pub fn blit(&mut self, frame: &[u8]) {
         let len = frame.len().min(FRAMEBUFFER_LEN);
         self.pixels.index(..len).copy_from_slice(&frame[..len]);
+        self.present();
     }
 
-    /// A `DUMP` payload: the 64,000 bytes read back from video memory, then
-    /// the 768 DAC bytes read back from the card.
+    /// A `DUMP` payload: the 64,000 bytes of the frame read back (from
+    /// video memory on the VGA path), then the 768 palette bytes (read back
+    /// from the card's DAC on the VGA path; the palette the frame is
+    /// presented in on the others).
     pub fn dump(&self) -> Vec<u8> {
-        let mut dump = alloc::vec![0; DUMP_LEN];
+        let mut dump = vec![0; DUMP_LEN];
         let (framebuffer, dac) = dump.split_at_mut(FRAMEBUFFER_LEN);
         self.pixels.copy_into_slice(framebuffer);
-        dac.copy_from_slice(&vga::read_dac());
+        match self.output {
+            Output::Vga => dac.copy_from_slice(&vga::read_dac()),
+            Output::Framebuffer(_) | Output::Nothing => dac.copy_from_slice(self.palette.as_flattened()),
+        }
         dump
     }
 
@@ -124,9 +255,9 @@ impl Screen {
         let words = (len - head) / size_of::<u64>();
         let tail = len - head - words * size_of::<u64>();
         let pattern = u64::from(color) * 0x0101_0101_0101_0101;
-        // SAFETY: `bytes` is `len` bytes of the video memory `Screen::new`
-        // took (`index` checked the range), valid for volatile writes and
-        // aliased by no reference. The three runs cover bytes `0..head`,
+        // SAFETY: `bytes` is `len` bytes of the frame `Screen::open` took,
+        // video memory or the kernel's own (`index` checked the range),
+        // valid for volatile writes and aliased by no reference. The three runs cover bytes `0..head`,
         // `head..head + 8 * words` and the `tail` after them, `len` in all,
         // each write inside `bytes`; the words start at the first 8-byte
         // boundary (`align_offset`), so each `u64` write is aligned; any
@@ -145,6 +276,25 @@ impl Screen {
             }
         }
     }
+}
+
+/// The mode-13h window 0xA0000..0xAFA00 through the bootloader's map of
+/// all physical memory (`mappings.physical_memory` in main.rs's config).
+fn vga_window(boot_info: &BootInfo) -> VolatilePtr<'static, [u8]> {
+    let start = boot_info
+        .physical_memory_offset
+        .into_option()
+        .and_then(|offset| offset.checked_add(FRAMEBUFFER_PHYSICAL))
+        .and_then(|start| usize::try_from(start).ok())
+        .and_then(|start| NonNull::new(ptr::with_exposed_provenance_mut::<u8>(start)))
+        .expect("the bootloader did not map physical memory, so 0xA0000 is out of reach");
+    let pixels = NonNull::slice_from_raw_parts(start, FRAMEBUFFER_LEN);
+    // SAFETY: the bootloader maps all physical memory at the offset, so
+    // these 64,000 bytes are the VGA window 0xA0000..0xAFA00: device
+    // memory, valid for volatile reads and writes for the whole run and
+    // never a Rust object, so nothing else holds a reference into it.
+    // `Screen::open` calls this once.
+    unsafe { VolatilePtr::new(pixels) }
 }
 
 impl SpanSink for Screen {

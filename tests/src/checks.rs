@@ -1,7 +1,7 @@
 //! The end-to-end checks that the integration tests and the xtask share.
 
-use anyhow::{ensure, Context, Result};
-use protocol::ShowReply;
+use anyhow::{bail, ensure, Context, Result};
+use protocol::{Presentation, ShowReply, Video};
 use raster::MethodId;
 use scenes::{builtin, show};
 
@@ -66,10 +66,19 @@ pub fn show_matches_host_render(
 }
 
 /// Checks QEMU's screendump against the kernel's dump seen through its
-/// read-back DAC (`c6_to_8`), every pixel a 2x2 block: zero differing
-/// pixels means the registers really put QEMU's VGA model in mode 13h.
-pub fn screen_matches_dump(name: &str, dump: &Dump, screen: &Image) -> Result<()> {
-    compare_images(&format!("{name}.screen"), &as_on_screen(&dump.image()), screen)
+/// palette (`c6_to_8`) on the video path `video` that READY named. Mode
+/// 13h: every pixel a 2x2 block of a 640x400 screen; zero differing pixels
+/// means the registers really put QEMU's VGA model in mode 13h. The
+/// framebuffer path: the whole framebuffer, the frame at the scale and
+/// offset READY stated and black around it. With no video path nothing
+/// shows the frame, which is an error.
+pub fn screen_matches_dump(name: &str, dump: &Dump, screen: &Image, video: &Video) -> Result<()> {
+    let expected = match video {
+        Video::Vga13h { .. } => as_on_screen(&dump.image()),
+        Video::Framebuffer(presentation) => on_framebuffer(&dump.image(), presentation)?,
+        Video::None => bail!("{name}: READY says nothing shows the frame (video=none), so no screen can match it"),
+    };
+    compare_images(&format!("{name}.screen"), &expected, screen)
 }
 
 /// A 320x200 picture as QEMU's screendump shows it in mode 13h: 640x400,
@@ -77,4 +86,32 @@ pub fn screen_matches_dump(name: &str, dump: &Dump, screen: &Image) -> Result<()
 /// Row `y` of the picture is rows `y * SCREEN_SCALE` onwards of the screen.
 pub fn as_on_screen(picture: &Image) -> Image {
     picture.scaled(SCREEN_SCALE)
+}
+
+/// A picture as the framebuffer path presents it: a `width` x `height`
+/// black framebuffer with the picture scaled by `scale` at (`left`, `top`);
+/// an error if it does not fit.
+pub fn on_framebuffer(picture: &Image, presentation: &Presentation) -> Result<Image> {
+    let &Presentation { width, height, scale, left, top } = presentation;
+    let scaled = picture.scaled(scale);
+    ensure!(
+        left + scaled.width() <= width && top + scaled.height() <= height,
+        "a {}x{} picture at scale {scale} does not fit at ({left}, {top}) in a {width}x{height} framebuffer",
+        picture.width(),
+        picture.height()
+    );
+    let inside =
+        |x: u32, y: u32| (left..left + scaled.width()).contains(&x) && (top..top + scaled.height()).contains(&y);
+    let colors =
+        (0..height)
+            .flat_map(|y| (0..width).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                if inside(x, y) {
+                    scaled.color(((y - top) * scaled.width() + (x - left)) as usize)
+                } else {
+                    [0, 0, 0]
+                }
+            })
+            .collect();
+    Image::rgb(width, height, colors)
 }

@@ -15,19 +15,18 @@
 //! # }
 //! ```
 
-pub mod bootloader;
+pub mod bochs;
 pub mod browser;
-pub mod cargo;
 pub mod checks;
-pub mod image;
-mod once;
 pub mod picture;
 pub mod prerequisites;
-pub mod process;
 pub mod qemu;
+pub mod soak;
 pub mod workspace;
 
-pub use image::build_image;
+/// The image build and the process helpers live with the boot stages
+/// (boot/image); the harness boots what it builds.
+pub use boot_image::{build_image, cargo, process};
 pub use picture::compare::compare_images;
 pub use picture::{render, Image};
 pub use qemu::console::{BenchRow, Console, Dump, Listing, Reply};

@@ -1,93 +1,49 @@
-//! Installing what the build and the runs need when it is missing: the
-//! pinned nightly with its components and target, QEMU, and the Cairo
-//! headers the lab's Cairo peer builds against. Machines here set
-//! `RUSTUP_AUTO_INSTALL=0`, so nothing installs itself.
+//! Installing what the runs need when it is missing: QEMU (and its window
+//! and OVMF, the UEFI firmware, when a run needs them), Chromium and
+//! chromedriver, the wasm32 target, the Cairo headers the lab's Cairo peer
+//! builds against, and cargo-fuzz with a C++ compiler for libFuzzer (the
+//! pinned nightly the image builds with is `boot_image::toolchain`'s). Machines here set `RUSTUP_AUTO_INSTALL=0`,
+//! so nothing installs itself. Debian packages come with their
+//! dependencies but without their recommendations: exactly the packages
+//! named here, each for the reason its constant says.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
 use anyhow::{bail, Context, Result};
 
-use crate::cargo::{pinned, KERNEL_TARGET, PINNED_TOOLCHAIN};
-use crate::once::once_per_process;
-use crate::process::{output_of, run_streaming};
+use boot_image::once::once_per_process;
+use boot_image::process::{output_of, run_streaming};
 
-/// Components of the pinned nightly: `bootloader`'s build script compiles
-/// its BIOS stages with `-Zbuild-std` (rust-src) and links them with LLVM's
-/// tools (llvm-tools-preview). Each with the prefix rustup lists it under
-/// once installed.
-const COMPONENTS: [(&str, &str); 2] = [("rust-src", "rust-src"), ("llvm-tools-preview", "llvm-tools")];
-
-/// The QEMU binary the harness runs, and the Debian package that has it.
+/// The QEMU binary the harness runs, and the Debian package that has it
+/// (with SeaBIOS and the VGA BIOSes, its dependencies).
 pub const QEMU: &str = "qemu-system-x86_64";
 const QEMU_PACKAGE: &str = "qemu-system-x86";
+/// QEMU's GTK window, a module of its own package: only `cargo xtask run`
+/// with a display opens one.
+const QEMU_WINDOW_PACKAGE: &str = "qemu-system-gui";
+
+/// OVMF, the UEFI firmware QEMU boots UEFI runs with: its code, mapped
+/// read-only, and its empty variable store, which each run copies.
+pub const OVMF_CODE: &str = "/usr/share/OVMF/OVMF_CODE_4M.fd";
+pub const OVMF_VARS: &str = "/usr/share/OVMF/OVMF_VARS_4M.fd";
+const OVMF_PACKAGE: &str = "ovmf";
+
+/// Bochs 2.7, the second emulator (`bochs.rs`), and the Debian packages
+/// it needs: the emulator; its terminal display, the smallest package
+/// that meets its need for a display library (else apt picks the
+/// wxWidgets one); its own BIOS and VGA BIOSes, which it would otherwise
+/// take from SeaBIOS.
+pub const BOCHS: &str = "bochs";
+pub const BOCHS_BIOS: &str = "/usr/share/bochs/BIOS-bochs-latest";
+pub const BOCHS_CIRRUS_VGA_BIOS: &str = "/usr/share/vgabios/vgabios-cirrus.bin";
+const BOCHS_PACKAGES: [&str; 4] = ["bochs", "bochs-term", "bochsbios", "vgabios"];
 
 /// The Debian packages the lab's Cairo peer (`cairo-rs` over the system
 /// libcairo) builds with: the headers and `.pc` file, and pkg-config, which
 /// finds them.
 const CAIRO_PACKAGES: [&str; 2] = ["libcairo2-dev", "pkg-config"];
-
-/// Makes sure the pinned nightly, its components and the kernel target are
-/// installed, installing what is missing (and saying so). Costs two quick
-/// rustup look-ups when everything is there.
-pub fn ensure_toolchain() -> Result<()> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
-    once_per_process(&DONE, || {
-        let toolchains = output_of(Command::new("rustup").args(["toolchain", "list"]))
-            .context("rustup is needed to install the pinned nightly (see https://rustup.rs)")?;
-        let installed = if has_toolchain(&toolchains) {
-            Some(output_of(pinned("rustup").args(["component", "list", "--installed"]))?)
-        } else {
-            None
-        };
-        let commands = install_commands(installed.as_deref());
-        if commands.is_empty() {
-            return Ok(());
-        }
-        eprintln!(
-            "harness: installing what the kernel build needs: Rust toolchain {PINNED_TOOLCHAIN} \
-             (profile minimal) with {} and target {KERNEL_TARGET}",
-            COMPONENTS.map(|(name, _)| name).join(", ")
-        );
-        for mut command in commands {
-            run_streaming(&mut command).context("failed to install the pinned nightly")?;
-        }
-        Ok(())
-    })
-}
-
-fn has_toolchain(rustup_toolchain_list: &str) -> bool {
-    rustup_toolchain_list
-        .lines()
-        .any(|line| line.starts_with(&format!("{PINNED_TOOLCHAIN}-")) || line == PINNED_TOOLCHAIN)
-}
-
-/// The rustup commands that complete the install, given the pinned nightly's
-/// `component list --installed` output (`None`: not installed at all).
-fn install_commands(installed: Option<&str>) -> Vec<Command> {
-    let Some(installed) = installed else {
-        let mut install = Command::new("rustup");
-        install.args(["toolchain", "install", PINNED_TOOLCHAIN, "--profile", "minimal", "--component"]);
-        install.arg(COMPONENTS.map(|(name, _)| name).join(","));
-        install.args(["--target", KERNEL_TARGET]);
-        return vec![install];
-    };
-    let has = |prefix: &str| installed.lines().any(|line| line.trim().starts_with(prefix));
-    let mut commands = Vec::new();
-    let missing: Vec<&str> = COMPONENTS.iter().filter(|(_, prefix)| !has(prefix)).map(|(name, _)| *name).collect();
-    if !missing.is_empty() {
-        let mut add = Command::new("rustup");
-        add.args(["component", "add", "--toolchain", PINNED_TOOLCHAIN]).args(missing);
-        commands.push(add);
-    }
-    if !has(&format!("rust-std-{KERNEL_TARGET}")) {
-        let mut add = Command::new("rustup");
-        add.args(["target", "add", "--toolchain", PINNED_TOOLCHAIN, KERNEL_TARGET]);
-        commands.push(add);
-    }
-    commands
-}
 
 /// Makes sure `qemu-system-x86_64` is on the `PATH`: installs Debian's
 /// `qemu-system-x86` with apt-get when running as root, otherwise fails
@@ -95,6 +51,41 @@ fn install_commands(installed: Option<&str>) -> Vec<Command> {
 pub fn ensure_qemu() -> Result<()> {
     static DONE: OnceLock<Result<(), String>> = OnceLock::new();
     once_per_process(&DONE, || ensure_debian_packages(QEMU, &[QEMU_PACKAGE], || on_path(&[QEMU])))
+}
+
+/// Makes sure QEMU can open a window (its GTK display module is there, as
+/// `-display help` lists it), installing `qemu-system-gui` as
+/// [`ensure_qemu`] installs QEMU.
+pub fn ensure_qemu_window() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || {
+        ensure_qemu()?;
+        let has_window = || {
+            output_of(Command::new(QEMU).args(["-display", "help"])).is_ok_and(|help| help.lines().any(|l| l == "gtk"))
+        };
+        ensure_debian_packages("QEMU's window (its GTK display)", &[QEMU_WINDOW_PACKAGE], has_window)
+    })
+}
+
+/// Makes sure Bochs, its BIOS and its Cirrus VGA BIOS are there,
+/// installing them as [`ensure_qemu`] installs QEMU.
+pub fn ensure_bochs() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || {
+        let present =
+            || on_path(&[BOCHS]) && [BOCHS_BIOS, BOCHS_CIRRUS_VGA_BIOS].iter().all(|f| Path::new(f).is_file());
+        ensure_debian_packages("Bochs (with its BIOS and VGA BIOS)", &BOCHS_PACKAGES, present)
+    })
+}
+
+/// Makes sure OVMF's code and variable store are there, installing
+/// Debian's `ovmf` as [`ensure_qemu`] installs QEMU.
+pub fn ensure_ovmf() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || {
+        let present = || [OVMF_CODE, OVMF_VARS].iter().all(|file| Path::new(file).is_file());
+        ensure_debian_packages("OVMF (the UEFI firmware for QEMU)", &[OVMF_PACKAGE], present)
+    })
 }
 
 /// The browser the explorer's tests drive, its WebDriver server, and the
@@ -126,6 +117,41 @@ pub fn ensure_cairo() -> Result<()> {
     })
 }
 
+/// The cargo-fuzz release `cargo xtask fuzz` installs when none is there.
+pub const CARGO_FUZZ_VERSION: &str = "0.13.2";
+
+/// Makes sure a C++ compiler is there for libFuzzer, which the fuzz
+/// targets' `libfuzzer-sys` compiles: installs Debian's `g++` as
+/// [`ensure_qemu`] installs QEMU.
+pub fn ensure_cxx() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || ensure_debian_packages("a C++ compiler (for libFuzzer)", &["g++"], || on_path(&["c++"])))
+}
+
+/// Makes sure `cargo fuzz` (cargo-fuzz, which builds the fuzz targets with
+/// libFuzzer) is installed, installing it from crates.io with `cargo
+/// install --locked` when missing, and a C++ compiler ([`ensure_cxx`]).
+pub fn ensure_cargo_fuzz() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || {
+        ensure_cxx()?;
+        if find_in_path("cargo-fuzz").is_some() {
+            return Ok(());
+        }
+        eprintln!(
+            "harness: installing cargo-fuzz {CARGO_FUZZ_VERSION} from crates.io (cargo install), \
+             which builds and runs the fuzz targets"
+        );
+        run_streaming(&mut cargo_fuzz_install_command()).context("failed to install cargo-fuzz")
+    })
+}
+
+fn cargo_fuzz_install_command() -> Command {
+    let mut install = crate::cargo::host();
+    install.args(["install", "cargo-fuzz", "--locked", "--version", CARGO_FUZZ_VERSION]);
+    install
+}
+
 /// Installs `packages` with apt-get unless `present` says `what` is there
 /// already; without root (or apt-get) fails with the command to run.
 fn ensure_debian_packages(what: &str, packages: &[&str], present: impl Fn() -> bool) -> Result<()> {
@@ -136,21 +162,27 @@ fn ensure_debian_packages(what: &str, packages: &[&str], present: impl Fn() -> b
     let as_root = output_of(Command::new("id").arg("-u")).is_ok_and(|uid| uid.trim() == "0");
     if !as_root || find_in_path("apt-get").is_none() {
         bail!(
-            "{what} is not installed; install it with:\n    sudo apt-get update && sudo apt-get install -y {packages}"
+            "{what} is not installed; install it with:\n    sudo apt-get update && sudo apt-get install -y \
+             --no-install-recommends {packages}"
         );
     }
     eprintln!("harness: {what} is missing; installing the Debian packages {packages} with apt-get");
     run_streaming(Command::new("apt-get").arg("update"))?;
-    run_streaming(
-        Command::new("apt-get")
-            .args(["install", "-y"])
-            .args(packages.split(' '))
-            .env("DEBIAN_FRONTEND", "noninteractive"),
-    )?;
+    run_streaming(&mut apt_install(packages.split(' ')))?;
     if !present() {
         bail!("{packages} installed, but {what} is still not found");
     }
     Ok(())
+}
+
+/// `apt-get install` of `packages` and their dependencies, without the
+/// packages they merely recommend (for QEMU: its GUI, OVMF, its disk
+/// tools and block backends, and what they pull in), which a run needs
+/// only as named above.
+fn apt_install<'a>(packages: impl IntoIterator<Item = &'a str>) -> Command {
+    let mut install = Command::new("apt-get");
+    install.args(["install", "-y", "--no-install-recommends"]).args(packages).env("DEBIAN_FRONTEND", "noninteractive");
+    install
 }
 
 /// Whether every one of `programs` is on the `PATH`.
@@ -208,34 +240,11 @@ mod tests {
     use super::*;
     use crate::process::command_line;
 
-    fn lines(commands: &[Command]) -> Vec<String> {
-        commands.iter().map(command_line).collect()
-    }
-
     #[test]
-    fn a_missing_toolchain_is_installed_whole() {
+    fn debian_packages_come_without_their_recommendations() {
         assert_eq!(
-            lines(&install_commands(None)),
-            ["rustup toolchain install nightly-2026-10-01 --profile minimal --component rust-src,llvm-tools-preview --target x86_64-unknown-none"]
-        );
-    }
-
-    #[test]
-    fn a_complete_toolchain_needs_nothing() {
-        let installed = "cargo-x86_64-unknown-linux-gnu\nllvm-tools-x86_64-unknown-linux-gnu\nrust-src\n\
-                         rust-std-x86_64-unknown-linux-gnu\nrust-std-x86_64-unknown-none\nrustc-x86_64-unknown-linux-gnu\n";
-        assert!(install_commands(Some(installed)).is_empty());
-    }
-
-    #[test]
-    fn missing_components_and_target_are_added() {
-        let installed = "cargo-x86_64-unknown-linux-gnu\nrust-src\nrustc-x86_64-unknown-linux-gnu\n";
-        assert_eq!(
-            lines(&install_commands(Some(installed))),
-            [
-                "rustup component add --toolchain nightly-2026-10-01 llvm-tools-preview",
-                "rustup target add --toolchain nightly-2026-10-01 x86_64-unknown-none",
-            ]
+            command_line(&apt_install(["qemu-system-x86", "ovmf"])),
+            "apt-get install -y --no-install-recommends qemu-system-x86 ovmf"
         );
     }
 
@@ -248,11 +257,7 @@ mod tests {
     }
 
     #[test]
-    fn the_toolchain_is_recognised_with_or_without_its_host_suffix() {
-        assert!(has_toolchain(
-            "stable-x86_64-unknown-linux-gnu (default)\nnightly-2026-10-01-x86_64-unknown-linux-gnu\n"
-        ));
-        assert!(has_toolchain("nightly-2026-10-01\n"));
-        assert!(!has_toolchain("nightly-2026-10-011-x86_64-unknown-linux-gnu\nnightly-x86_64-unknown-linux-gnu\n"));
+    fn cargo_fuzz_is_installed_at_its_pinned_version_from_the_lock_file() {
+        assert!(command_line(&cargo_fuzz_install_command()).ends_with(" install cargo-fuzz --locked --version 0.13.2"));
     }
 }

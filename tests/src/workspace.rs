@@ -1,30 +1,11 @@
-//! Where things are in the workspace.
+//! Where things are in the workspace, and the harness's scratch folders.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use anyhow::{Context, Result};
 
-/// The workspace root: the harness crate lives in its `tests/` folder.
-pub fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("the harness crate is inside the workspace")
-}
-
-/// The host target directory: `CARGO_TARGET_DIR` when set, as cargo does,
-/// else `target/` in the workspace.
-pub fn target_dir() -> PathBuf {
-    match std::env::var_os("CARGO_TARGET_DIR") {
-        Some(dir) => root().join(dir),
-        None => root().join("target"),
-    }
-}
-
-/// Where the pinned nightly builds the kernel and the image builder: a
-/// directory of its own, so the stable host builds and the nightly builds
-/// never invalidate each other's artifacts.
-pub fn nightly_target_dir() -> PathBuf {
-    target_dir().join("nightly")
-}
+pub use boot_image::workspace::{nightly_target_dir, root, target_dir};
 
 /// A new, empty folder for one run of a child process (QEMU, a browser):
 /// `polylab-<kind>-<pid>-<n>` in the system's temporary folder. The caller

@@ -1,116 +1,193 @@
-//! The adapter matrix: the image on every display card QEMU offers with a
-//! VGA BIOS (`Adapter::WITH_VGA`: std, cirrus, vmware), each judged by
-//! QEMU's own view of the screen. On each card the kernel must name the
-//! card in READY (so the run really was on it), every demo page and the
-//! first frame of every show entry must reach the screen (QEMU's
-//! screendump equal to the kernel's dump seen through the read-back DAC,
-//! the dump equal to the host render), and the image must boot from the
-//! emulated USB stick too. With no card at all the kernel still boots and
-//! says so over serial.
+//! The adapter matrix: the one image under both firmwares, on every
+//! display card each firmware can drive (`Adapter::proven_under`), each
+//! judged by QEMU's own view of the screen. On each, READY must name the
+//! firmware, the card (so the run really was on it) and the video path the
+//! card allows: mode 13h by register writes wherever the kernel can put
+//! the card there (under SeaBIOS every VGA-compatible card; under OVMF
+//! the cards whose firmware mode it knows how to undo), else the frame
+//! presented in OVMF's framebuffer, scaled and centred. Then every demo
+//! page and the first frame of every show entry must reach the screen:
+//! QEMU's screendump equal to the kernel's dump seen through its palette
+//! (mode 13h: 640x400, pixel (x,y) at (2x,2y); framebuffer: at the scale
+//! and offset READY states), and the dump equal to the host render. The
+//! image must boot from the emulated USB stick under both firmwares too.
+//! With no card at all the kernel still boots and says so over serial.
 
 use anyhow::{ensure, Result};
 use harness::checks::{dump_matches_host_render, screen_matches_dump, show_matches_host_render};
 use harness::{Adapter, Medium, Qemu, QemuOptions};
+use protocol::{Firmware, Presentation, Video};
+use raster::SCREEN;
 use scenes::builtin;
 use scenes::show::ENTRIES_IN_ORDER;
 
-/// Boots the image from `medium` with `adapter` and checks that READY
-/// names the card and every mode-13h register and DAC entry read back as
-/// written.
-fn boot_on(adapter: Adapter, medium: Medium) -> Result<Qemu> {
-    let qemu = Qemu::boot(QemuOptions { adapter, medium, ..QemuOptions::default() })?;
-    let ready = qemu.ready;
+/// `firmware` on `adapter`, for messages.
+fn label(firmware: Firmware, adapter: Adapter) -> String {
+    format!("{} {}", firmware.name(), adapter.name())
+}
+
+/// Whether the kernel must put `adapter` in mode 13h under `firmware`
+/// (else it must present its frame in the firmware's framebuffer).
+fn takes_mode_13h(firmware: Firmware, adapter: Adapter) -> bool {
+    match firmware {
+        Firmware::Bios => true,
+        Firmware::Uefi => !matches!(adapter, Adapter::BochsDisplay | Adapter::Ramfb),
+    }
+}
+
+/// Boots the image from `medium` under `firmware` with `adapter` and
+/// checks READY: the firmware, the card, and the path, with every mode-13h
+/// register and DAC entry read back as written, or the frame at the
+/// largest whole scale that fits, centred.
+fn boot_on(firmware: Firmware, adapter: Adapter, medium: Medium) -> Result<Qemu> {
+    let qemu = Qemu::boot(QemuOptions { firmware, adapter, medium, ..QemuOptions::default() })?;
+    let (ready, on) = (qemu.ready, label(firmware, adapter));
+    ensure!(ready.firmware == firmware, "{on}: READY names the firmware {:?}", ready.firmware);
     ensure!(
         ready.display == adapter.pci_id(),
-        "-vga {}: READY names the display {:?}, expected {:?}",
-        adapter.qemu_name(),
+        "{on}: READY names the display {:?}, not {:?}",
         ready.display,
         adapter.pci_id()
     );
-    ensure!(
-        ready.vga_mismatches == 0,
-        "-vga {}: READY counts {} VGA mismatches",
-        adapter.qemu_name(),
-        ready.vga_mismatches
-    );
+    match ready.video {
+        Video::Vga13h { mismatches } => {
+            ensure!(takes_mode_13h(firmware, adapter), "{on}: READY says mode 13h, not the framebuffer");
+            ensure!(mismatches == 0, "{on}: READY counts {mismatches} VGA mismatches");
+        }
+        Video::Framebuffer(presentation) => {
+            ensure!(!takes_mode_13h(firmware, adapter), "{on}: READY says framebuffer, not mode 13h");
+            ensure!(
+                presentation == centred(presentation.width, presentation.height),
+                "{on}: READY's {presentation:?} is not the frame at the largest scale that fits, centred"
+            );
+        }
+        Video::None => anyhow::bail!("{on}: READY says nothing shows the frame"),
+    }
     Ok(qemu)
+}
+
+/// The 320x200 frame at the largest whole scale that fits a `width` x
+/// `height` framebuffer, centred.
+fn centred(width: u32, height: u32) -> Presentation {
+    let scale = (width / SCREEN.width as u32).min(height / SCREEN.height as u32);
+    let (left, top) = ((width - SCREEN.width as u32 * scale) / 2, (height - SCREEN.height as u32 * scale) / 2);
+    Presentation { width, height, scale, left, top }
 }
 
 /// Every page drawn, and the first frame of every show entry shown, each
 /// checked on QEMU's screendump; one failure does not hide the others.
-fn every_page_and_every_entry_reach_the_screen(adapter: Adapter) -> Result<()> {
-    let mut qemu = boot_on(adapter, Medium::Disk)?;
-    let on = |name: &str| format!("{}.{name}", adapter.qemu_name());
-    let mut failures = Vec::new();
+fn every_page_and_every_entry_reach_the_screen(firmware: Firmware, adapter: Adapter) -> Result<()> {
+    let mut qemu = boot_on(firmware, adapter, Medium::Disk)?;
+    let video = qemu.ready.video;
+    let on = |name: &str| format!("{}.{}.{name}", firmware.name(), adapter.name());
+    let (mut failures, mut screens) = (Vec::new(), Vec::new());
     for scene in builtin::ALL.map(|page| page.name) {
         let mut page = || -> Result<()> {
             qemu.console.draw(scene, None)?;
             let dump = qemu.console.dump()?;
-            screen_matches_dump(&on(scene), &dump, &qemu.screendump()?)
+            let screen = qemu.screendump()?;
+            screens.push((screen.width(), screen.height()));
+            screen_matches_dump(&on(scene), &dump, &screen, &video)
         };
         failures.extend(page().err().map(|error| format!("{error:#}")));
     }
     for entry in ENTRIES_IN_ORDER {
         let mut first_frame = || -> Result<()> {
             let (_, dump) = show_matches_host_render(&mut qemu.console, entry.name, 0, None)?;
-            screen_matches_dump(&on(&format!("{}.0", entry.name)), &dump, &qemu.screendump()?)
+            let screen = qemu.screendump()?;
+            screens.push((screen.width(), screen.height()));
+            screen_matches_dump(&on(&format!("{}.0", entry.name)), &dump, &screen, &video)
         };
         failures.extend(first_frame().err().map(|error| format!("{error:#}")));
     }
-    ensure!(failures.is_empty(), "-vga {}: {} failures:\n{}", adapter.qemu_name(), failures.len(), failures.join("\n"));
+    let on = label(firmware, adapter);
+    ensure!(failures.is_empty(), "{on}: {} failures:\n{}", failures.len(), failures.join("\n"));
+    let pixels: u64 = screens.iter().map(|&(width, height)| u64::from(width) * u64::from(height)).sum();
+    let sizes: std::collections::BTreeSet<_> =
+        screens.iter().map(|(width, height)| format!("{width}x{height}")).collect();
+    eprintln!(
+        "harness: {on}: {}; {} screendumps ({}) equal to the dumps, {pixels} pixels, 0 differ",
+        qemu.ready,
+        screens.len(),
+        sizes.into_iter().collect::<Vec<_>>().join(", ")
+    );
     Ok(())
 }
 
-#[test]
-fn std_vga_shows_every_page_and_the_first_frame_of_every_entry() -> Result<()> {
-    every_page_and_every_entry_reach_the_screen(Adapter::Std)
+/// One test per firmware and card of the matrix.
+macro_rules! matrix {
+    ($($test:ident: $firmware:ident $adapter:ident,)*) => {$(
+        #[test]
+        fn $test() -> Result<()> {
+            every_page_and_every_entry_reach_the_screen(Firmware::$firmware, Adapter::$adapter)
+        }
+    )*};
+}
+
+matrix! {
+    bios_std_shows_every_page_and_the_first_frame_of_every_entry: Bios Std,
+    bios_cirrus_shows_every_page_and_the_first_frame_of_every_entry: Bios Cirrus,
+    bios_vmware_shows_every_page_and_the_first_frame_of_every_entry: Bios Vmware,
+    bios_qxl_vga_shows_every_page_and_the_first_frame_of_every_entry: Bios QxlVga,
+    bios_virtio_vga_shows_every_page_and_the_first_frame_of_every_entry: Bios VirtioVga,
+    bios_ati_vga_shows_every_page_and_the_first_frame_of_every_entry: Bios AtiVga,
+    uefi_std_shows_every_page_and_the_first_frame_of_every_entry: Uefi Std,
+    uefi_cirrus_shows_every_page_and_the_first_frame_of_every_entry: Uefi Cirrus,
+    uefi_vmware_shows_every_page_and_the_first_frame_of_every_entry: Uefi Vmware,
+    uefi_qxl_vga_shows_every_page_and_the_first_frame_of_every_entry: Uefi QxlVga,
+    uefi_virtio_vga_shows_every_page_and_the_first_frame_of_every_entry: Uefi VirtioVga,
+    uefi_bochs_display_shows_every_page_and_the_first_frame_of_every_entry: Uefi BochsDisplay,
+    uefi_ramfb_shows_every_page_and_the_first_frame_of_every_entry: Uefi Ramfb,
 }
 
 #[test]
-fn cirrus_vga_shows_every_page_and_the_first_frame_of_every_entry() -> Result<()> {
-    every_page_and_every_entry_reach_the_screen(Adapter::Cirrus)
-}
-
-#[test]
-fn vmware_vga_shows_every_page_and_the_first_frame_of_every_entry() -> Result<()> {
-    every_page_and_every_entry_reach_the_screen(Adapter::Vmware)
+fn the_matrix_is_every_card_each_firmware_can_drive() {
+    let names = |firmware| {
+        let proven = Adapter::ALL.into_iter().filter(|adapter| adapter.proven_under(firmware));
+        proven.map(Adapter::name).collect::<Vec<_>>()
+    };
+    assert_eq!(names(Firmware::Bios), ["std", "cirrus", "vmware", "qxl-vga", "virtio-vga", "ati-vga", "none"]);
+    assert_eq!(names(Firmware::Uefi), ["std", "cirrus", "vmware", "qxl-vga", "virtio-vga", "bochs-display", "ramfb"]);
 }
 
 /// The image on the emulated USB stick (xHCI usb-storage, which SeaBIOS
-/// boots as a PC's BIOS does) draws page 1 as the host renders it, and it
-/// reaches the screen.
-fn usb_stick_boots_and_draws_page_1(adapter: Adapter) -> Result<()> {
-    let mut qemu = boot_on(adapter, Medium::UsbStick)?;
+/// and OVMF boot as a PC's firmware does) draws page 1 as the host renders
+/// it, and it reaches the screen.
+fn usb_stick_boots_and_draws_page_1(firmware: Firmware) -> Result<()> {
+    let mut qemu = boot_on(firmware, Adapter::Std, Medium::UsbStick)?;
     let page_1 = builtin::ABRASH38_1;
     let dump = dump_matches_host_render(&mut qemu.console, page_1.name, page_1.method)?;
-    let name = format!("{}.usb.{}", adapter.qemu_name(), page_1.name);
-    screen_matches_dump(&name, &dump, &qemu.screendump()?)
+    let name = format!("{}.std.usb.{}", firmware.name(), page_1.name);
+    screen_matches_dump(&name, &dump, &qemu.screendump()?, &qemu.ready.video)
 }
 
 #[test]
-fn std_vga_boots_from_the_usb_stick() -> Result<()> {
-    usb_stick_boots_and_draws_page_1(Adapter::Std)
+fn bios_boots_from_the_usb_stick() -> Result<()> {
+    usb_stick_boots_and_draws_page_1(Firmware::Bios)
 }
 
 #[test]
-fn cirrus_vga_boots_from_the_usb_stick() -> Result<()> {
-    usb_stick_boots_and_draws_page_1(Adapter::Cirrus)
-}
-
-#[test]
-fn vmware_vga_boots_from_the_usb_stick() -> Result<()> {
-    usb_stick_boots_and_draws_page_1(Adapter::Vmware)
+fn uefi_boots_from_the_usb_stick() -> Result<()> {
+    usb_stick_boots_and_draws_page_1(Firmware::Uefi)
 }
 
 /// No display card: the boot stages ask the card for nothing, so the
-/// kernel boots, READY names no display and counts the VGA registers that
-/// did not read back (there is nothing to read), and it serves commands.
+/// kernel boots, READY names no display and no video path, VGACHECK says
+/// there is nothing to check, and the kernel serves commands, its frame
+/// kept in memory.
 #[test]
 fn with_no_display_card_the_kernel_boots_and_says_so_over_serial() -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions { adapter: Adapter::None, ..QemuOptions::default() })?;
     let ready = qemu.ready;
     ensure!(ready.display.is_none(), "-vga none: READY names the display {:?}", ready.display);
-    ensure!(ready.vga_mismatches > 0, "-vga none: READY counts no VGA mismatches, yet there is no VGA");
+    ensure!(ready.video == Video::None, "-vga none: READY names the video path {:?}", ready.video);
+    let check = qemu.console.request(&protocol::Command::VgaCheck)?;
+    ensure!(
+        check == harness::Reply::Err("vga: none, and no framebuffer: nothing shows the frame".into()),
+        "-vga none: VGACHECK answers {check:?}"
+    );
+    let page_1 = builtin::ABRASH38_1;
+    dump_matches_host_render(&mut qemu.console, page_1.name, page_1.method)?;
     let losses = qemu.console.ping()?;
     ensure!(losses.none(), "-vga none: PING says the serial line lost bytes: {losses}");
     Ok(())

@@ -40,7 +40,7 @@ fn a_scene_file_with_holes_both_rules_and_subpixel_vertices_dumps_what_the_host_
     for method in [MethodId::Exact, MethodId::AbrashAet, MethodId::AbrashFloat] {
         let dump = source_matches_host_render(&mut qemu.console, &source, method)?;
         let screen = qemu.screendump()?;
-        screen_matches_dump(&format!("{}.{method}", source.name()), &dump, &screen)?;
+        screen_matches_dump(&format!("{}.{method}", source.name()), &dump, &screen, &qemu.ready.video)?;
     }
     Ok(())
 }

@@ -24,8 +24,9 @@ pub fn dump(opt: &DumpOpt) -> Result<()> {
     screen.write_png(&screen_path)?;
     println!("{}", dump_path.display());
     println!("{}", screen_path.display());
+    let video = qemu.ready.video;
     qemu.quit()?;
-    screen_matches_dump(source.name(), &dump, &screen)?;
+    screen_matches_dump(source.name(), &dump, &screen, &video)?;
     eprintln!("xtask: QEMU's screendump agrees pixel for pixel (each pixel a 2x2 block on QEMU's screen)");
     Ok(())
 }

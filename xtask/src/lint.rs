@@ -5,28 +5,34 @@
 //! Formatting is checked with the host toolchain's rustfmt, whose output
 //! does not change between releases. Warnings are errors. Installs rustfmt,
 //! the pinned nightly and its clippy where missing (the minimal rustup
-//! profile has neither tool), and libcairo's headers, which the lab's Cairo
-//! peer builds against.
+//! profile has neither tool), libcairo's headers, which the lab's Cairo
+//! peer builds against, and a C++ compiler for the fuzz targets' libFuzzer.
+//! The fuzz targets (tests/fuzz/targets, a workspace of their own) are
+//! formatted and linted apart.
 
 use std::process::Command;
 
 use anyhow::{Context, Result};
-use harness::cargo::{host, pinned, NightlyBuild, KERNEL_TARGET, NIGHTLY_ONLY};
-use harness::prerequisites::{ensure_cairo, ensure_toolchain};
-use harness::process::run_streaming;
-use harness::workspace;
+use boot_image::cargo::{host, pinned, NightlyBuild, KERNEL_TARGET, NIGHTLY_ONLY};
+use boot_image::process::run_streaming;
+use boot_image::toolchain::ensure_toolchain;
+use boot_image::workspace;
+use harness::prerequisites::{ensure_cairo, ensure_cxx};
 
 pub fn lint() -> Result<()> {
     // Under `cargo xtask`, rustup names the running toolchain in
     // RUSTUP_TOOLCHAIN, so this adds the components to that one.
     run_streaming(Command::new("rustup").args(["component", "add", "rustfmt"])).context("failed to install rustfmt")?;
     run_streaming(&mut fmt_check())?;
+    run_streaming(&mut fuzz_targets_fmt_check())?;
     ensure_toolchain()?;
     run_streaming(pinned("rustup").args(["component", "add", "clippy"]))
         .context("failed to install clippy for the pinned nightly")?;
     // Clippy builds the lab, whose Cairo peer links the system libcairo.
     ensure_cairo()?;
-    for mut command in [host_clippy(), kernel_clippy()] {
+    // The fuzz targets build libFuzzer, which is C++.
+    ensure_cxx()?;
+    for mut command in [host_clippy(), kernel_clippy(), fuzz_targets_clippy()] {
         run_streaming(&mut command)?;
     }
     eprintln!("xtask: formatted, and clippy finds nothing in the host crates or the kernel");
@@ -39,6 +45,27 @@ fn fmt_check() -> Command {
     let mut command = host();
     command.args(["fmt", "--all", "--check"]);
     command
+}
+
+/// `cargo fmt --check` over the fuzz targets' own workspace.
+fn fuzz_targets_fmt_check() -> Command {
+    let mut command = host();
+    command.args(["fmt", "--all", "--check", "--manifest-path"]).arg(fuzz_targets_manifest());
+    command
+}
+
+/// Clippy on the fuzz targets with the pinned nightly, in the target
+/// directory `cargo xtask fuzz` builds them in.
+fn fuzz_targets_clippy() -> Command {
+    let mut command = pinned("cargo");
+    command.args(["clippy", "--all-targets", "--manifest-path"]).arg(fuzz_targets_manifest());
+    command.arg("--target-dir").arg(workspace::target_dir().join("fuzz"));
+    command.args(["--", "-D", "warnings"]);
+    command
+}
+
+fn fuzz_targets_manifest() -> std::path::PathBuf {
+    workspace::root().join(crate::fuzz::FUZZ_DIR).join("Cargo.toml")
 }
 
 /// Clippy on every host crate with the pinned nightly, in the nightly's
@@ -67,7 +94,7 @@ fn kernel_clippy() -> Command {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use harness::process::command_line;
+    use boot_image::process::command_line;
 
     #[test]
     fn host_clippy_covers_every_host_crate_with_the_pinned_nightly_and_denies_warnings() {
@@ -79,6 +106,17 @@ mod tests {
             "{line}"
         );
         assert!(line.ends_with(" -- -D warnings"), "{line}");
+    }
+
+    #[test]
+    fn the_fuzz_targets_are_formatted_and_linted_in_their_own_workspace() {
+        let fmt = command_line(&fuzz_targets_fmt_check());
+        assert!(fmt.contains(" fmt --all --check --manifest-path "), "{fmt}");
+        assert!(fmt.ends_with("tests/fuzz/targets/Cargo.toml"), "{fmt}");
+        let clippy = command_line(&fuzz_targets_clippy());
+        assert!(clippy.starts_with("cargo +nightly-2026-10-01 clippy --all-targets --manifest-path "), "{clippy}");
+        assert!(clippy.contains("tests/fuzz/targets/Cargo.toml --target-dir "), "{clippy}");
+        assert!(clippy.ends_with(" -- -D warnings"), "{clippy}");
     }
 
     #[test]

@@ -3,6 +3,7 @@
 //! library, shared with the tests.
 
 mod dump;
+mod fuzz;
 mod kbench;
 mod lab;
 mod lint;
@@ -10,11 +11,12 @@ mod opt;
 mod record;
 mod render;
 mod run;
+mod soak;
 mod test;
 
 use anyhow::Result;
+use boot_image::build_image;
 use clap::Parser;
-use harness::build_image;
 
 use crate::opt::{Action, Cli};
 
@@ -34,5 +36,7 @@ fn main() -> Result<()> {
         Action::Lint => lint::lint(),
         Action::Kbench(opt) => kbench::kbench(&opt),
         Action::Explore(opt) => explorer_site::explore(opt.out.as_deref(), opt.results.as_deref()),
+        Action::Fuzz(opt) => fuzz::fuzz(&opt),
+        Action::Soak(opt) => soak::soak(&opt),
     }
 }

@@ -2,9 +2,10 @@
 
 use std::path::PathBuf;
 
+use anyhow::Context;
 use clap::{Args, Parser, Subcommand};
 use harness::Adapter;
-use protocol::{BENCH_DEFAULT_REPEATS, BENCH_MAX_REPEATS};
+use protocol::{Firmware, BENCH_DEFAULT_REPEATS, BENCH_MAX_REPEATS};
 use raster::MethodId;
 
 /// The developer's hands: run the demo, build the image, dump, render,
@@ -23,7 +24,8 @@ pub enum Action {
     /// <entry>.png, each animation as <entry>.gif, a scene file as
     /// <name>.png, every one checked against the host render.
     Run(RunOpt),
-    /// Builds the raw BIOS image (for QEMU or a USB stick); prints its path last.
+    /// Builds the raw image, one file that boots under a BIOS (or CSM) and
+    /// under UEFI (for QEMU or a USB stick); prints its path last.
     Image,
     /// Boots the kernel, draws a built-in scene or a scene file, checks the
     /// kernel's dump against the host render and QEMU's screendump, and
@@ -53,6 +55,16 @@ pub enum Action {
     /// page), serves it on 127.0.0.1 and prints its address; with --out,
     /// writes it to DIR and stops.
     Explore(ExploreOpt),
+    /// Fuzzes with libFuzzer (cargo-fuzz, pinned nightly): every target, or
+    /// the one named, for --seconds each; prints executions and coverage
+    /// per target and fails on any crash, naming its input. Corpora,
+    /// crashes and logs go to target/fuzz.
+    Fuzz(FuzzOpt),
+    /// Boots the kernel and plays the whole show through SHOW with every
+    /// method, --cycles times; after each cycle prints the heap (PING) and
+    /// fails if it holds more or its largest free block is smaller than
+    /// after the first cycle, or if any frame's figures changed.
+    Soak(SoakOpt),
 }
 
 #[derive(Args, Debug)]
@@ -68,9 +80,13 @@ pub struct RunOpt {
     /// keys do.
     #[arg(long)]
     pub method: Option<MethodId>,
-    /// The display card QEMU emulates: std, cirrus or vmware (the cards
-    /// the harness proves the picture on).
-    #[arg(long, default_value = "std", value_parser = Adapter::with_vga_named)]
+    /// The firmware QEMU boots with: bios (SeaBIOS) or uefi (OVMF).
+    #[arg(long, default_value = "bios", value_parser = firmware_named)]
+    pub firmware: Firmware,
+    /// The display card QEMU emulates: std, cirrus, vmware, qxl-vga,
+    /// virtio-vga, ati-vga, bochs-display, ramfb or none (the harness's
+    /// adapter matrix proves each under one firmware or both).
+    #[arg(long, default_value = "std", value_parser = Adapter::named)]
     pub vga: Adapter,
     /// Boot from the emulated USB stick (usb-storage on xHCI), as a PC
     /// boots the image written to a stick.
@@ -177,6 +193,31 @@ pub struct ExploreOpt {
     /// to copy beside the page, whose figures it then shows.
     #[arg(long, value_name = "FILE")]
     pub results: Option<PathBuf>,
+}
+
+/// The firmware `name` names; otherwise an error listing them.
+fn firmware_named(name: &str) -> anyhow::Result<Firmware> {
+    Firmware::from_name(name).with_context(|| format!("unknown firmware `{name}`; the firmwares are bios, uefi"))
+}
+
+#[derive(Args, Debug)]
+pub struct FuzzOpt {
+    /// How long each target runs, in seconds.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..))]
+    pub seconds: u32,
+    /// One target (scene_file, command, methods, exact_reference,
+    /// explorer); all of them, one after the other, if none is named.
+    pub target: Option<String>,
+}
+
+#[derive(Args, Debug)]
+pub struct SoakOpt {
+    /// How many times to play the show with every method.
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(2..))]
+    pub cycles: u32,
+    /// Play every K-th frame of each entry (1: every frame).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    pub step: u32,
 }
 
 /// `cargo xtask COMMAND ARGS` parsed, for the commands' tests.

@@ -3,17 +3,22 @@
 use std::process::Command;
 
 use anyhow::Result;
-use harness::build_image;
-use harness::cargo::NIGHTLY_ONLY;
-use harness::image::IMAGE_ENV;
-use harness::prerequisites::{ensure_cairo, ensure_chromium, ensure_qemu, ensure_toolchain, ensure_wasm_target};
-use harness::process::run_streaming;
+use boot_image::cargo::NIGHTLY_ONLY;
+use boot_image::process::run_streaming;
+use boot_image::toolchain::ensure_toolchain;
+use boot_image::{build_image, IMAGE_ENV};
+use harness::prerequisites::{
+    ensure_bochs, ensure_cairo, ensure_chromium, ensure_ovmf, ensure_qemu, ensure_wasm_target,
+};
 
 use crate::opt::TestOpt;
 
 pub fn test(opt: &TestOpt) -> Result<()> {
     ensure_toolchain()?;
     ensure_qemu()?;
+    // The adapter matrix boots OVMF too, and one test boots Bochs.
+    ensure_ovmf()?;
+    ensure_bochs()?;
     // The explorer page's tests: its engine is built for wasm32 and run in
     // headless Chromium.
     ensure_wasm_target()?;
@@ -27,7 +32,7 @@ pub fn test(opt: &TestOpt) -> Result<()> {
 /// `cargo test` over every host crate of the workspace, run by the cargo
 /// (the stable toolchain) that runs the xtask.
 fn test_command(cargo_args: &[String]) -> Command {
-    let mut command = harness::cargo::host();
+    let mut command = boot_image::cargo::host();
     command.args(["test", "--workspace"]);
     for package in NIGHTLY_ONLY {
         command.args(["--exclude", package]);
@@ -39,7 +44,7 @@ fn test_command(cargo_args: &[String]) -> Command {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use harness::process::command_line;
+    use boot_image::process::command_line;
 
     #[test]
     fn extra_arguments_go_to_cargo_test() {
@@ -50,6 +55,6 @@ mod tests {
             "{}",
             command_line(&command)
         );
-        assert_eq!(command.get_current_dir(), Some(harness::workspace::root()));
+        assert_eq!(command.get_current_dir(), Some(boot_image::workspace::root()));
     }
 }

@@ -17,14 +17,15 @@ mod replies;
 
 pub use commands::{Command, CommandError, FaultKind};
 pub use frames::{FrameHeader, FrameKind};
-pub use replies::{LineLosses, PciId, Pong, Ready, ShowReply, PONG};
+pub use replies::{Firmware, HeapState, LineLosses, PciId, Pong, Presentation, Ready, ShowReply, Video, PONG};
 
 /// Longest command line the kernel accepts, terminator excluded.
 pub const MAX_LINE: usize = 4096;
 /// Bytes in a mode-13h framebuffer.
 pub const FRAMEBUFFER_LEN: usize = 320 * 200;
-/// Bytes in a dump: the framebuffer read back from 0xA0000, then the 256
-/// DAC entries read back as 6-bit red, green, blue.
+/// Bytes in a dump: the 320x200 frame read back (from 0xA0000 on the VGA
+/// path), then its 256 palette entries as 6-bit red, green, blue (read
+/// back from the DAC on the VGA path).
 pub const DUMP_LEN: usize = FRAMEBUFFER_LEN + 768;
 /// The byte that starts every frame header.
 pub const FRAME_MARK: u8 = b'@';

@@ -111,18 +111,43 @@ impl fmt::Display for LineLosses {
     }
 }
 
+/// The kernel heap as it stands: `used`, the bytes its allocations hold
+/// (each rounded up as the allocator rounds it), and `free_largest`, the
+/// largest block one allocation could get now. Text: `heap_used=N
+/// heap_free_largest=M`. A heap that leaks grows `used`; one that
+/// fragments shrinks `free_largest` though `used` is back where it was.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct HeapState {
+    pub used: usize,
+    pub free_largest: usize,
+}
+
+impl HeapState {
+    fn read(fields: &mut Fields<'_>) -> Option<Self> {
+        Some(Self { used: fields.parsed("heap_used")?, free_largest: fields.parsed("heap_free_largest")? })
+    }
+}
+
+impl fmt::Display for HeapState {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "heap_used={} heap_free_largest={}", self.used, self.free_largest)
+    }
+}
+
 /// The word a `PING` answer starts with.
 pub const PONG: &str = "pong";
 
-/// The `OK` text of `PING`: `pong overruns=N dropped=M`.
+/// The `OK` text of `PING`: `pong overruns=N dropped=M heap_used=U
+/// heap_free_largest=L`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Pong {
     pub losses: LineLosses,
+    pub heap: HeapState,
 }
 
 impl fmt::Display for Pong {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{PONG} {}", self.losses)
+        write!(f, "{PONG} {} {}", self.losses, self.heap)
     }
 }
 
@@ -131,7 +156,8 @@ impl Pong {
     pub fn parse(text: &str) -> Option<Self> {
         let mut fields = Fields::new(text.strip_prefix(PONG)?.strip_prefix(' ')?);
         let losses = LineLosses::read(&mut fields)?;
-        fields.end().then_some(Self { losses })
+        let heap = HeapState::read(&mut fields)?;
+        fields.end().then_some(Self { losses, heap })
     }
 }
 
@@ -157,26 +183,89 @@ impl PciId {
     }
 }
 
+/// The firmware that booted the kernel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Firmware {
+    /// A PC BIOS, or a UEFI firmware's compatibility support module (CSM).
+    #[default]
+    Bios,
+    Uefi,
+}
+
+impl Firmware {
+    pub const ALL: [Firmware; 2] = [Firmware::Bios, Firmware::Uefi];
+
+    /// `bios` or `uefi`, as `READY` writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Firmware::Bios => "bios",
+            Firmware::Uefi => "uefi",
+        }
+    }
+
+    /// The firmware [`Firmware::name`] calls `name`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|firmware| firmware.name() == name)
+    }
+}
+
+/// How the 320x200 frame reaches the screen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Video {
+    /// The card in mode 13h by the kernel's own register writes; the frame
+    /// is video memory at 0xA0000. `mismatches`: the registers and DAC
+    /// entries that did not read back as written (each also went out in a
+    /// `LOG` frame before `READY`).
+    Vga13h { mismatches: usize },
+    /// The frame is memory of the kernel's, presented in the firmware's
+    /// framebuffer.
+    Framebuffer(Presentation),
+    /// Nothing shows the frame (no VGA, no framebuffer): the kernel draws
+    /// and answers all the same.
+    #[default]
+    None,
+}
+
+/// Where the framebuffer path puts the frame: a `width` x `height`
+/// framebuffer, each frame pixel a `scale` x `scale` block, the frame's
+/// top left corner at pixel (`left`, `top`), black around it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Presentation {
+    pub width: u32,
+    pub height: u32,
+    pub scale: u32,
+    pub left: u32,
+    pub top: u32,
+}
+
 /// The payload of the `READY` frame the kernel sends once at boot:
-/// `display=vvvv:dddd vga_mismatches=K overruns=N dropped=M`. `display` is
-/// the first PCI display controller found (`none` if there is none),
-/// `vga_mismatches` the mode-13h registers and DAC entries that did not
-/// read back as written (each one also went out before it in a `LOG`
-/// frame).
+/// `firmware=bios|uefi display=vvvv:dddd VIDEO overruns=N dropped=M`,
+/// where VIDEO is `video=vga13h vga_mismatches=K`, `video=framebuffer
+/// screen=WxH scale=S offset=X,Y` or `video=none` ([`Video`]). `display`
+/// is the first PCI display controller found (`none` if there is none).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Ready {
+    pub firmware: Firmware,
     pub display: Option<PciId>,
-    pub vga_mismatches: usize,
+    pub video: Video,
     pub losses: LineLosses,
 }
 
 impl fmt::Display for Ready {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "firmware={} ", self.firmware.name())?;
         match self.display {
             Some(id) => write!(f, "display={id}")?,
             None => write!(f, "display=none")?,
         }
-        write!(f, " vga_mismatches={} {}", self.vga_mismatches, self.losses)
+        match self.video {
+            Video::Vga13h { mismatches } => write!(f, " video=vga13h vga_mismatches={mismatches}")?,
+            Video::Framebuffer(Presentation { width, height, scale, left, top }) => {
+                write!(f, " video=framebuffer screen={width}x{height} scale={scale} offset={left},{top}")?
+            }
+            Video::None => write!(f, " video=none")?,
+        }
+        write!(f, " {}", self.losses)
     }
 }
 
@@ -184,13 +273,31 @@ impl Ready {
     /// Parses the text written by `Display`.
     pub fn parse(text: &str) -> Option<Self> {
         let mut fields = Fields::new(text);
+        let firmware = Firmware::from_name(fields.text("firmware")?)?;
         let display = match fields.text("display")? {
             "none" => None,
             id => Some(PciId::parse(id)?),
         };
-        let vga_mismatches = fields.parsed("vga_mismatches")?;
+        let video = match fields.text("video")? {
+            "vga13h" => Video::Vga13h { mismatches: fields.parsed("vga_mismatches")? },
+            "framebuffer" => {
+                let (width, height) = fields.text("screen")?.split_once('x')?;
+                let scale = fields.parsed("scale")?;
+                let (left, top) = fields.text("offset")?.split_once(',')?;
+                let number = |text: &str| text.parse().ok();
+                Video::Framebuffer(Presentation {
+                    width: number(width)?,
+                    height: number(height)?,
+                    scale,
+                    left: number(left)?,
+                    top: number(top)?,
+                })
+            }
+            "none" => Video::None,
+            _ => return None,
+        };
         let losses = LineLosses::read(&mut fields)?;
-        fields.end().then_some(Self { display, vga_mismatches, losses })
+        fields.end().then_some(Self { firmware, display, video, losses })
     }
 }
 
@@ -223,23 +330,41 @@ mod tests {
     #[test]
     fn pongs_and_readies_round_trip_and_reject_garbage() {
         let losses = LineLosses { overruns: 2, dropped: 0 };
-        let pong = Pong { losses };
-        assert_eq!(pong.to_string(), "pong overruns=2 dropped=0");
+        let pong = Pong { losses, heap: HeapState { used: 70_000, free_largest: 4_100_000 } };
+        assert_eq!(pong.to_string(), "pong overruns=2 dropped=0 heap_used=70000 heap_free_largest=4100000");
         assert_eq!(Pong::parse(&pong.to_string()), Some(pong));
         assert_eq!(Pong::parse("pong"), None);
-        assert_eq!(Pong::parse("pong dropped=0 overruns=2"), None);
+        assert_eq!(Pong::parse("pong overruns=2 dropped=0"), None);
+        assert_eq!(Pong::parse("pong overruns=2 dropped=0 heap_free_largest=1 heap_used=2"), None);
+        assert_eq!(Pong::parse("pong dropped=0 overruns=2 heap_used=2 heap_free_largest=1"), None);
         assert!(!losses.none() && LineLosses::default().none());
 
         let display = Some(PciId { vendor: 0x1013, device: 0x00b8 });
-        let ready = Ready { display, vga_mismatches: 3, losses };
-        assert_eq!(ready.to_string(), "display=1013:00b8 vga_mismatches=3 overruns=2 dropped=0");
-        assert_eq!(Ready::parse(&ready.to_string()), Some(ready));
-        let headless = Ready { display: None, ..ready };
-        assert_eq!(Ready::parse(&headless.to_string()), Some(headless));
+        let ready = Ready { firmware: Firmware::Bios, display, video: Video::Vga13h { mismatches: 3 }, losses };
+        assert_eq!(
+            ready.to_string(),
+            "firmware=bios display=1013:00b8 video=vga13h vga_mismatches=3 overruns=2 dropped=0"
+        );
+        let presentation = Presentation { width: 800, height: 600, scale: 2, left: 80, top: 100 };
+        let framed = Ready { firmware: Firmware::Uefi, video: Video::Framebuffer(presentation), ..ready };
+        assert_eq!(
+            framed.to_string(),
+            "firmware=uefi display=1013:00b8 video=framebuffer screen=800x600 scale=2 offset=80,100 overruns=2 dropped=0"
+        );
+        let headless = Ready { display: None, video: Video::None, ..ready };
+        assert_eq!(headless.to_string(), "firmware=bios display=none video=none overruns=2 dropped=0");
+        for ready in [ready, framed, headless] {
+            assert_eq!(Ready::parse(&ready.to_string()), Some(ready));
+        }
         for garbage in [
-            "display=1013:b8 vga_mismatches=3 overruns=2 dropped=0",
-            "display=1013:00b8 vga_mismatches=3 overruns=2",
-            "display=1013:00b8 vga_mismatches=3 overruns=2 dropped=0 more=1",
+            "firmware=bios display=1013:b8 video=vga13h vga_mismatches=3 overruns=2 dropped=0",
+            "firmware=bios display=1013:00b8 video=vga13h vga_mismatches=3 overruns=2",
+            "firmware=bios display=1013:00b8 video=vga13h vga_mismatches=3 overruns=2 dropped=0 more=1",
+            "firmware=coreboot display=1013:00b8 video=none overruns=2 dropped=0",
+            "firmware=uefi display=none video=framebuffer screen=800x600 scale=2 overruns=2 dropped=0",
+            "firmware=uefi display=none video=framebuffer screen=800 scale=2 offset=80,100 overruns=2 dropped=0",
+            "firmware=bios display=none video=vga13h overruns=2 dropped=0",
+            "display=1013:00b8 vga_mismatches=3 overruns=2 dropped=0",
             "vga: 0 mismatches",
         ] {
             assert_eq!(Ready::parse(garbage), None, "{garbage}");

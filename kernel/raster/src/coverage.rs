@@ -31,6 +31,10 @@ use crate::sink::{Size, SpanSink};
 pub struct CoverageSink {
     size: Size,
     counts: Vec<u32>,
+    /// Where pixels were drawn: every count outside `drawn_from..drawn_to`
+    /// (indices into `counts`) is 0, so comparisons skip it.
+    drawn_from: usize,
+    drawn_to: usize,
     out_of_bounds: usize,
 }
 
@@ -53,7 +57,7 @@ impl CoverageSink {
     /// A target of `size` with nothing drawn.
     pub fn new(size: Size) -> Self {
         let len = size.width.max(0) as usize * size.height.max(0) as usize;
-        Self { size, counts: vec![0; len], out_of_bounds: 0 }
+        Self { size, counts: vec![0; len], drawn_from: len, drawn_to: 0, out_of_bounds: 0 }
     }
 
     /// How often pixel (x, y) was drawn; 0 outside the target.
@@ -76,7 +80,10 @@ impl CoverageSink {
     /// into `target` (a sink of the same size, e.g. the reference's).
     pub fn report(&self, target: &CoverageSink) -> CoverageReport {
         let mut report = CoverageReport { out_of_bounds: self.out_of_bounds, ..CoverageReport::default() };
-        for (index, &count) in self.counts.iter().enumerate() {
+        // Outside both sinks' drawn ranges every count is 0 on both sides.
+        let from = self.drawn_from.min(target.drawn_from);
+        let to = self.drawn_to.max(target.drawn_to).min(self.counts.len());
+        for (index, &count) in self.counts.iter().enumerate().take(to).skip(from) {
             let wanted = target.counts.get(index).is_some_and(|&c| c > 0);
             report.overdrawn += usize::from(count > 1);
             report.gaps += usize::from(wanted && count == 0);
@@ -140,7 +147,10 @@ impl SpanSink for CoverageSink {
         let (start, end) = (x_start.clamp(0, width), x_end.clamp(0, width));
         if row_inside && start < end {
             let row = (y * width) as usize;
-            for count in &mut self.counts[row + start as usize..row + end as usize] {
+            let (from, to) = (row + start as usize, row + end as usize);
+            self.drawn_from = self.drawn_from.min(from);
+            self.drawn_to = self.drawn_to.max(to);
+            for count in &mut self.counts[from..to] {
                 *count = count.saturating_add(1);
             }
         }
@@ -186,5 +196,20 @@ mod tests {
         assert_eq!(drawn.report(&target), CoverageReport { overdrawn: 0, out_of_bounds: 0, gaps: 2, extras: 1 });
         assert_eq!(drawn.ascii_against(&target), "-##-\nx...\n");
         assert_eq!(target.report(&target), CoverageReport::default());
+    }
+
+    #[test]
+    fn the_report_sees_pixels_drawn_on_either_side_far_apart() {
+        let size = Size { width: 50, height: 40 };
+        let mut target = CoverageSink::new(size);
+        target.span(0, 0, 2, 1);
+        target.span(39, 48, 50, 1);
+        let mut drawn = CoverageSink::new(size);
+        drawn.span(20, 10, 13, 1);
+        drawn.span(20, 12, 14, 1);
+        let report = drawn.report(&target);
+        assert_eq!(report, CoverageReport { overdrawn: 1, out_of_bounds: 0, gaps: 4, extras: 4 });
+        assert_eq!(target.report(&drawn), CoverageReport { overdrawn: 0, out_of_bounds: 0, gaps: 4, extras: 4 });
+        assert_eq!(CoverageSink::new(size).report(&CoverageSink::new(size)), CoverageReport::default());
     }
 }

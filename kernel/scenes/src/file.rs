@@ -32,6 +32,9 @@ pub enum LineError {
     UnknownOption(String),
     EmptyContour,
     Extra(String),
+    /// A control character other than a tab between the words, which the
+    /// protocol's command line would not carry.
+    ControlCharacter(char),
 }
 
 impl fmt::Display for LineError {
@@ -48,6 +51,9 @@ impl fmt::Display for LineError {
             LineError::UnknownOption(w) => write!(f, "unknown option `{w}`"),
             LineError::EmptyContour => write!(f, "empty contour around `|`"),
             LineError::Extra(w) => write!(f, "unexpected `{w}`"),
+            LineError::ControlCharacter(c) => {
+                write!(f, "control character U+{:04X} (words are separated by spaces and tabs)", u32::from(*c))
+            }
         }
     }
 }
@@ -103,7 +109,7 @@ fn spec_of(line: &str) -> &str {
 
 /// Parses one line: `Ok(None)` for blank lines and comments.
 pub fn parse_line(line: &str) -> Result<Option<Op>, LineError> {
-    let line = line.split('#').next().unwrap_or("");
+    let line = words_of(line.split('#').next().unwrap_or(""))?;
     let mut words = line.split_ascii_whitespace();
     let Some(keyword) = words.next() else { return Ok(None) };
     match keyword {
@@ -123,7 +129,19 @@ pub fn parse_line(line: &str) -> Result<Option<Op>, LineError> {
 /// Parses a `poly` line without its keyword (the protocol's `POLY`
 /// command carries one): `color=C [rule=R] x,y ...`.
 pub fn parse_poly(spec: &str) -> Result<Polygon, LineError> {
-    parse_poly_words(spec.split_ascii_whitespace())
+    parse_poly_words(words_of(spec)?.split_ascii_whitespace())
+}
+
+/// `text` without the whitespace at its ends, refused if a control
+/// character other than a tab is left between its words: the protocol's
+/// `POLY` line, which carries a `poly` line's text to the kernel, takes
+/// only printable ASCII and tabs.
+fn words_of(text: &str) -> Result<&str, LineError> {
+    let text = text.trim_matches(|c: char| c.is_ascii_whitespace());
+    match text.chars().find(|&c| c.is_control() && c != '\t') {
+        Some(c) => Err(LineError::ControlCharacter(c)),
+        None => Ok(text),
+    }
 }
 
 fn parse_poly_words<'a>(words: impl Iterator<Item = &'a str>) -> Result<Polygon, LineError> {
@@ -183,6 +201,23 @@ pub fn poly_line(polygon: &Polygon) -> String {
         }
     }
     line
+}
+
+/// The operations of `scene` as a scene file, one line each, that
+/// [`parse`] reads back to the very same operations.
+pub fn write(scene: &Scene) -> String {
+    let mut text = String::new();
+    for op in &scene.ops {
+        match op {
+            Op::Clear(color) => {
+                // Writing to a String cannot fail.
+                let _ = write!(text, "clear {color}");
+            }
+            Op::Fill(polygon) => text.push_str(&poly_line(polygon)),
+        }
+        text.push('\n');
+    }
+    text
 }
 
 /// A decimal number of pixels to subpixels, rounded to nearest, halves up.
@@ -273,6 +308,23 @@ mod tests {
     }
 
     #[test]
+    fn a_control_character_between_words_is_refused_as_the_kernel_would_refuse_the_line() {
+        // Found by the scene_file fuzz target: a form feed is ASCII
+        // whitespace, so this line parsed, but the `POLY` command carrying
+        // its text is not printable ASCII and the kernel refused it.
+        let line = "poly color=3 rule=evenodd 0,0 320,0\x0c50,20";
+        assert_eq!(parse_line(line), Err(LineError::ControlCharacter('\x0c')));
+        assert_eq!(parse_poly("color=3 0,0\r320,0 50,20"), Err(LineError::ControlCharacter('\r')));
+        assert_eq!(parse_line("poly color=3 0,0 320,0 50,20 # a \x0c in a comment\r").map(|op| op.is_some()), Ok(true));
+        assert_eq!(parse_line("\tpoly\tcolor=3 0,0 320,0 50,20\x0c").map(|op| op.is_some()), Ok(true));
+        let error = parse("t", "clear 1\npoly color=3 0,0\x0b320,0 50,20\n").unwrap_err();
+        assert_eq!(
+            alloc::format!("{error}"),
+            "line 2: control character U+000B (words are separated by spaces and tabs)"
+        );
+    }
+
+    #[test]
     fn decimals_are_exact_and_shortest() {
         assert_eq!(pixels(0), "0");
         assert_eq!(pixels(256), "1");
@@ -281,6 +333,17 @@ mod tests {
         assert_eq!(pixels(-1), "-0.00390625");
         assert_eq!(pixels(i32::MAX), "8388607.99609375");
         assert_eq!(pixels(i32::MIN), "-8388608");
+    }
+
+    #[test]
+    fn a_written_scene_parses_back_to_the_same_operations() {
+        let text = "clear 9\npoly color=5 rule=nonzero 0,0 10.5,0 5,7.25 | 1,1 2,1 2,2\nclear 0\n";
+        let scene = parse("t", text).unwrap();
+        assert_eq!(write(&scene), text);
+        for page in crate::builtin::ALL {
+            let scene = page.scene();
+            assert_eq!(parse(page.name, &write(&scene)).unwrap().ops, scene.ops, "{}", page.name);
+        }
     }
 
     #[test]

@@ -295,9 +295,14 @@ impl Console {
     /// Sends `PING` and returns what the kernel says the serial line has
     /// lost so far.
     pub fn ping(&mut self) -> Result<LineLosses> {
+        Ok(self.pong()?.losses)
+    }
+
+    /// Sends `PING` and returns its whole answer: the serial line's losses
+    /// and the kernel heap's state.
+    pub fn pong(&mut self) -> Result<Pong> {
         let text = self.ok(&Command::Ping)?;
-        let pong = Pong::parse(&text).with_context(|| format!("`PING` answered OK \"{text}\", not a pong"))?;
-        Ok(pong.losses)
+        Pong::parse(&text).with_context(|| format!("`PING` answered OK \"{text}\", not a pong"))
     }
 
     pub fn list(&mut self) -> Result<Listing> {
@@ -311,7 +316,7 @@ impl Console {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use protocol::FrameHeader;
+    use protocol::{Firmware, FrameHeader, HeapState, Video};
     use std::sync::mpsc::{self, Sender};
     use std::sync::{Arc, Mutex};
 
@@ -345,13 +350,18 @@ mod tests {
     fn commands_go_out_as_lines_and_replies_come_back_typed() {
         let (mut console, sent, _keep) = console(&[
             (FrameKind::Log, b"vga: CRTC 0x11 reads 0x0e"),
-            (FrameKind::Ready, b"display=1234:1111 vga_mismatches=1 overruns=0 dropped=0"),
-            (FrameKind::Ok, b"pong overruns=3 dropped=1"),
+            (FrameKind::Ready, b"firmware=uefi display=1234:1111 video=vga13h vga_mismatches=1 overruns=0 dropped=0"),
+            (FrameKind::Ok, b"pong overruns=3 dropped=1 heap_used=96 heap_free_largest=4096"),
             (FrameKind::List, b"scene abrash38-1\nshow race 240\nmethod abrash_float\n"),
         ]);
         let ready = console.wait_ready().unwrap();
-        assert_eq!((ready.display.unwrap().to_string(), ready.vga_mismatches), ("1234:1111".to_string(), 1));
-        assert_eq!(console.ping().unwrap(), LineLosses { overruns: 3, dropped: 1 });
+        assert_eq!(
+            (ready.firmware, ready.display.unwrap().to_string(), ready.video),
+            (Firmware::Uefi, "1234:1111".to_string(), Video::Vga13h { mismatches: 1 })
+        );
+        let pong = console.pong().unwrap();
+        assert_eq!(pong.losses, LineLosses { overruns: 3, dropped: 1 });
+        assert_eq!(pong.heap, HeapState { used: 96, free_largest: 4096 });
         let listing = console.list().unwrap();
         let expected = Listing {
             scenes: vec!["abrash38-1".into()],

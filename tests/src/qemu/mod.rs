@@ -1,6 +1,7 @@
 //! Running the image in QEMU: the command line (every flag says why), the
-//! child process (killed on drop, every wait bounded) and its channels:
-//! COM1 on the child's stdin/stdout, QMP on a unix socket.
+//! firmware (SeaBIOS or OVMF) and the display card, the child process
+//! (killed on drop, every wait bounded) and its channels: COM1 on the
+//! child's stdin/stdout, QMP on a unix socket.
 
 pub mod console;
 pub mod qmp;
@@ -13,13 +14,13 @@ use std::sync::mpsc::Receiver;
 use std::time::{Duration, Instant};
 
 use anyhow::{anyhow, Context, Result};
-use protocol::{PciId, Ready};
+use protocol::{Firmware, PciId, Ready};
 
-use crate::image::build_image;
 use crate::picture::Image;
-use crate::prerequisites::{ensure_qemu, QEMU};
+use crate::prerequisites::{ensure_ovmf, ensure_qemu, OVMF_CODE, OVMF_VARS, QEMU};
 use crate::process::command_line;
 use crate::workspace;
+use boot_image::build_image;
 use console::Console;
 use qmp::Qmp;
 use serial::{forward_bytes, FrameReader};
@@ -47,7 +48,7 @@ pub enum Display {
     Window,
 }
 
-/// The display card QEMU emulates (`-vga`).
+/// The display card QEMU emulates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Adapter {
     /// QEMU's standard VGA, with the Bochs "dispi" VBE extension.
@@ -58,42 +59,100 @@ pub enum Adapter {
     Cirrus,
     /// The VMware SVGA II adapter.
     Vmware,
+    /// QXL (SPICE's card) with its VGA core and the Bochs VBE interface.
+    QxlVga,
+    /// virtio-gpu with a VGA core and the Bochs VBE interface.
+    VirtioVga,
+    /// An ATI Rage 128 Pro, a real card's VGA core (no UEFI driver in OVMF).
+    AtiVga,
+    /// The Bochs display interface without a VGA core (PCI class 03/80,
+    /// the std VGA's PCI IDs): only a framebuffer.
+    BochsDisplay,
+    /// A framebuffer in guest RAM the firmware sets up: no PCI device, no
+    /// VGA.
+    Ramfb,
     /// No display card at all.
     None,
 }
 
 impl Adapter {
-    /// Every adapter QEMU offers with a VGA BIOS: the ones the picture is
-    /// proven on.
-    pub const WITH_VGA: [Adapter; 3] = [Adapter::Std, Adapter::Cirrus, Adapter::Vmware];
+    /// Every card, in the order `--vga` lists them.
+    pub const ALL: [Adapter; 9] = [
+        Adapter::Std,
+        Adapter::Cirrus,
+        Adapter::Vmware,
+        Adapter::QxlVga,
+        Adapter::VirtioVga,
+        Adapter::AtiVga,
+        Adapter::BochsDisplay,
+        Adapter::Ramfb,
+        Adapter::None,
+    ];
 
-    /// The value of QEMU's `-vga`.
-    pub fn qemu_name(self) -> &'static str {
+    /// Whether the adapter matrix proves the picture (or, with `None`,
+    /// the boot) on this card under `firmware`: SeaBIOS's VGA BIOSes put
+    /// the VGA-compatible cards in text mode; OVMF has a graphics driver
+    /// for the first five and for bochs-display and ramfb (none for
+    /// ati-vga), and with no card it shows nothing.
+    pub fn proven_under(self, firmware: Firmware) -> bool {
+        match self {
+            Adapter::Std | Adapter::Cirrus | Adapter::Vmware | Adapter::QxlVga | Adapter::VirtioVga => true,
+            Adapter::AtiVga | Adapter::None => firmware == Firmware::Bios,
+            Adapter::BochsDisplay | Adapter::Ramfb => firmware == Firmware::Uefi,
+        }
+    }
+
+    /// The card's name for `--vga` (QEMU's device name where it has one).
+    pub fn name(self) -> &'static str {
         match self {
             Adapter::Std => "std",
             Adapter::Cirrus => "cirrus",
             Adapter::Vmware => "vmware",
+            Adapter::QxlVga => "qxl-vga",
+            Adapter::VirtioVga => "virtio-vga",
+            Adapter::AtiVga => "ati-vga",
+            Adapter::BochsDisplay => "bochs-display",
+            Adapter::Ramfb => "ramfb",
             Adapter::None => "none",
         }
     }
 
-    /// The adapter whose `-vga` name is `name`, among [`Adapter::WITH_VGA`]
-    /// (the cards the picture is proven on); otherwise an error listing them.
-    pub fn with_vga_named(name: &str) -> Result<Adapter> {
-        Adapter::WITH_VGA.into_iter().find(|adapter| adapter.qemu_name() == name).with_context(|| {
-            let valid: Vec<&str> = Adapter::WITH_VGA.iter().map(|adapter| adapter.qemu_name()).collect();
+    /// The card called `name`; otherwise an error listing them.
+    pub fn named(name: &str) -> Result<Adapter> {
+        Adapter::ALL.into_iter().find(|adapter| adapter.name() == name).with_context(|| {
+            let valid: Vec<&str> = Adapter::ALL.iter().map(|adapter| adapter.name()).collect();
             format!("unknown display adapter `{name}`; the adapters are {}", valid.join(", "))
         })
     }
 
+    /// QEMU's flags for the card: `-vga` for the cards it knows by that
+    /// flag; otherwise no built-in card and the card as a `-device`.
+    fn qemu_flags(self) -> [&'static str; 2] {
+        match self {
+            Adapter::Std => ["-vga", "std"],
+            Adapter::Cirrus => ["-vga", "cirrus"],
+            Adapter::Vmware => ["-vga", "vmware"],
+            Adapter::QxlVga => ["-vga", "qxl"],
+            Adapter::VirtioVga => ["-vga", "virtio"],
+            Adapter::AtiVga => ["-device", "ati-vga"],
+            Adapter::BochsDisplay => ["-device", "bochs-display"],
+            Adapter::Ramfb => ["-device", "ramfb"],
+            Adapter::None => ["-vga", "none"],
+        }
+    }
+
     /// The PCI IDs QEMU gives the card (as `lspci -n` shows them in a
-    /// guest), which the kernel reports in READY.
+    /// guest), which the kernel reports in READY; `None` for no card and
+    /// for ramfb, which is not on the PCI bus.
     pub fn pci_id(self) -> Option<PciId> {
         let (vendor, device) = match self {
-            Adapter::Std => (0x1234, 0x1111),
+            Adapter::Std | Adapter::BochsDisplay => (0x1234, 0x1111),
             Adapter::Cirrus => (0x1013, 0x00b8),
             Adapter::Vmware => (0x15ad, 0x0405),
-            Adapter::None => return None,
+            Adapter::QxlVga => (0x1b36, 0x0100),
+            Adapter::VirtioVga => (0x1af4, 0x1050),
+            Adapter::AtiVga => (0x1002, 0x5046),
+            Adapter::Ramfb | Adapter::None => return None,
         };
         Some(PciId { vendor, device })
     }
@@ -115,19 +174,37 @@ pub enum Clock {
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct QemuOptions {
+    pub firmware: Firmware,
     pub medium: Medium,
     pub display: Display,
     pub adapter: Adapter,
     pub clock: Clock,
 }
 
-/// QEMU's arguments for booting `image` with `options`, its QMP socket at
-/// `qmp_socket`.
-pub fn qemu_arguments(image: &Path, qmp_socket: &Path, options: QemuOptions) -> Vec<OsString> {
+/// Where a run keeps its QMP socket and, under UEFI, its copy of the
+/// firmware's variable store.
+fn qmp_socket(run_dir: &Path) -> PathBuf {
+    run_dir.join("qmp.sock")
+}
+
+fn uefi_variables(run_dir: &Path) -> PathBuf {
+    run_dir.join("OVMF_VARS_4M.fd")
+}
+
+/// QEMU's arguments for booting `image` with `options`, its QMP socket
+/// (and the UEFI variable store) in `run_dir`.
+pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec<OsString> {
     let mut args: Vec<OsString> = Vec::new();
-    // The i440FX PC with SeaBIOS: a BIOS that boots the bootloader's BIOS
-    // image, like a PC's BIOS or CSM.
+    // The i440FX PC. Its own firmware is SeaBIOS: a BIOS that boots the
+    // image's BIOS side, like a PC's BIOS or CSM.
     flag(&mut args, "-machine", "pc");
+    if options.firmware == Firmware::Uefi {
+        // OVMF instead, as a UEFI PC's flash: its code read-only, and its
+        // variable store (boot entries it writes as it boots) a copy of
+        // the package's empty one, private to this run.
+        flag(&mut args, "-drive", with_path("if=pflash,format=raw,unit=0,readonly=on,file=", Path::new(OVMF_CODE), ""));
+        flag(&mut args, "-drive", with_path("if=pflash,format=raw,unit=1,file=", &uefi_variables(run_dir), ""));
+    }
     // Always emulate: KVM here is nested and pathologically slow, and TCG
     // exists everywhere QEMU does.
     flag(&mut args, "-accel", "tcg");
@@ -139,9 +216,18 @@ pub fn qemu_arguments(image: &Path, qmp_socket: &Path, options: QemuOptions) -> 
         // clock jumps to the next timer instead of waiting for the host.
         flag(&mut args, "-icount", "shift=0,sleep=off");
     }
-    // The display card (`Adapter`): each one's VGA BIOS puts it in text mode
-    // at boot, from which the kernel programs mode 13h.
-    flag(&mut args, "-vga", options.adapter.qemu_name());
+    // The display card (`Adapter`). Under SeaBIOS the VGA-compatible ones'
+    // VGA BIOS puts them in text mode; under OVMF its graphics driver sets
+    // their native mode, which the kernel undoes on the cards it knows.
+    let [card_flag, card] = options.adapter.qemu_flags();
+    flag(&mut args, card_flag, card);
+    if card_flag == "-device" {
+        // No built-in VGA beside the card given as a device.
+        flag(&mut args, "-vga", "none");
+    }
+    // No network card: nothing boots from the network, and no option ROM
+    // of one slows the firmware down.
+    flag(&mut args, "-nic", "none");
     match options.display {
         // No window; QMP screendumps still render the card's output.
         Display::Headless => flag(&mut args, "-display", "none"),
@@ -153,7 +239,7 @@ pub fn qemu_arguments(image: &Path, qmp_socket: &Path, options: QemuOptions) -> 
     // COM1 on QEMU's stdin and stdout, both pipes to us: the protocol line.
     flag(&mut args, "-serial", "stdio");
     // Screendump and quit; `wait=off` lets the guest run with no client yet.
-    flag(&mut args, "-qmp", with_path("unix:", qmp_socket, ",server=on,wait=off"));
+    flag(&mut args, "-qmp", with_path("unix:", &qmp_socket(run_dir), ",server=on,wait=off"));
     // `EXIT n` and fault reports leave QEMU with exit status (n << 1) | 1.
     flag(&mut args, "-device", "isa-debug-exit,iobase=0xf4,iosize=0x04");
     // A triple fault exits QEMU instead of rebooting the guest forever.
@@ -169,7 +255,7 @@ pub fn qemu_arguments(image: &Path, qmp_socket: &Path, options: QemuOptions) -> 
             flag(&mut args, "-drive", with_path("if=none,id=stick,format=raw,snapshot=on,file=", image, ""));
             // A USB 3 controller, as on the PCs the stick is meant for.
             flag(&mut args, "-device", "qemu-xhci,id=xhci");
-            // The stick itself; SeaBIOS boots from it as from a disk.
+            // The stick itself; SeaBIOS and OVMF boot from it as from a disk.
             flag(&mut args, "-device", "usb-storage,bus=xhci.0,drive=stick");
         }
     }
@@ -219,8 +305,13 @@ impl Qemu {
     pub fn spawn(image: &Path, options: QemuOptions) -> Result<Self> {
         ensure_qemu()?;
         let run_dir = workspace::fresh_run_dir("qemu")?;
+        if options.firmware == Firmware::Uefi {
+            ensure_ovmf()?;
+            std::fs::copy(OVMF_VARS, uefi_variables(&run_dir))
+                .with_context(|| format!("failed to copy {OVMF_VARS} into {}", run_dir.display()))?;
+        }
         let mut command = Command::new(QEMU);
-        command.args(qemu_arguments(image, &run_dir.join("qmp.sock"), options));
+        command.args(qemu_arguments(image, &run_dir, options));
         command.stdin(Stdio::piped()).stdout(Stdio::piped()).stderr(Stdio::piped());
         let line = command_line(&command);
         eprintln!("harness: running {line}");
@@ -257,7 +348,7 @@ impl Qemu {
     /// The QMP session, connected on first use.
     pub fn qmp(&mut self) -> Result<&mut Qmp> {
         if self.qmp.is_none() {
-            self.qmp = Some(Qmp::connect(&self.run_dir.join("qmp.sock"))?);
+            self.qmp = Some(Qmp::connect(&qmp_socket(&self.run_dir))?);
         }
         Ok(self.qmp.as_mut().expect("connected above"))
     }
@@ -325,7 +416,7 @@ mod tests {
     use super::*;
 
     fn arguments(options: QemuOptions) -> Vec<String> {
-        qemu_arguments(Path::new("/img/polylab.img"), Path::new("/run/qmp.sock"), options)
+        qemu_arguments(Path::new("/img/polylab.img"), Path::new("/run"), options)
             .into_iter()
             .map(|a| a.into_string().unwrap())
             .collect()
@@ -345,12 +436,23 @@ mod tests {
             ("-qmp", "unix:/run/qmp.sock,server=on,wait=off"),
             ("-device", "isa-debug-exit,iobase=0xf4,iosize=0x04"),
             ("-m", "128M"),
+            ("-nic", "none"),
             ("-drive", "if=ide,index=0,format=raw,snapshot=on,file=/img/polylab.img"),
         ] {
             assert!(has_pair(&args, flag, value), "{flag} {value} missing from {args:?}");
         }
         assert!(args.contains(&"-no-reboot".to_string()));
         assert!(!args.iter().any(|a| a.contains("usb")));
+        assert!(!args.iter().any(|a| a.contains("pflash")), "SeaBIOS is the default firmware: {args:?}");
+    }
+
+    #[test]
+    fn uefi_boots_ovmf_from_read_only_code_and_a_private_variable_store() {
+        let args = arguments(QemuOptions { firmware: Firmware::Uefi, ..QemuOptions::default() });
+        let code = format!("if=pflash,format=raw,unit=0,readonly=on,file={OVMF_CODE}");
+        assert!(has_pair(&args, "-drive", &code), "{args:?}");
+        assert!(has_pair(&args, "-drive", "if=pflash,format=raw,unit=1,file=/run/OVMF_VARS_4M.fd"), "{args:?}");
+        assert!(has_pair(&args, "-drive", "if=ide,index=0,format=raw,snapshot=on,file=/img/polylab.img"));
     }
 
     #[test]
@@ -363,24 +465,49 @@ mod tests {
     }
 
     #[test]
-    fn the_adapter_is_the_vga_flag_and_std_is_the_default() {
+    fn each_card_is_one_vga_flag_or_a_device_with_no_built_in_vga() {
         assert!(has_pair(&arguments(QemuOptions::default()), "-vga", "std"));
-        for adapter in [Adapter::Cirrus, Adapter::Vmware, Adapter::None] {
+        for (adapter, flag, value) in [
+            (Adapter::Cirrus, "-vga", "cirrus"),
+            (Adapter::Vmware, "-vga", "vmware"),
+            (Adapter::QxlVga, "-vga", "qxl"),
+            (Adapter::VirtioVga, "-vga", "virtio"),
+            (Adapter::AtiVga, "-device", "ati-vga"),
+            (Adapter::BochsDisplay, "-device", "bochs-display"),
+            (Adapter::Ramfb, "-device", "ramfb"),
+            (Adapter::None, "-vga", "none"),
+        ] {
             let args = arguments(QemuOptions { adapter, ..QemuOptions::default() });
-            assert!(has_pair(&args, "-vga", adapter.qemu_name()), "{args:?}");
+            assert!(has_pair(&args, flag, value), "{adapter:?}: {args:?}");
             assert_eq!(args.iter().filter(|a| *a == "-vga").count(), 1, "{args:?}");
+            if flag == "-device" {
+                assert!(has_pair(&args, "-vga", "none"), "{args:?}");
+            }
         }
-        assert!(!Adapter::WITH_VGA.contains(&Adapter::None));
     }
 
     #[test]
-    fn adapters_with_a_vga_bios_are_found_by_name_and_others_refused_with_the_list() {
-        for adapter in Adapter::WITH_VGA {
-            assert_eq!(Adapter::with_vga_named(adapter.qemu_name()).unwrap(), adapter);
+    fn cards_are_found_by_name_and_others_refused_with_the_list() {
+        for adapter in Adapter::ALL {
+            assert_eq!(Adapter::named(adapter.name()).unwrap(), adapter);
         }
-        for name in ["none", "qxl", ""] {
-            let error = Adapter::with_vga_named(name).unwrap_err().to_string();
-            assert_eq!(error, format!("unknown display adapter `{name}`; the adapters are std, cirrus, vmware"));
+        for name in ["qxl", "virtio", ""] {
+            let error = Adapter::named(name).unwrap_err().to_string();
+            assert_eq!(
+                error,
+                format!(
+                    "unknown display adapter `{name}`; the adapters are std, cirrus, vmware, qxl-vga, virtio-vga, \
+                     ati-vga, bochs-display, ramfb, none"
+                )
+            );
+        }
+    }
+
+    #[test]
+    fn the_matrix_covers_every_card_under_one_firmware_or_the_other() {
+        for adapter in Adapter::ALL {
+            let proven = Firmware::ALL.into_iter().any(|firmware| adapter.proven_under(firmware));
+            assert!(proven, "{adapter:?} is proven under no firmware");
         }
     }
 

@@ -235,15 +235,7 @@ impl Explorer {
 
     /// The scene as a scene file.
     pub fn scene_text(&self) -> String {
-        let mut text = String::new();
-        for op in &self.scene.ops {
-            match op {
-                Op::Clear(color) => text.push_str(&format!("clear {color}")),
-                Op::Fill(polygon) => text.push_str(&scenes::file::poly_line(polygon)),
-            }
-            text.push('\n');
-        }
-        text
+        file::write(&self.scene)
     }
 
     /// The last-drawn polygon whose exact fill covers pixel (x, y), the one

@@ -1,5 +1,5 @@
 //! Typed `cargo +<pinned nightly>` invocations for the kernel and the image
-//! builder.
+//! writer (`boot`).
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -61,15 +61,15 @@ pub fn host() -> Command {
 #[derive(Clone, Copy, Debug)]
 pub struct NightlyBuild<'a> {
     pub package: &'a str,
-    /// Cross target; `None` builds for the host (the image builder).
+    /// Cross target; `None` builds for the host (the image writer).
     pub target: Option<&'a str>,
 }
 
 impl NightlyBuild<'_> {
     /// The kernel, for bare metal.
     pub const KERNEL: NightlyBuild<'static> = NightlyBuild { package: "kernel", target: Some(KERNEL_TARGET) };
-    /// The BIOS image builder (`boot/`), a host program.
-    pub const IMAGE_BUILDER: NightlyBuild<'static> = NightlyBuild { package: "boot", target: None };
+    /// The image writer (`boot/`), a host program.
+    pub const IMAGE_WRITER: NightlyBuild<'static> = NightlyBuild { package: "boot", target: None };
 
     pub fn command(&self) -> Command {
         let mut command = pinned("cargo");
@@ -119,9 +119,9 @@ mod tests {
 
     #[test]
     fn image_builder_builds_for_the_host() {
-        let command = NightlyBuild::IMAGE_BUILDER.command();
+        let command = NightlyBuild::IMAGE_WRITER.command();
         assert!(!command.get_args().any(|a| a == "--target"));
-        assert_eq!(NightlyBuild::IMAGE_BUILDER.artifact(), workspace::nightly_target_dir().join("release/boot"));
+        assert_eq!(NightlyBuild::IMAGE_WRITER.artifact(), workspace::nightly_target_dir().join("release/boot"));
     }
 
     #[test]

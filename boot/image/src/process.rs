@@ -27,7 +27,7 @@ fn shell_word(word: &OsStr) -> String {
 /// streams to the user) and fails unless it exits successfully.
 pub fn run_streaming(command: &mut Command) -> Result<()> {
     let line = command_line(command);
-    eprintln!("harness: running {line}");
+    eprintln!("running {line}");
     let status = command.status().with_context(|| format!("failed to start `{line}`"))?;
     if !status.success() {
         bail!("`{line}` failed with {status}");

@@ -1,6 +1,8 @@
 //! The boot stages the image is built with: the registry's `bootloader`
 //! with its BIOS stage 2 patched, so that the display card is still in the
-//! BIOS's text mode when the kernel programs mode 13h.
+//! BIOS's text mode when the kernel programs mode 13h. (The UEFI loader is
+//! the registry's, unchanged: under UEFI the kernel undoes the firmware's
+//! mode itself, card by card, see kernel/src/card.rs.)
 //!
 //! Why: `bootloader` 0.11's BIOS stage 2 asks the card's VBE BIOS for a
 //! linear-framebuffer mode and switches to it before the kernel runs (and
@@ -17,7 +19,7 @@
 //! inside it (where `bootloader`'s build script builds stage 2 from when
 //! that folder exists; the other stages still come from the registry),
 //! and applies [`STAGE_2_EDITS`], each of which must match exactly once or
-//! the build stops saying which. The image builder is then built against
+//! the build stops saying which. The image writer (`boot`) is then built against
 //! that copy through a cargo `[patch]` given on the command line
 //! ([`PatchedBootloader::cargo_args`]), with a lock file of its own under
 //! `target/`, so the tracked `Cargo.lock` and the working tree stay as they
@@ -147,7 +149,7 @@ impl PatchedBootloader {
         Self { dir: root.join(format!("bootloader-{VERSION}")), lockfile: root.join("lock").join("Cargo.lock") }
     }
 
-    /// Arguments to a `cargo build` of the image builder: `bootloader`
+    /// Arguments to a `cargo build` of the image writer: `bootloader`
     /// from the copy, and the lock file under `target/`.
     pub fn cargo_args(&self) -> Result<Vec<String>> {
         Ok(vec![
@@ -172,7 +174,7 @@ impl PatchedBootloader {
             .with_context(|| format!("failed to read {}", self.lockfile.display()))?;
         ensure!(
             patched_in_lock(&lock),
-            "cargo built the image builder with the registry's bootloader, not the patched copy in {} \
+            "cargo built the image writer with the registry's bootloader, not the patched copy in {} \
              (see {}): boot/Cargo.toml must ask for bootloader ={VERSION}",
             self.dir.display(),
             self.lockfile.display()
@@ -240,7 +242,7 @@ fn fingerprint() -> String {
 fn make_copy(patched: &PatchedBootloader) -> Result<()> {
     let (bootloader, stage_2) = fetch_sources(patched.dir.parent().expect("the copy is in a folder"))?;
     eprintln!(
-        "harness: patching bootloader {VERSION}'s BIOS stage 2 (no VBE mode set, so the card stays in text mode) \
+        "image: patching bootloader {VERSION}'s BIOS stage 2 (no VBE mode set, so the card stays in text mode) \
          in {}",
         patched.dir.display()
     );
@@ -297,11 +299,11 @@ fn fetch_sources(work_dir: &Path) -> Result<(PathBuf, PathBuf)> {
 /// The manifest [`fetch_sources`] fetches with.
 fn fetch_manifest() -> String {
     format!(
-        "# Written by the harness (tests/src/bootloader.rs) to fetch the sources it patches.\n\
+        "# Written by the image build (boot/image/src/bootloader.rs) to fetch the sources it patches.\n\
          [package]\nname = \"bootloader-sources\"\nversion = \"0.0.0\"\nedition = \"2021\"\npublish = false\n\n\
          [lib]\npath = \"lib.rs\"\n\n\
          [dependencies]\n\
-         bootloader = {{ version = \"={VERSION}\", default-features = false, features = [\"bios\"] }}\n\
+         bootloader = {{ version = \"={VERSION}\", default-features = false, features = [\"bios\", \"uefi\"] }}\n\
          {STAGE_2_CRATE} = \"={VERSION}\"\n\n\
          [workspace]\n"
     )
@@ -343,7 +345,7 @@ mod tests {
 
     #[test]
     fn the_image_builder_asks_for_exactly_the_patched_version() {
-        let manifest = include_str!("../../boot/Cargo.toml");
+        let manifest = include_str!("../../Cargo.toml");
         assert!(
             manifest.contains(&format!("bootloader = {{ version = \"={VERSION}\"")),
             "boot/Cargo.toml must pin bootloader ={VERSION}, the version the stage-2 edits are written for"

@@ -1,0 +1,131 @@
+//! The `command` target: any bytes as a command line, through the
+//! protocol's parser (the code the kernel runs on every line it reads),
+//! and as the texts the host parses from the kernel's frames. Nothing
+//! panics; every accepted command formats back to a line that parses to
+//! the same command; a `POLY` command's polygon, when the kernel's
+//! `parse_poly` takes it, fills with the command's method inside the
+//! screen; every accepted reply text or frame header formats back to
+//! itself parsed again.
+
+use protocol::{Command, FaultKind, FrameHeader, FrameKind, Pong, Ready, ShowReply, BENCH_MAX_REPEATS};
+use raster::{CoverageSink, MethodId, SCREEN};
+use scenes::file;
+
+pub fn check(data: &[u8]) {
+    if let Ok(command) = Command::parse(data) {
+        let line = command.to_string();
+        assert_eq!(Command::parse(line.as_bytes()), Ok(command), "{command:?} formats as {line:?}");
+        if let Command::Poly { method, spec } = command {
+            if let Ok(polygon) = file::parse_poly(spec) {
+                let mut sink = CoverageSink::new(SCREEN);
+                let _ = method.method().fill(&polygon, &mut sink);
+                assert_eq!(sink.out_of_bounds(), 0, "{method} drew {spec:?} outside the screen");
+            }
+        }
+    }
+    let Ok(text) = std::str::from_utf8(data) else { return };
+    if let Some(reply) = ShowReply::parse(text) {
+        assert_eq!(ShowReply::parse(&reply.to_string()), Some(reply.clone()), "{text:?}");
+    }
+    if let Some(pong) = Pong::parse(text) {
+        assert_eq!(Pong::parse(&pong.to_string()), Some(pong), "{text:?}");
+    }
+    if let Some(ready) = Ready::parse(text) {
+        assert_eq!(Ready::parse(&ready.to_string()), Some(ready), "{text:?}");
+    }
+    if let Some(header) = FrameHeader::parse(text) {
+        assert_eq!(FrameHeader::parse(&header.to_string()), Some(header), "{text:?}");
+    }
+}
+
+/// A command line of every kind with every built-in scene, show entry and
+/// method, each built-in polygon as a `POLY`, and a text of each reply.
+pub fn seeds() -> Vec<(String, Vec<u8>)> {
+    let mut commands = vec![
+        Command::Ping,
+        Command::List,
+        Command::Dump,
+        Command::VgaCheck,
+        Command::Clear(7),
+        Command::Exit(16),
+        Command::Demo { entry: None, method: None },
+    ];
+    for page in &scenes::builtin::ALL {
+        commands.push(Command::Draw { scene: page.name, method: None });
+        commands.push(Command::Bench { scene: page.name, repeats: BENCH_MAX_REPEATS });
+    }
+    for entry in scenes::show::ENTRIES_IN_ORDER {
+        commands.push(Command::Show { entry: entry.name, frame: entry.frames - 1, method: None });
+        commands.push(Command::Demo { entry: Some(entry.name), method: None });
+    }
+    for method in MethodId::ALL {
+        commands.push(Command::Draw { scene: "abrash38-1", method: Some(method) });
+        commands.push(Command::Show { entry: "race", frame: 0, method: Some(method) });
+        commands.push(Command::Demo { entry: None, method: Some(method) });
+    }
+    commands.extend(FaultKind::ALL.map(Command::Fault));
+    let mut seeds: Vec<(String, Vec<u8>)> = commands
+        .iter()
+        .enumerate()
+        .map(|(i, command)| (format!("command-{i}"), command.to_string().into_bytes()))
+        .collect();
+    let polygons = scenes::builtin::ALL.iter().flat_map(|page| page.scene().ops).filter_map(|op| match op {
+        scenes::Op::Fill(polygon) => Some(polygon),
+        scenes::Op::Clear(_) => None,
+    });
+    for (i, polygon) in polygons.enumerate().step_by(7) {
+        let line = file::poly_line(&polygon);
+        let spec = line.strip_prefix("poly ").unwrap_or(&line);
+        seeds.push((format!("poly-{i}"), format!("POLY exact {spec}").into_bytes()));
+    }
+    let show = ShowReply {
+        entry: "race",
+        frame: 3,
+        method: MethodId::Wgt,
+        cycles: 12345,
+        allocs: 2,
+        polygons: 44,
+        refused: 0,
+        strays: 0,
+    };
+    let replies = [
+        show.to_string(),
+        Pong::default().to_string(),
+        Ready::default().to_string(),
+        FrameHeader::for_payload(FrameKind::Ok, b"pong").to_string(),
+    ];
+    seeds.extend(replies.into_iter().enumerate().map(|(i, text)| (format!("reply-{i}"), text.into_bytes())));
+    seeds
+}
+
+/// The words of the protocol.
+pub fn dictionary() -> Vec<String> {
+    let mut words: Vec<String> =
+        ["PING", "LIST", "DRAW", "SHOW", "CLEAR", "POLY", "DUMP", "BENCH", "VGACHECK", "DEMO", "EXIT", "FAULT", "*"]
+            .map(String::from)
+            .into();
+    words.extend(MethodId::ALL.map(|method| method.name().to_string()));
+    words.extend(FaultKind::ALL.map(|kind| kind.name().to_string()));
+    words.extend(scenes::show::ENTRIES_IN_ORDER.iter().map(|entry| entry.name.to_string()));
+    words.extend(FrameKind::ALL.map(|kind| format!("@{}", kind.name())));
+    words.extend(
+        ["entry=", "frame=", "method=", "cycles=", "allocs=", "polygons=", "refused=", "strays=", "pong", "overruns="]
+            .map(String::from),
+    );
+    words.extend(
+        [
+            "dropped=",
+            "heap_used=",
+            "heap_free_largest=",
+            "display=",
+            "none",
+            "vga_mismatches=",
+            "color=",
+            "rule=",
+            "nonzero",
+            "|",
+        ]
+        .map(String::from),
+    );
+    words
+}

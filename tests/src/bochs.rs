@@ -1,0 +1,171 @@
+//! Running the image in Bochs 2.7, a second emulator independent of QEMU,
+//! with its own BIOS, its own VGA BIOS and its own Cirrus card: the same
+//! image, and the same protocol on COM1, which Bochs connects to a TCP
+//! socket of ours. Bochs has no screendump the harness could read, so it
+//! judges the kernel by its answers: READY, the dumps against the host
+//! render, the register read-back.
+//!
+//! Debian's Bochs has its debugger built in, which stops before the first
+//! instruction: the run starts it with `c` (continue) on its standard
+//! input. Its display is the RFB (VNC) server, told not to wait for a
+//! viewer; nothing connects to it.
+
+use std::fs::File;
+use std::net::{TcpListener, TcpStream};
+use std::path::{Path, PathBuf};
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use anyhow::{bail, Context, Result};
+use boot_image::build_image;
+use boot_image::process::command_line;
+use protocol::Ready;
+
+use crate::prerequisites::{ensure_bochs, BOCHS, BOCHS_BIOS, BOCHS_CIRRUS_VGA_BIOS};
+use crate::qemu::console::Console;
+use crate::qemu::serial::{forward_bytes, FrameReader};
+use crate::workspace;
+
+/// Longest wait for Bochs to connect COM1 to the harness.
+const CONNECT_TIMEOUT: Duration = Duration::from_secs(30);
+
+/// Bochs's configuration for booting `image` with COM1 connected to
+/// 127.0.0.1:`port`, each line saying why.
+pub fn bochsrc(image: &Path, port: u16) -> String {
+    let image = image.display();
+    format!(
+        "# Enough for the bootloader and the kernel's heap, as under QEMU.\n\
+         megs: 128\n\
+         # Bochs's own BIOS and its Cirrus VGA BIOS (Debian's bochsbios and vgabios).\n\
+         romimage: file={BOCHS_BIOS}\n\
+         vgaromimage: file={BOCHS_CIRRUS_VGA_BIOS}\n\
+         # The i440FX PCI chipset with Bochs's Cirrus GD5446 in slot 1.\n\
+         pci: enabled=1, chipset=i440fx, slot1=cirrus\n\
+         vga: extension=cirrus\n\
+         # A 64-bit CPU (the kernel runs in long mode).\n\
+         cpu: model=corei7_sandy_bridge_2600k\n\
+         # The image as the first hard disk; Bochs writes to it, so it is a copy.\n\
+         ata0-master: type=disk, path={image}, mode=flat\n\
+         boot: disk\n\
+         # COM1 connects to the harness, which listens on this port.\n\
+         com1: enabled=1, mode=socket-client, dev=127.0.0.1:{port}\n\
+         # No window: the VNC server, not waiting for a viewer.\n\
+         display_library: rfb, options=\"timeout=0\"\n\
+         # Bochs's own messages go to the run's log; a panic ends the run.\n\
+         log: bochs.log\n\
+         panic: action=fatal\n\
+         error: action=report\n\
+         info: action=ignore\n\
+         debug: action=ignore\n"
+    )
+}
+
+/// A running Bochs. Dropping it kills the process.
+pub struct Bochs {
+    child: Child,
+    /// Kept open: Bochs's debugger reads it, and ends the run at its end.
+    _stdin: ChildStdin,
+    /// The protocol session on COM1.
+    pub console: Console,
+    /// What the kernel's READY frame said.
+    pub ready: Ready,
+    run_dir: PathBuf,
+}
+
+impl Bochs {
+    /// Builds (or reuses) the image, starts Bochs on a copy of it and waits
+    /// for the kernel's READY frame.
+    pub fn boot() -> Result<Self> {
+        ensure_bochs()?;
+        let image = build_image()?;
+        let run_dir = workspace::fresh_run_dir("bochs")?;
+        let disk = run_dir.join("polylab.img");
+        std::fs::copy(&image, &disk)
+            .with_context(|| format!("failed to copy {} to {}", image.display(), disk.display()))?;
+        let listener = TcpListener::bind("127.0.0.1:0").context("failed to listen for Bochs's COM1")?;
+        let port = listener.local_addr()?.port();
+        let config = run_dir.join("bochsrc");
+        std::fs::write(&config, bochsrc(&disk, port))
+            .with_context(|| format!("failed to write {}", config.display()))?;
+        let output = File::create(run_dir.join("bochs.out"))?;
+        let mut command = Command::new(BOCHS);
+        command.arg("-q").arg("-f").arg(&config).current_dir(&run_dir);
+        command.stdin(Stdio::piped()).stdout(output.try_clone()?).stderr(output);
+        let line = command_line(&command);
+        eprintln!("harness: running {line}");
+        let mut child = command.spawn().with_context(|| format!("failed to start `{line}`"))?;
+        let mut stdin = child.stdin.take().expect("stdin is piped");
+        std::io::Write::write_all(&mut stdin, b"c\n").context("failed to start Bochs's CPU (its debugger's `c`)")?;
+        let com1 = match accept_within(&listener, CONNECT_TIMEOUT) {
+            Ok(stream) => stream,
+            Err(error) => {
+                let _ = child.kill();
+                return Err(error.context(last_words(&run_dir)));
+            }
+        };
+        let console = Console::new(com1.try_clone()?, FrameReader::new(forward_bytes(com1)));
+        let mut bochs = Self { child, _stdin: stdin, console, ready: Ready::default(), run_dir };
+        bochs.ready = match bochs.console.wait_ready() {
+            Ok(ready) => ready,
+            Err(error) => return Err(error.context(last_words(&bochs.run_dir))),
+        };
+        Ok(bochs)
+    }
+}
+
+impl Drop for Bochs {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+        let _ = std::fs::remove_dir_all(&self.run_dir);
+    }
+}
+
+/// The connection Bochs makes to `listener`, within `timeout`.
+fn accept_within(listener: &TcpListener, timeout: Duration) -> Result<TcpStream> {
+    listener.set_nonblocking(true)?;
+    let deadline = Instant::now() + timeout;
+    loop {
+        match listener.accept() {
+            Ok((stream, _)) => {
+                stream.set_nonblocking(false)?;
+                return Ok(stream);
+            }
+            Err(error) if error.kind() == std::io::ErrorKind::WouldBlock => {
+                if Instant::now() >= deadline {
+                    bail!("Bochs did not connect COM1 within {} s", timeout.as_secs());
+                }
+                std::thread::sleep(Duration::from_millis(20));
+            }
+            Err(error) => return Err(error).context("failed to accept Bochs's COM1 connection"),
+        }
+    }
+}
+
+/// The end of what Bochs printed, for an error.
+fn last_words(run_dir: &Path) -> String {
+    let text = std::fs::read_to_string(run_dir.join("bochs.out")).unwrap_or_default();
+    let lines: Vec<&str> = text.lines().filter(|line| !line.starts_with("ALSA lib")).collect();
+    format!("Bochs's last words:\n{}", lines[lines.len().saturating_sub(12)..].join("\n"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_configuration_boots_the_copy_with_bochs_own_firmware_and_cirrus_card_and_com1_on_the_port() {
+        let config = bochsrc(Path::new("/run/polylab.img"), 4321);
+        for line in [
+            "romimage: file=/usr/share/bochs/BIOS-bochs-latest",
+            "vgaromimage: file=/usr/share/vgabios/vgabios-cirrus.bin",
+            "pci: enabled=1, chipset=i440fx, slot1=cirrus",
+            "vga: extension=cirrus",
+            "ata0-master: type=disk, path=/run/polylab.img, mode=flat",
+            "com1: enabled=1, mode=socket-client, dev=127.0.0.1:4321",
+            "display_library: rfb, options=\"timeout=0\"",
+        ] {
+            assert!(config.lines().any(|l| l == line), "`{line}` missing from:\n{config}");
+        }
+    }
+}

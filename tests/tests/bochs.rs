@@ -1,0 +1,32 @@
+//! The image under a second, independent emulator: Bochs 2.7 with its own
+//! BIOS, its own VGA BIOS and its own Cirrus card. The kernel must answer
+//! READY (COM1 found and set up although Bochs's port reads cost a few
+//! nanoseconds of its virtual time), put the card in mode 13h with every
+//! register and DAC entry reading back as written, and draw what the host
+//! asks exactly as the host renders it.
+
+use anyhow::{ensure, Result};
+use harness::bochs::Bochs;
+use harness::checks::{dump_matches_host_render, show_matches_host_render};
+use protocol::{Command, Firmware, PciId, Video};
+use scenes::builtin;
+
+#[test]
+fn bochs_boots_the_image_and_the_kernel_draws_what_the_host_asks() -> Result<()> {
+    let mut bochs = Bochs::boot()?;
+    let ready = bochs.ready;
+    eprintln!("harness: bochs: {ready}");
+    ensure!(ready.firmware == Firmware::Bios, "Bochs: READY names the firmware {:?}", ready.firmware);
+    let cirrus = Some(PciId { vendor: 0x1013, device: 0x00b8 });
+    ensure!(ready.display == cirrus, "Bochs: READY names the display {:?}, not Bochs's Cirrus", ready.display);
+    ensure!(ready.video == (Video::Vga13h { mismatches: 0 }), "Bochs: READY names the video path {:?}", ready.video);
+    ensure!(ready.losses.none(), "Bochs: READY says the serial line lost bytes: {}", ready.losses);
+    bochs.console.ok(&Command::VgaCheck)?;
+    for page in [builtin::ABRASH38_1, builtin::ABRASH40_2] {
+        dump_matches_host_render(&mut bochs.console, page.name, page.method)?;
+    }
+    show_matches_host_render(&mut bochs.console, "lamothe-rotate", 0, None)?;
+    let losses = bochs.console.ping()?;
+    ensure!(losses.none(), "Bochs: PING says the serial line lost bytes: {losses}");
+    Ok(())
+}
