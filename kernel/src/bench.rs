@@ -18,9 +18,11 @@ use crate::clock;
 use crate::video::Screen;
 
 /// The `BENCH` payload for `scene`: [`BENCH_UNIT_LINE`], then per method
-/// in `raster::MethodId::ALL` order `NAME CYCLES`, the median of `repeats` whole-scene
-/// draws. Bounded: `methods::ALL.len() * repeats` draws, `repeats` being at
-/// most `protocol::BENCH_MAX_REPEATS`. The screen keeps the last draw.
+/// in `raster::MethodId::ALL` order `NAME CYCLES REFUSED [REFUSAL]`: the
+/// median of `repeats` whole-scene draws, how many of the scene's polygons
+/// the method declined, and the first one's reason (`Refusal::name`).
+/// Bounded: `methods::ALL.len() * repeats` draws, `repeats` being at most
+/// `protocol::BENCH_MAX_REPEATS`. The screen keeps the last draw.
 pub fn run(screen: &mut Screen, scene: &Scene, repeats: u8) -> String {
     let mut text = String::new();
     // Writing to a `String` cannot fail.
@@ -28,12 +30,18 @@ pub fn run(screen: &mut Screen, scene: &Scene, repeats: u8) -> String {
     let mut samples = Vec::with_capacity(usize::from(repeats.max(1)));
     for method in methods::ALL {
         samples.clear();
+        let mut refused = (0, None);
         for _ in 0..repeats.max(1) {
-            let (_, cycles) = timed(|| screen.draw(scene, *method));
+            let (drawn, cycles) = timed(|| screen.draw(scene, *method));
             samples.push(cycles);
+            refused = (drawn.report.refused, drawn.report.first_refusal);
         }
         samples.sort_unstable();
-        let _ = writeln!(text, "{} {}", method.info().name, samples[samples.len() / 2]);
+        let _ = write!(text, "{} {} {}", method.info().name, samples[samples.len() / 2], refused.0);
+        if let (_, Some(refusal)) = refused {
+            let _ = write!(text, " {}", refusal.name());
+        }
+        text.push('\n');
     }
     text
 }

@@ -29,5 +29,5 @@ pub mod workspace;
 pub use boot_image::{build_image, cargo, process};
 pub use picture::compare::compare_images;
 pub use picture::{render, Image};
-pub use qemu::console::{Console, Dump, Listing, Reply};
+pub use qemu::console::{BenchRow, Console, Dump, Listing, Reply};
 pub use qemu::{Adapter, Clock, Display, Medium, Qemu, QemuOptions};

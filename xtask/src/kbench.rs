@@ -2,7 +2,10 @@
 //! has it time every method on every demo scene with `BENCH`. The numbers
 //! are rdtsc ticks of QEMU's virtual clock, one per emulated instruction:
 //! the same in every run, written apart from the host lab's results and
-//! never compared with its nanoseconds.
+//! never compared with its nanoseconds. It says which methods declined
+//! which polygons, and how `exact` stands against the fewest instructions
+//! of the methods that draw each scene whole (without declining a
+//! polygon, rightly or not).
 
 use std::fmt::Write as _;
 use std::fs;
@@ -11,7 +14,7 @@ use std::path::absolute;
 use anyhow::{ensure, Context, Result};
 use harness::{Clock, Qemu, QemuOptions};
 use protocol::BENCH_UNIT_LINE;
-use raster::MethodId;
+use raster::{MethodId, Refusal};
 use scenes::builtin;
 use serde_json::json;
 
@@ -34,11 +37,18 @@ const INTEGER: &str = "abrash_int";
 const BOOK_FLOAT_SECONDS: f64 = 6.64;
 const BOOK_INTEGER_SECONDS: f64 = 0.60;
 
-/// Ticks per method (rows, `methods::ALL` order) and scene (columns).
+/// `exact` may take this many times the instructions of the method that
+/// draws a scene whole with the fewest (issue 19).
+const EXACT_GOAL: f64 = 1.2;
+const EXACT: &str = "exact";
+
+/// Ticks per method (rows, `methods::ALL` order) and scene (columns), and
+/// the polygons each declined with the first one's reason.
 struct Table {
     scenes: Vec<&'static str>,
     methods: Vec<&'static str>,
     cycles: Vec<Vec<u64>>,
+    refused: Vec<Vec<(usize, Option<Refusal>)>>,
 }
 
 impl Table {
@@ -53,6 +63,17 @@ impl Table {
     fn float_integer_ratio(&self) -> Option<f64> {
         let (float, integer) = (self.total(FLOAT, &LISTING_38_3)?, self.total(INTEGER, &LISTING_38_3)?);
         (integer > 0).then(|| float as f64 / integer as f64)
+    }
+
+    /// On scene `column`: the method that draws it whole (declining no
+    /// polygon) with the fewest ticks, those ticks, and `exact`'s over them.
+    fn exact_against_fewest(&self, column: usize) -> Option<(&'static str, u64, f64)> {
+        let exact = self.cycles[self.methods.iter().position(|m| *m == EXACT)?][column];
+        let (method, fewest) = (0..self.methods.len())
+            .filter(|&m| self.refused[m][column].0 == 0)
+            .map(|m| (self.methods[m], self.cycles[m][column]))
+            .min_by_key(|&(_, cycles)| cycles)?;
+        (fewest > 0).then(|| (method, fewest, exact as f64 / fewest as f64))
     }
 }
 
@@ -75,19 +96,20 @@ pub fn kbench(opt: &KbenchOpt) -> Result<()> {
 fn measure(repeats: u8) -> Result<Table> {
     let methods: Vec<&str> = MethodId::ALL.map(MethodId::name).to_vec();
     let scenes: Vec<&str> = builtin::ALL.map(|page| page.name).to_vec();
-    let mut cycles = vec![Vec::new(); methods.len()];
+    let (mut cycles, mut refused) = (vec![Vec::new(); methods.len()], vec![Vec::new(); methods.len()]);
     let mut qemu = Qemu::boot(QemuOptions { clock: Clock::InstructionCount, ..QemuOptions::default() })?;
     for &scene in &scenes {
         eprintln!("xtask: BENCH {scene} {repeats}");
         let rows = qemu.console.bench(scene, repeats)?;
-        let listed: Vec<MethodId> = rows.iter().map(|&(method, _)| method).collect();
+        let listed: Vec<MethodId> = rows.iter().map(|row| row.method).collect();
         ensure!(listed == MethodId::ALL, "BENCH {scene} listed methods {listed:?}, expected {:?}", MethodId::ALL);
-        for (column, (_, count)) in cycles.iter_mut().zip(rows) {
-            column.push(count);
+        for ((cycles, refused), row) in cycles.iter_mut().zip(&mut refused).zip(rows) {
+            cycles.push(row.cycles);
+            refused.push((row.refused, row.refusal));
         }
     }
     qemu.quit()?;
-    Ok(Table { scenes, methods, cycles })
+    Ok(Table { scenes, methods, cycles, refused })
 }
 
 fn markdown(table: &Table, repeats: u8) -> String {
@@ -101,6 +123,8 @@ fn markdown(table: &Table, repeats: u8) -> String {
         let cells: Vec<String> = row.iter().map(|count| count.to_string()).collect();
         let _ = writeln!(text, "| `{method}` | {} |", cells.join(" | "));
     }
+    refusals(&mut text, table);
+    against_fewest(&mut text, table);
     if let Some(ratio) = table.float_integer_ratio() {
         let _ = writeln!(
             text,
@@ -114,14 +138,66 @@ fn markdown(table: &Table, repeats: u8) -> String {
     text
 }
 
+/// Which methods declined which polygons, scene by scene.
+fn refusals(text: &mut String, table: &Table) {
+    let _ = writeln!(text, "\nDeclined polygons (each draws nothing for them; the others it draws, right or wrong):\n");
+    let mut any = false;
+    for (column, scene) in table.scenes.iter().enumerate() {
+        let declined: Vec<String> = table
+            .methods
+            .iter()
+            .zip(&table.refused)
+            .filter_map(|(method, row)| match row[column] {
+                (0, _) => None,
+                (count, refusal) => {
+                    Some(format!("`{method}` {count} ({})", refusal.map_or("no reason given", Refusal::describe)))
+                }
+            })
+            .collect();
+        if !declined.is_empty() {
+            any = true;
+            let _ = writeln!(text, "- {scene}: {}", declined.join(", "));
+        }
+    }
+    if !any {
+        let _ = writeln!(text, "- none: every method drew every polygon of every scene");
+    }
+}
+
+/// `exact` against the fewest instructions of a method drawing each scene
+/// whole, and whether it keeps within [`EXACT_GOAL`] of them.
+fn against_fewest(text: &mut String, table: &Table) {
+    let _ = writeln!(
+        text,
+        "\n`{EXACT}` against the fewest instructions of any method that draws the scene without declining a \
+         polygon (goal: at most {EXACT_GOAL}x):\n\n| scene | fewest | `{EXACT}` / fewest | within {EXACT_GOAL}x |\n|---|---|---:|---|"
+    );
+    for (column, scene) in table.scenes.iter().enumerate() {
+        if let Some((method, fewest, ratio)) = table.exact_against_fewest(column) {
+            let met = if ratio <= EXACT_GOAL { "yes" } else { "no" };
+            let _ = writeln!(text, "| {scene} | `{method}` {fewest} | {ratio:.2} | {met} |");
+        }
+    }
+}
+
 fn to_json(table: &Table, repeats: u8) -> serde_json::Value {
     let rows: Vec<_> = table
         .methods
         .iter()
-        .zip(&table.cycles)
-        .flat_map(|(method, row)| {
-            let cells = table.scenes.iter().zip(row);
-            cells.map(move |(scene, cycles)| json!({"scene": scene, "method": method, "cycles": cycles}))
+        .zip(table.cycles.iter().zip(&table.refused))
+        .flat_map(|(method, (cycles, refused))| {
+            let cells = table.scenes.iter().zip(cycles.iter().zip(refused));
+            cells.map(move |(scene, (cycles, (count, refusal)))| {
+                json!({"scene": scene, "method": method, "cycles": cycles, "refused": count,
+                       "refusal": refusal.map(Refusal::name)})
+            })
+        })
+        .collect();
+    let against_fewest: Vec<_> = (0..table.scenes.len())
+        .filter_map(|column| {
+            let (method, fewest, ratio) = table.exact_against_fewest(column)?;
+            Some(json!({"scene": table.scenes[column], "fewest": method, "fewest_cycles": fewest,
+                        "exact_over_fewest": ratio, "within_goal": ratio <= EXACT_GOAL}))
         })
         .collect();
     json!({
@@ -130,6 +206,8 @@ fn to_json(table: &Table, repeats: u8) -> serde_json::Value {
         "note": CAPTION,
         "repeats": repeats,
         "float_integer_ratio_listing_38_3": table.float_integer_ratio(),
+        "exact_against_fewest_whole": against_fewest,
+        "exact_goal": EXACT_GOAL,
         "results": rows,
     })
 }
@@ -140,7 +218,12 @@ mod tests {
 
     #[test]
     fn the_markdown_table_says_what_its_numbers_are() {
-        let table = Table { scenes: vec!["a", "b"], methods: vec!["m1", "m2"], cycles: vec![vec![1, 2], vec![3, 4]] };
+        let table = Table {
+            scenes: vec!["a", "b"],
+            methods: vec!["m1", "m2"],
+            cycles: vec![vec![1, 2], vec![3, 4]],
+            refused: vec![vec![(0, None); 2]; 2],
+        };
         let text = markdown(&table, 3);
         assert!(text.contains("-icount"), "{text}");
         assert!(text.contains("emulated instruction"), "{text}");
@@ -148,7 +231,10 @@ mod tests {
         assert!(!text.contains("Listing 38.3 pages"), "no ratio without the pages: {text}");
         assert!(text.contains("| method | a | b |\n|---|---:|---:|\n| `m1` | 1 | 2 |\n| `m2` | 3 | 4 |\n"), "{text}");
         let json = to_json(&table, 3);
-        assert_eq!(json["results"][1], json!({"scene": "b", "method": "m1", "cycles": 2}));
+        assert_eq!(
+            json["results"][1],
+            json!({"scene": "b", "method": "m1", "cycles": 2, "refused": 0, "refusal": null})
+        );
     }
 
     #[test]
@@ -159,6 +245,7 @@ mod tests {
             scenes,
             methods: vec![FLOAT, "exact", INTEGER],
             cycles: vec![vec![10, 20, 30, 1000], vec![1, 1, 1, 1], vec![2, 4, 6, 1]],
+            refused: vec![vec![(0, None); 4]; 3],
         };
         assert_eq!(table.float_integer_ratio(), Some(5.0));
         let text = markdown(&table, 3);
@@ -170,5 +257,29 @@ mod tests {
             "{text}"
         );
         assert_eq!(to_json(&table, 3)["float_integer_ratio_listing_38_3"], json!(5.0));
+    }
+
+    /// The fewest instructions are taken over the methods that declined
+    /// nothing: one that declines half a scene is quick for nothing.
+    #[test]
+    fn exact_is_held_to_the_fewest_of_the_methods_drawing_the_scene_whole() {
+        let table = Table {
+            scenes: vec!["a", "b"],
+            methods: vec!["quick", EXACT, "whole"],
+            cycles: vec![vec![10, 10], vec![120, 130], vec![100, 100]],
+            refused: vec![
+                vec![(0, None), (2, Some(Refusal::MultipleContours))],
+                vec![(0, None); 2],
+                vec![(0, None); 2],
+            ],
+        };
+        assert_eq!(table.exact_against_fewest(0), Some(("quick", 10, 12.0)));
+        assert_eq!(table.exact_against_fewest(1), Some(("whole", 100, 1.3)));
+        let text = markdown(&table, 1);
+        assert!(text.contains("- b: `quick` 2 (several contours, method takes one)"), "{text}");
+        assert!(text.contains("| b | `whole` 100 | 1.30 | no |"), "{text}");
+        let json = to_json(&table, 1);
+        assert_eq!(json["exact_against_fewest_whole"][1]["fewest"], json!("whole"));
+        assert_eq!(json["results"][1]["refusal"], json!("multiple-contours"));
     }
 }

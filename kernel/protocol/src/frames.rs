@@ -18,8 +18,10 @@ pub enum FrameKind {
     List,
     /// Answer to `DUMP`: [`DUMP_LEN`](crate::DUMP_LEN) bytes.
     Dump,
-    /// Answer to `BENCH`: [`BENCH_UNIT_LINE`](crate::BENCH_UNIT_LINE), then a `METHOD CYCLES` line
-    /// per method, in [`MethodId::ALL`](raster::MethodId::ALL) order, each ending in `\n`.
+    /// Answer to `BENCH`: [`BENCH_UNIT_LINE`](crate::BENCH_UNIT_LINE), then a `METHOD CYCLES
+    /// REFUSED [REFUSAL]` line per method, in [`MethodId::ALL`](raster::MethodId::ALL) order,
+    /// each ending in `\n`: the polygons of the scene it declined, and the
+    /// first one's reason (`raster::Refusal::name`).
     Bench,
     /// Unrequested information, e.g. a VGA register mismatch at boot.
     Log,

@@ -26,6 +26,19 @@ use crate::method::Class;
 /// The simplicity test compares every pair of edges: quadratic in the
 /// vertex count, which is why the exact method's automatic fill never asks
 /// for it.
+///
+/// # Examples
+///
+/// ```
+/// use raster::{classify, Class, Polygon};
+///
+/// let class = |points: &[(i32, i32)]| classify(&Polygon::from_pixels(points, (0, 0), 1));
+/// assert_eq!(class(&[(0, 0), (5, 5), (9, 9)]), Class::Degenerate);
+/// assert_eq!(class(&[(0, 0), (9, 0), (0, 9)]), Class::Triangle);
+/// assert_eq!(class(&[(0, 0), (9, 0), (5, 4), (9, 9), (0, 9)]), Class::Convex);
+/// assert_eq!(class(&[(0, 0), (9, 0), (9, 9), (5, 4), (0, 9)]), Class::Simple);
+/// assert_eq!(class(&[(0, 0), (9, 9), (9, 0), (0, 9)]), Class::Complex);
+/// ```
 pub fn classify(polygon: &Polygon) -> Class {
     match Shape::of(polygon) {
         Shape::Empty => Class::Degenerate,

@@ -12,6 +12,21 @@ use crate::sink::{Size, SpanSink};
 /// Counts draws per pixel. Spans outside the target are counted in
 /// [`CoverageReport::out_of_bounds`] and their inside part is still counted,
 /// so one faulty span does not hide the rest of a picture.
+///
+/// # Examples
+///
+/// Two triangles sharing a diagonal tile their square exactly once:
+///
+/// ```
+/// use raster::{fill_auto, CoverageSink, Polygon, Size};
+///
+/// let mut drawn = CoverageSink::new(Size { width: 4, height: 4 });
+/// for half in [[(0, 0), (4, 0), (4, 4)], [(0, 0), (4, 4), (0, 4)]] {
+///     fill_auto(&Polygon::from_pixels(&half, (0, 0), 1), &mut drawn).unwrap();
+/// }
+/// assert_eq!(drawn.ascii(), "####\n####\n####\n####\n");
+/// assert_eq!(drawn.report(&drawn).overdrawn, 0);
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct CoverageSink {
     size: Size,

@@ -1,23 +1,76 @@
-//! `raster`: polygon scan conversion for a 320x200 mode-13h screen and for
-//! the host, with the same code on both sides.
+//! `raster`: exact polygon scan conversion, `no_std`, with no dependencies
+//! and no `unsafe`, for a bare-metal kernel or any tool with a byte-per-pixel
+//! target: the code that fills polylab's mode-13h screen at 0xA0000, run the
+//! same on the host. Beside our `exact` method it holds the classic methods
+//! of the books (Abrash, Pendleton, LaMothe, the WGT tutorial), each a
+//! faithful port, and a brute-force reference to judge them by.
 //!
-//! Scan conversion never touches memory: every method emits horizontal spans
-//! into a [`SpanSink`] (Abrash's split between `FillConvexPolygon` and
-//! `DrawHorizontalLineList`). The kernel's sink writes video memory, the
-//! host's sink ([`Framebuffer`]) writes a byte vector, and the two are compared
-//! byte for byte by the test harness.
+//! # Filling a polygon
 //!
-//! Coordinates are fixed point with [`SUBPIXEL_BITS`] fractional bits (see
-//! [`Point`]); the classic ports round them to whole pixels first, as their
-//! originals only took integers.
+//! A polygon is one or more closed contours of [`Point`]s in 1/256 pixel,
+//! one colour and a [`FillRule`]. [`fill_auto`] fills it exactly into any
+//! [`SpanSink`]; a [`Framebuffer`] is a byte vector, one byte a pixel:
 //!
-//! Every method is named by a [`MethodId`]: names from the outside (the
-//! command line, the serial line, scene files) are parsed into one once, and
-//! an unknown name is an error that lists the known ones.
+//! ```
+//! use raster::{fill_auto, Framebuffer, Polygon, Size};
 //!
-//! The crate has no dependencies and no `unsafe`: the very code that fills
-//! video memory on bare metal runs on the host and in the lab. What is drawn
-//! (the book pages, scene files, the show) lives in the `scenes` crate.
+//! let mut screen = Framebuffer::new(Size { width: 8, height: 4 });
+//! let triangle = Polygon::from_pixels(&[(0, 0), (8, 0), (0, 4)], (0, 0), 7);
+//! fill_auto(&triangle, &mut screen).expect("exact declines nothing but a failed allocation");
+//! assert_eq!(
+//!     screen.pixels(),
+//!     &[7, 7, 7, 7, 7, 7, 7, 0, //
+//!       7, 7, 7, 7, 7, 0, 0, 0, //
+//!       7, 7, 7, 0, 0, 0, 0, 0, //
+//!       7, 0, 0, 0, 0, 0, 0, 0]
+//! );
+//! ```
+//!
+//! # What `exact` guarantees
+//!
+//! - **Exact**: a pixel is in when its centre (x + 0.5, y + 0.5) is inside
+//!   the polygon by its fill rule, computed with integers only: the very
+//!   pixels of [`reference::fill`], which tests every centre against every
+//!   edge (`docs/conventions.md` says it in full).
+//! - **Top-left rule**: a centre exactly on an edge belongs to the polygon
+//!   only on a left or top edge, so polygons that share an edge draw every
+//!   pixel once and only once, and nothing is drawn twice within a fill.
+//! - **Both fill rules**, even-odd and non-zero, over any number of
+//!   contours: holes, self-intersections, touching edges.
+//! - **Any `i32` vertex**, on any target size: nothing is declined for its
+//!   range, and the rows outside the target are never visited.
+//! - **Never out of bounds**: every span it emits is inside the sink's
+//!   [`Size`], non-empty, and never a pixel twice.
+//! - **No allocation** for polygons of up to 256 edges (64 when they may
+//!   be 512 px or longer); beyond that its tables come from an
+//!   [`exact::Scratch`](methods::exact::Scratch), which a caller may keep
+//!   from fill to fill ([`methods::exact::fill_auto_with`]).
+//!
+//! The classic methods keep their originals' conventions and arithmetic
+//! (each states them in its [`MethodInfo`]); none of them panics, loops
+//! without bound or writes outside its target on any input, but each may
+//! decline a polygon ([`Refusal`]) or draw it as its original would.
+//!
+//! # Spans and sinks
+//!
+//! Scan conversion never touches memory: every method emits horizontal
+//! spans into a [`SpanSink`] (Abrash's split between `FillConvexPolygon`
+//! and `DrawHorizontalLineList`). polylab's kernel writes them to video
+//! memory, the host's [`Framebuffer`] to a vector, the tests count them
+//! ([`CoverageSink`]). Every method is generic over its sink, so a span
+//! into a sink of a known type costs no call.
+//!
+//! # Choosing a method
+//!
+//! Every method is named by a [`MethodId`]: a name from the outside (a
+//! command line, a serial line, a file) is parsed into one once, and an
+//! unknown name is an error that lists the known ones; [`Method`] is the
+//! interface over all of them, and [`classify()`] tells a polygon's class,
+//! the most general one a method must handle to fill it.
+//!
+//! What is drawn in polylab (the book pages, scene files, the show) lives
+//! in its `scenes` crate; `kernel/raster/examples/png.rs` fills a few polygons and
+//! writes them as a PNG (`cargo run -p raster --example png -- OUT.png`).
 #![no_std]
 #![forbid(unsafe_code)]
 
@@ -35,6 +88,6 @@ pub use classify::classify;
 pub use coverage::{CoverageReport, CoverageSink};
 pub use geometry::{FillRule, PixelPoint, Point, Polygon, SUBPIXEL_BITS, SUBPIXEL_ONE};
 pub use method::{Class, Convention, Heap, MethodInfo, Refusal};
-pub use methods::exact::fill_auto;
+pub use methods::exact::{fill_auto, fill_auto_with, Scratch};
 pub use methods::{Method, MethodId, UnknownMethod};
 pub use sink::{Framebuffer, Size, SpanSink, SCREEN};

@@ -53,9 +53,11 @@ pub struct Convention {
 pub enum Heap {
     /// Never: its state is a fixed size and lives on the stack.
     Never,
-    /// Only for polygons that are not monotone in y (exact's active edge
-    /// table); triangles and convex polygons take nothing.
-    BeyondConvex,
+    /// Only for polygons of very many edges, whose tables do not fit on
+    /// the stack (`exact`: over 256 edges, or over 64 that may be 512 px
+    /// or longer), and then not at all from a caller's scratch that has
+    /// grown to them (`exact::fill_auto_with`).
+    ManyEdges,
     /// For every polygon: the port keeps its per-polygon tables in `Vec`s,
     /// where the original called `malloc` or used static arrays.
     EveryPolygon,
@@ -65,7 +67,7 @@ impl Heap {
     pub const fn name(self) -> &'static str {
         match self {
             Heap::Never => "never",
-            Heap::BeyondConvex => "beyond convex",
+            Heap::ManyEdges => "only polygons of over 256 edges",
             Heap::EveryPolygon => "every polygon",
         }
     }
@@ -110,6 +112,30 @@ pub enum Refusal {
 }
 
 impl Refusal {
+    pub const ALL: [Refusal; 5] = [
+        Refusal::MultipleContours,
+        Refusal::OutOfRange,
+        Refusal::TooManyVertices,
+        Refusal::OutOfMemory,
+        Refusal::OutsideClass,
+    ];
+
+    /// One word for it, in the protocol's replies.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Refusal::MultipleContours => "multiple-contours",
+            Refusal::OutOfRange => "out-of-range",
+            Refusal::TooManyVertices => "too-many-vertices",
+            Refusal::OutOfMemory => "out-of-memory",
+            Refusal::OutsideClass => "outside-class",
+        }
+    }
+
+    /// The refusal [`Refusal::name`] gives `name`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Refusal::ALL.into_iter().find(|refusal| refusal.name() == name)
+    }
+
     pub const fn describe(self) -> &'static str {
         match self {
             Refusal::MultipleContours => "several contours, method takes one",
@@ -118,5 +144,27 @@ impl Refusal {
             Refusal::OutOfMemory => "out of memory",
             Refusal::OutsideClass => "outside the path's class",
         }
+    }
+}
+
+impl core::fmt::Display for Refusal {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.describe())
+    }
+}
+
+impl core::error::Error for Refusal {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_refusal_has_a_name_of_its_own_that_parses_back() {
+        for refusal in Refusal::ALL {
+            assert_eq!(Refusal::from_name(refusal.name()), Some(refusal));
+            assert!(!refusal.name().contains(' '), "{}", refusal.name());
+        }
+        assert_eq!(Refusal::from_name("refused"), None);
     }
 }

@@ -33,6 +33,27 @@ impl SampleOffset {
 
 /// Draws into `sink`, as spans of `polygon.color`, every pixel whose sample
 /// point is inside `polygon` by its fill rule.
+///
+/// # Examples
+///
+/// Judging a method: `exact` draws the reference's pixels, each once.
+///
+/// ```
+/// use raster::reference::{self, SampleOffset};
+/// use raster::{fill_auto, CoverageReport, CoverageSink, Point, Polygon, Size};
+///
+/// let size = Size { width: 12, height: 9 };
+/// let star = Polygon::new(
+///     [(6.0, 0.0), (8.5, 8.5), (0.5, 3.0), (11.5, 3.0), (3.5, 8.5)]
+///         .map(|(x, y): (f64, f64)| Point::new((x * 256.0) as i32, (y * 256.0) as i32))
+///         .to_vec(),
+///     1,
+/// );
+/// let (mut expected, mut drawn) = (CoverageSink::new(size), CoverageSink::new(size));
+/// reference::fill(&star, SampleOffset::CENTRE, &mut expected);
+/// fill_auto(&star, &mut drawn).unwrap();
+/// assert_eq!(drawn.report(&expected), CoverageReport::default());
+/// ```
 pub fn fill(polygon: &Polygon, sample: SampleOffset, sink: &mut dyn SpanSink) {
     let Some((low, high)) = bounding_box(polygon) else {
         return;

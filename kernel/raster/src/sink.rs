@@ -25,6 +25,33 @@ pub const SCREEN: Size = Size { width: 320, height: 200 };
 
 /// Where spans go. A method must only emit spans inside the target:
 /// `0 <= y < height` and `0 <= x_start < x_end <= width` (`x_end` exclusive).
+///
+/// # Examples
+///
+/// A sink of one's own: here one that only counts the pixels of each row,
+/// for a polygon's area without a picture.
+///
+/// ```
+/// use raster::{fill_auto, Polygon, Size, SpanSink};
+///
+/// struct RowLengths(Vec<i32>);
+///
+/// impl SpanSink for RowLengths {
+///     fn size(&self) -> Size {
+///         Size { width: 100, height: self.0.len() as i32 }
+///     }
+///     fn span(&mut self, y: i32, x_start: i32, x_end: i32, _color: u8) {
+///         self.0[y as usize] += x_end - x_start;
+///     }
+/// }
+///
+/// let diamond = Polygon::from_pixels(&[(50, 0), (60, 10), (50, 20), (40, 10)], (0, 0), 1);
+/// let mut lengths = RowLengths(vec![0; 20]);
+/// fill_auto(&diamond, &mut lengths).unwrap();
+/// assert_eq!(lengths.0[0], 1);
+/// assert_eq!(lengths.0[9], 19);
+/// assert_eq!(lengths.0.iter().sum::<i32>(), 200);
+/// ```
 pub trait SpanSink {
     /// The target's size; methods clip to it.
     fn size(&self) -> Size;
@@ -43,6 +70,20 @@ pub fn clear<S: SpanSink + ?Sized>(sink: &mut S, color: u8) {
 /// A byte-per-pixel image in memory: the host's (and the tests') target.
 /// Spans outside it are clipped and counted in [`Framebuffer::stray_spans`]
 /// instead of being written, so a faulty method cannot corrupt memory.
+///
+/// # Examples
+///
+/// ```
+/// use raster::{Framebuffer, Size, SpanSink};
+///
+/// let mut image = Framebuffer::new(Size { width: 4, height: 2 });
+/// image.span(1, 1, 3, 5);
+/// assert_eq!(image.pixels(), &[0, 0, 0, 0, 0, 5, 5, 0]);
+/// assert_eq!(image.get(2, 1), Some(5));
+/// // Outside: clipped, counted, nothing written past the image.
+/// image.span(0, -2, 9, 1);
+/// assert_eq!((image.stray_spans(), image.get(3, 0)), (1, Some(1)));
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Framebuffer {
     size: Size,
@@ -116,11 +157,15 @@ impl Framebuffer {
 /// Sets every byte of `bytes` to `color`, as a span store: a span of up
 /// to 64 bytes is two stores of its width class (1, 4, 8, 16 or 32 bytes;
 /// the wide ones may be split into 16-byte stores on the baseline target),
-/// overlapping in the middle, with no loop and no call; a longer one is one
-/// `memset`, whose library version picks the widest stores the machine
-/// has. A `memset` call costs more than the whole store on the short spans
-/// that most polygons are made of, and less than a loop of 16-byte stores
-/// on long ones (whose exit is mispredicted once a span).
+/// overlapping in the middle, with no loop and no call. A longer one is,
+/// where the build targets a CPU with AVX2 (`-C target-cpu=native` on a
+/// recent x86-64, as `cargo xtask lab` builds), a loop of 64-byte blocks
+/// and one last block ending where the span does, all inline; elsewhere
+/// one `memset`, whose library version picks the widest stores the
+/// machine has. A `memset` call costs more than the whole store on the
+/// short spans that most polygons are made of, and more than inline
+/// 32-byte stores on rows a few hundred bytes long (`docs/lab.md`); with
+/// 16-byte stores only, the call is the cheaper.
 #[inline(always)]
 pub fn set_bytes(bytes: &mut [u8], color: u8) {
     let n = bytes.len();
@@ -143,6 +188,11 @@ pub fn set_bytes(bytes: &mut [u8], color: u8) {
     } else if n <= 64 {
         bytes[..32].copy_from_slice(&[color; 32]);
         bytes[n - 32..].copy_from_slice(&[color; 32]);
+    } else if cfg!(target_feature = "avx2") {
+        for block in bytes.as_chunks_mut::<64>().0 {
+            *block = [color; 64];
+        }
+        bytes[n - 64..].copy_from_slice(&[color; 64]);
     } else {
         bytes.fill(color);
     }

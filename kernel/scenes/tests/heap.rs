@@ -71,19 +71,31 @@ fn methods_allocate_as_their_info_says_and_the_show_adds_nothing() {
     let convex = polygon(&[(100, 20), (180, 40), (200, 120), (150, 190), (60, 150), (50, 70)]);
     // A star: not monotone in y, so exact needs its active edge table.
     let star = polygon(&[(160, 10), (190, 190), (30, 70), (290, 70), (130, 190)]);
+    // A star of 400 points: too many edges for exact's tables on the stack.
+    let spikes: Vec<(i32, i32)> = (0..400)
+        .map(|i| {
+            let (angle, radius) = (f64::from(i) * std::f64::consts::TAU / 400.0, if i % 2 == 0 { 90.0 } else { 60.0 });
+            ((160.0 + radius * angle.cos()) as i32, (100.0 + radius * angle.sin()) as i32)
+        })
+        .collect();
+    let many = polygon(&spikes);
     let mut target = Framebuffer::new(SCREEN);
     let mut wrong = Vec::new();
     for method in methods::ALL {
         let info = method.info();
         let simple = [&triangle, &convex].map(|p| fill_allocations(*method, p, &mut target));
         let complex = fill_allocations(*method, &star, &mut target);
+        let huge = fill_allocations(*method, &many, &mut target);
         let agrees = match info.heap {
-            Heap::Never => simple == [0, 0] && complex == 0,
-            Heap::BeyondConvex => simple == [0, 0] && complex > 0,
+            Heap::Never => simple == [0, 0] && complex == 0 && huge == 0,
+            Heap::ManyEdges => simple == [0, 0] && complex == 0 && huge > 0,
             Heap::EveryPolygon => simple.iter().all(|&n| n > 0),
         };
         if !agrees {
-            wrong.push(format!("{} says {:?}, allocated {simple:?} then {complex} (star)", info.name, info.heap));
+            wrong.push(format!(
+                "{} says {:?}, allocated {simple:?}, {complex} (star), {huge} (400 edges)",
+                info.name, info.heap
+            ));
         }
     }
     assert!(wrong.is_empty(), "{wrong:#?}");

@@ -5,7 +5,7 @@ use std::time::Duration;
 
 use anyhow::{bail, ensure, Context, Result};
 use protocol::{Command, FrameKind, LineLosses, Pong, Ready, ShowReply, BENCH_UNIT_LINE, DUMP_LEN, FRAMEBUFFER_LEN};
-use raster::{MethodId, SCREEN};
+use raster::{MethodId, Refusal, SCREEN};
 use scenes::palette::ENTRIES;
 use scenes::show;
 
@@ -29,7 +29,7 @@ pub enum Reply {
     List(Listing),
     Dump(Box<Dump>),
     /// The answer to `BENCH`: `(method, cycles)` per method, in order.
-    Bench(Vec<(MethodId, u64)>),
+    Bench(Vec<BenchRow>),
     Fatal(String),
 }
 
@@ -92,22 +92,44 @@ impl Listing {
     }
 }
 
+/// One method's line of a `BENCH` answer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BenchRow {
+    pub method: MethodId,
+    /// rdtsc ticks of one whole-scene draw, the median of the repeats.
+    pub cycles: u64,
+    /// Polygons of the scene the method declined.
+    pub refused: usize,
+    /// Why it declined the first of them.
+    pub refusal: Option<Refusal>,
+}
+
 /// A `BENCH` payload: its first line must be [`BENCH_UNIT_LINE`] (the
-/// numbers are meaningless without their unit), then `METHOD CYCLES` lines.
-fn parse_bench(text: &str) -> Result<Vec<(MethodId, u64)>> {
+/// numbers are meaningless without their unit), then `METHOD CYCLES
+/// REFUSED [REFUSAL]` lines.
+fn parse_bench(text: &str) -> Result<Vec<BenchRow>> {
     let mut lines = text.lines();
     let unit = lines.next().unwrap_or_default();
     ensure!(unit == BENCH_UNIT_LINE, "BENCH starts with `{unit}`, not its unit line `{BENCH_UNIT_LINE}`");
-    lines
-        .filter(|line| !line.is_empty())
-        .map(|line| {
-            let (method, cycles) =
-                line.split_once(' ').with_context(|| format!("BENCH line `{line}` is not `METHOD CYCLES`"))?;
-            let method = method.parse().with_context(|| format!("BENCH line `{line}`"))?;
-            let cycles = cycles.parse().with_context(|| format!("BENCH line `{line}`: bad cycle count"))?;
-            Ok((method, cycles))
-        })
-        .collect()
+    lines.filter(|line| !line.is_empty()).map(parse_bench_line).collect()
+}
+
+fn parse_bench_line(line: &str) -> Result<BenchRow> {
+    let shape = || format!("BENCH line `{line}` is not `METHOD CYCLES REFUSED [REFUSAL]`");
+    let mut words = line.split(' ');
+    let (Some(method), Some(cycles), Some(refused)) = (words.next(), words.next(), words.next()) else {
+        bail!(shape());
+    };
+    let refusal = words.next().map(|name| Refusal::from_name(name).with_context(shape)).transpose()?;
+    ensure!(words.next().is_none(), shape());
+    let row = BenchRow {
+        method: method.parse().with_context(|| format!("BENCH line `{line}`"))?,
+        cycles: cycles.parse().with_context(|| format!("BENCH line `{line}`: bad cycle count"))?,
+        refused: refused.parse().with_context(|| format!("BENCH line `{line}`: bad refusal count"))?,
+        refusal,
+    };
+    ensure!((row.refused > 0) == row.refusal.is_some(), "BENCH line `{line}`: a refusal count without its reason");
+    Ok(row)
 }
 
 /// The answer to `DUMP`: the framebuffer and the DAC, both read back.
@@ -262,7 +284,7 @@ impl Console {
     /// Times every method drawing built-in `scene` `repeats` times: per
     /// method in [`MethodId::ALL`] order, the method and the median
     /// rdtsc ticks of one draw (see `protocol::BENCH_UNIT_LINE`).
-    pub fn bench(&mut self, scene: &str, repeats: u8) -> Result<Vec<(MethodId, u64)>> {
+    pub fn bench(&mut self, scene: &str, repeats: u8) -> Result<Vec<BenchRow>> {
         let command = Command::Bench { scene, repeats };
         match self.request(&command)? {
             Reply::Bench(rows) => Ok(rows),
@@ -371,14 +393,27 @@ mod tests {
     }
 
     #[test]
-    fn a_bench_reply_is_method_and_cycles_after_its_unit_line() {
-        let payload = format!("{BENCH_UNIT_LINE}\nabrash_float 1200\nexact 900\n");
+    fn a_bench_reply_is_method_cycles_and_refusals_after_its_unit_line() {
+        let payload = format!("{BENCH_UNIT_LINE}\npendleton 1200 2 multiple-contours\nexact 900 0\n");
         let (mut console, sent, _keep) = console(&[(FrameKind::Bench, payload.as_bytes())]);
         let rows = console.bench("abrash38-1", 3).unwrap();
-        assert_eq!(rows, [(MethodId::AbrashFloat, 1200), (MethodId::Exact, 900)]);
+        let row = |method, cycles, refused, refusal| BenchRow { method, cycles, refused, refusal };
+        assert_eq!(
+            rows,
+            [row(MethodId::Pendleton, 1200, 2, Some(Refusal::MultipleContours)), row(MethodId::Exact, 900, 0, None)]
+        );
         assert_eq!(sent.0.lock().unwrap().as_slice(), b"BENCH abrash38-1 3\n");
-        assert!(parse_bench("abrash_float 1200\n").is_err(), "a BENCH without its unit line");
-        assert!(parse_bench(&format!("{BENCH_UNIT_LINE}\nexact many\n")).is_err());
+        assert!(parse_bench("abrash_float 1200 0\n").is_err(), "a BENCH without its unit line");
+        for bad in [
+            "exact many 0",
+            "exact 900",
+            "exact 900 x",
+            "exact 900 1",
+            "exact 900 1 bored",
+            "exact 900 0 out-of-range x",
+        ] {
+            assert!(parse_bench(&format!("{BENCH_UNIT_LINE}\n{bad}\n")).is_err(), "{bad}");
+        }
     }
 
     #[test]

@@ -3,20 +3,34 @@
 
 use std::hint::black_box;
 
-use raster::methods::exact::Path;
+use raster::methods::exact::{fill_auto_with, Path, Scratch};
 use raster::reference::SampleOffset;
-use raster::{Framebuffer, Method, Polygon, SpanSink, SCREEN};
+use raster::{fill_auto, Framebuffer, Method, Polygon, SpanSink, SCREEN};
 
 use crate::corpus::Family;
 use crate::peers::Peer;
 
-/// A method of `raster`, a peer library, or one of `exact`'s paths asked
-/// for alone (only in "what modelling costs": not one of [`Contender::all`]).
+/// How a contender decides which pixels are in: what the lab judges it
+/// against "under its own convention".
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Own {
+    /// At one sample point a pixel, in subpixels from its corner.
+    Sample(SampleOffset),
+    /// By the part of the pixel covered: in where it is above
+    /// `threshold / 255` ([`crate::area`]).
+    Coverage { threshold: u8 },
+}
+
+/// A method of `raster`, a peer library, or, only in "what modelling
+/// costs" (not one of [`Contender::all`]), one of `exact`'s paths asked
+/// for alone or `fill_auto`; those two fill with a [`Scratch`] kept from
+/// polygon to polygon, as a program drawing frame after frame would.
 #[derive(Clone, Copy)]
 pub enum Contender {
     Method(&'static dyn Method),
     Peer(Peer),
     Path(Path),
+    Auto,
 }
 
 impl Contender {
@@ -31,6 +45,7 @@ impl Contender {
             Contender::Method(m) => m.info().name,
             Contender::Peer(p) => p.name(),
             Contender::Path(path) => path.name(),
+            Contender::Auto => "fill_auto",
         }
     }
 
@@ -45,6 +60,7 @@ impl Contender {
             Contender::Method(m) => m.info().source,
             Contender::Peer(p) => p.source(),
             Contender::Path(_) => "ours: one of exact's paths alone",
+            Contender::Auto => "ours: exact's classification, then the path it picks",
         }
     }
 
@@ -52,21 +68,19 @@ impl Contender {
     pub fn summary(&self) -> String {
         match self {
             Contender::Method(m) => format!("{}; {}", m.info().numeric, m.info().convention.summary),
-            Contender::Peer(p) => match p {
-                Peer::TinySkia => "f32 path, 26.6 fixed-point edges; pixel centres".to_string(),
-                Peer::Cairo => "f64 path, 24.8 fixed-point edges; pixel centres".to_string(),
-                Peer::EmbeddedGraphics => "whole-pixel vertices; i32 scanline intersections, edges drawn".to_string(),
-            },
+            Contender::Peer(p) => p.summary().to_string(),
             Contender::Path(path) => format!("exact's {} path; refuses polygons outside its class", path.name()),
+            Contender::Auto => "exact's fill_auto, with a scratch kept between polygons".to_string(),
         }
     }
 
-    /// Where it samples a pixel: its own convention, for the reference.
-    pub fn sample(&self) -> SampleOffset {
+    /// How it decides which pixels are in: its own convention, for the
+    /// reference.
+    pub fn own(&self) -> Own {
         match self {
-            Contender::Method(m) => SampleOffset::of(&m.info().convention),
-            Contender::Peer(p) => p.sample(),
-            Contender::Path(_) => SampleOffset::CENTRE,
+            Contender::Method(m) => Own::Sample(SampleOffset::of(&m.info().convention)),
+            Contender::Peer(p) => p.own(),
+            Contender::Path(_) | Contender::Auto => Own::Sample(SampleOffset::CENTRE),
         }
     }
 
@@ -74,7 +88,7 @@ impl Contender {
     pub fn accepts(&self, family: &Family) -> bool {
         match self {
             // A path is given every polygon: it must refuse what it cannot fill.
-            Contender::Method(_) | Contender::Path(_) => true,
+            Contender::Method(_) | Contender::Path(_) | Contender::Auto => true,
             Contender::Peer(p) => family.polygons.iter().all(|polygon| p.accepts(polygon)),
         }
     }
@@ -85,6 +99,7 @@ impl Contender {
             Contender::Method(m) => m.fill(polygon, sink).map_err(|refusal| refusal.describe()),
             Contender::Peer(p) => p.draw(polygon, sink),
             Contender::Path(path) => path.fill(polygon, sink).map_err(|refusal| refusal.describe()),
+            Contender::Auto => fill_auto(polygon, sink).map_err(|refusal| refusal.describe()),
         }
     }
 
@@ -116,10 +131,20 @@ impl Contender {
             Contender::Peer(p) => p.pass(polygons),
             Contender::Path(path) => {
                 let polygons = polygons.to_vec();
-                let mut screen = Framebuffer::new(SCREEN);
+                let (mut screen, mut scratch) = (Framebuffer::new(SCREEN), Scratch::new());
                 Box::new(move || {
                     for polygon in &polygons {
-                        let _ = path.fill(polygon, &mut screen);
+                        let _ = path.fill_with(polygon, &mut screen, &mut scratch);
+                    }
+                    black_box(&mut screen);
+                })
+            }
+            Contender::Auto => {
+                let polygons = polygons.to_vec();
+                let (mut screen, mut scratch) = (Framebuffer::new(SCREEN), Scratch::new());
+                Box::new(move || {
+                    for polygon in &polygons {
+                        let _ = fill_auto_with(polygon, &mut screen, &mut scratch);
                     }
                     black_box(&mut screen);
                 })

@@ -1,5 +1,5 @@
 //! The polygon-fill lab (`cargo xtask lab`): every method of `raster`, the
-//! peers (tiny-skia, Cairo, embedded-graphics) and three bounds (memset,
+//! peers (tiny-skia, Cairo, embedded-graphics, vello_cpu) and three bounds (memset,
 //! span stores, the dyn-sink replay) on one seeded corpus; accuracy against
 //! `raster::reference`, speed in wall-clock time; results.json, report.md
 //! and the charts under the output directory.
@@ -21,9 +21,11 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 
+pub mod area;
 pub mod charts;
 pub mod contender;
 pub mod corpus;
+pub mod goals;
 pub mod heap;
 pub mod measure;
 pub mod modelling;
@@ -105,6 +107,7 @@ fn measure_corpus(quick: bool, budget: Budget, timing: Timing) -> Results {
     bar.set_message("modelling the show");
     results.show_modelling = modelling::measure_show(timing);
     bar.finish_and_clear();
+    results.goals = goals::measure(&results);
     results
 }
 
@@ -115,10 +118,13 @@ fn write(path: &Path, contents: &str) -> Result<()> {
 /// Reads results.json back and fails unless `exact` has a row for every
 /// family, and every row says, in numbers, that it has no wrong pixel, no
 /// overdraw, no refusal and no failure (and no gap where the family tiles:
-/// `gaps` is `null` only on families that do not); and unless every path of
+/// `gaps` is `null` only on families that do not); unless every path of
 /// `exact` and `fill_auto` in "what modelling costs" drew no wrong pixel,
-/// no overdraw, no gap and never failed (a path may refuse). A missing row
-/// or field fails: a gate that passes on what it cannot see is no gate.
+/// no overdraw, no gap and never failed (a path may refuse); and unless
+/// `fill_auto` allocated nothing per polygon on every family, where
+/// allocations were counted (the lab binary counts them; a unit test's
+/// results may not). A missing row or field fails: a gate that passes on
+/// what it cannot see is no gate.
 pub fn check(results_json: &Path) -> Result<()> {
     let text = fs::read_to_string(results_json).with_context(|| format!("{} is missing", results_json.display()))?;
     let results: serde_json::Value =
@@ -145,6 +151,14 @@ pub fn check(results_json: &Path) -> Result<()> {
         if lanes == 0 {
             faults.push(format!("{name}: no rows of exact's paths"));
         }
+        match modelling.iter().find(|row| row["family"] == name && row["lane"] == "fill_auto") {
+            None => faults.push(format!("{name}: no fill_auto row")),
+            Some(row) => match (&row["allocations_per_polygon"], row["allocations_per_polygon"].as_f64()) {
+                (_, Some(0.0)) | (serde_json::Value::Null, _) => {}
+                (_, Some(n)) => faults.push(format!("{name}, fill_auto: {n} allocations per polygon")),
+                (value, None) => faults.push(format!("{name}, fill_auto: allocations_per_polygon is {value}")),
+            },
+        }
     }
     if families.is_empty() {
         faults.push(String::from("no families"));
@@ -153,7 +167,8 @@ pub fn check(results_json: &Path) -> Result<()> {
         bail!("`{EXACT}` is not proven exact by {}:\n  {}", results_json.display(), faults.join("\n  "));
     }
     eprintln!(
-        "lab: `{EXACT}` has no wrong pixel, overdraw, gap, refusal or failure on any of {} families, nor its paths",
+        "lab: `{EXACT}` has no wrong pixel, overdraw, gap, refusal or failure on any of {} families, nor its paths; \
+         fill_auto allocates nothing",
         families.len()
     );
     Ok(())
@@ -198,7 +213,7 @@ mod tests {
     }
 
     const CLEAN: &str = r#""wrong_pixels": 0, "overdraw": 0, "refusals": 0, "failures": 0, "gaps": null"#;
-    const PATH: &str = r#"{"family": "f", "lane": "monotone", "refusals": 4, "wrong_pixels": 0, "overdraw": 0, "failures": 0, "gaps": null}"#;
+    const PATH: &str = r#"{"family": "f", "lane": "monotone", "refusals": 4, "wrong_pixels": 0, "overdraw": 0, "failures": 0, "gaps": null}, {"family": "f", "lane": "fill_auto", "refusals": 0, "wrong_pixels": 0, "overdraw": 0, "failures": 0, "gaps": null, "allocations_per_polygon": 0.0}"#;
 
     #[test]
     fn a_clean_exact_row_passes() {
@@ -233,6 +248,19 @@ mod tests {
         assert!(error.contains("f: no `exact` row"), "{error}");
         let (_dir, path) = results_file(r#"{"families": [], "rows": [], "modelling": []}"#);
         assert!(check(&path).is_err());
+    }
+
+    #[test]
+    fn fill_auto_allocating_fails() {
+        let json = exact_row(CLEAN);
+        let (_dir, path) =
+            results_file(&json.replace(r#""allocations_per_polygon": 0.0"#, r#""allocations_per_polygon": 1.5"#));
+        let error = check(&path).unwrap_err().to_string();
+        assert!(error.contains("f, fill_auto: 1.5 allocations per polygon"), "{error}");
+        // Not counted (no counting allocator): no fault.
+        let (_dir, path) =
+            results_file(&json.replace(r#""allocations_per_polygon": 0.0"#, r#""allocations_per_polygon": null"#));
+        check(&path).unwrap();
     }
 
     #[test]

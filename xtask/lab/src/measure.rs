@@ -1,6 +1,7 @@
 //! Accuracy: every contender on every polygon of a family, judged against
 //! `raster::reference` under our convention (pixel centres) and under the
-//! contender's own sample point, with `raster::CoverageSink` counting
+//! contender's own convention (its sample point, or for a peer that
+//! thresholds area coverage, [`crate::area`]), with `raster::CoverageSink` counting
 //! overdraw, gaps and stray spans.
 //!
 //! A polygon is drawn once into a [`Recorder`]. Spans equal to the
@@ -18,7 +19,8 @@ use std::thread;
 use raster::reference::{self, SampleOffset};
 use raster::{CoverageReport, CoverageSink, Polygon, SCREEN};
 
-use crate::contender::Contender;
+use crate::area;
+use crate::contender::{Contender, Own};
 use crate::corpus::Family;
 use crate::spans::{self, Recorder, Span};
 use crate::stats::MeanVector;
@@ -136,9 +138,9 @@ pub struct Judged {
     pub timed: Vec<Vec<usize>>,
 }
 
-/// The reference's fill of one polygon at one sample point.
+/// The reference's fill of one polygon under one convention.
 struct ReferenceFill {
-    sample: SampleOffset,
+    own: Own,
     spans: Vec<Span>,
     /// The spans in normal form, to spot a fill that matches them exactly.
     normal: Option<Vec<Span>>,
@@ -147,11 +149,14 @@ struct ReferenceFill {
 }
 
 impl ReferenceFill {
-    fn of(polygon: &Polygon, sample: SampleOffset) -> Self {
+    fn of(polygon: &Polygon, own: Own) -> Self {
         let mut recorder = Recorder::default();
-        reference::fill(polygon, sample, &mut recorder);
+        match own {
+            Own::Sample(sample) => reference::fill(polygon, sample, &mut recorder),
+            Own::Coverage { threshold } => area::fill(polygon, threshold, &mut recorder),
+        }
         let normal = spans::normal_form(&recorder.spans);
-        Self { sample, spans: recorder.spans, normal, coverage: OnceCell::new() }
+        Self { own, spans: recorder.spans, normal, coverage: OnceCell::new() }
     }
 
     fn coverage(&self) -> &CoverageSink {
@@ -215,9 +220,9 @@ pub fn judge(family: &Family, contenders: &[Contender], progress: &(dyn Fn() + S
 struct Plan<'a> {
     family: &'a Family,
     contenders: &'a [Contender],
-    /// Every sample point in use, ours first.
-    samples: Vec<SampleOffset>,
-    /// Per contender: its own sample point, as an index into `samples`.
+    /// Every convention in use, ours first.
+    samples: Vec<Own>,
+    /// Per contender: its own convention, as an index into `samples`.
     own: Vec<usize>,
     /// Per contender: whether it takes the family.
     takes: Vec<bool>,
@@ -228,13 +233,13 @@ struct Plan<'a> {
 
 impl<'a> Plan<'a> {
     fn new(family: &'a Family, contenders: &'a [Contender]) -> Self {
-        let mut samples = vec![SampleOffset::CENTRE];
+        let mut samples = vec![Own::Sample(SampleOffset::CENTRE)];
         for c in contenders {
-            if !samples.contains(&c.sample()) {
-                samples.push(c.sample());
+            if !samples.contains(&c.own()) {
+                samples.push(c.own());
             }
         }
-        let own = contenders.iter().map(|c| samples.iter().position(|&s| s == c.sample()).unwrap_or(0)).collect();
+        let own = contenders.iter().map(|c| samples.iter().position(|&s| s == c.own()).unwrap_or(0)).collect();
         let runs = family.sweep.as_ref().map(|s| s.runs()).unwrap_or_default();
         let run_of = runs.iter().enumerate().flat_map(|(r, (_, range))| range.clone().map(move |_| r)).collect();
         let takes = contenders.iter().map(|c| c.accepts(family)).collect();
@@ -266,7 +271,7 @@ impl<'a> Plan<'a> {
         let tiled = self.tiled();
         for canvas in canvases {
             // On tiling families: what the tiles drew together, per
-            // contender, and the region they tile, per sample point.
+            // contender, and the region they tile, per convention.
             let mut drawn_together: Vec<CoverageSink> = Vec::new();
             let mut region: Vec<CoverageSink> = Vec::new();
             if tiled {
@@ -350,7 +355,7 @@ fn judge_one(
     let drawn = recorder.spans;
     let (normal, coverage) = (spans::normal_form(&drawn), OnceCell::new());
     let against_ours = ours.compare(&normal, &coverage, &drawn);
-    let against_own = if own.sample == ours.sample { against_ours } else { own.compare(&normal, &coverage, &drawn) };
+    let against_own = if own.own == ours.own { against_ours } else { own.compare(&normal, &coverage, &drawn) };
     let status = match status {
         Status::Drawn | Status::Refused(_) if against_ours.out_of_bounds > 0 => {
             Status::Failed(format!("{} spans outside the 320x200 target", against_ours.out_of_bounds))

@@ -7,13 +7,14 @@
 //! and must never draw it wrong), through `fill_auto`, and classified alone
 //! (`fill_auto`'s own choice, and `raster::classify`'s full one), each
 //! judged against the reference and timed, with its heap allocations per
-//! polygon. The show's shaded entries are timed as they are modelled and
+//! polygon; and `fill_auto` into a sink that stores nothing, which is what
+//! finding the spans costs alone. The show's shaded entries are timed as they are modelled and
 //! over-modelled ([`scenes::show::Modelling`]).
 
 use std::hint::black_box;
 
-use raster::methods::exact::{choose_path, Path};
-use raster::{classify, MethodId, Polygon};
+use raster::methods::exact::{choose_path, fill_auto_with, Path, Scratch};
+use raster::{classify, MethodId, Polygon, Size, SpanSink, SCREEN};
 use scenes::show::{Modelling, Stage, ENTRIES_IN_ORDER};
 use serde::Serialize;
 
@@ -34,16 +35,20 @@ pub enum Lane {
     Dispatch,
     /// `raster::classify`: every class, simplicity included (quadratic).
     Classify,
+    /// `fill_auto` into a sink that only adds up the spans' lengths:
+    /// finding the spans without storing them.
+    Walk,
 }
 
 impl Lane {
-    pub const ALL: [Lane; 6] = [
+    pub const ALL: [Lane; 7] = [
         Lane::Path(Path::Triangle),
         Lane::Path(Path::Monotone),
         Lane::Path(Path::ActiveEdges),
         Lane::Auto,
         Lane::Dispatch,
         Lane::Classify,
+        Lane::Walk,
     ];
 
     pub const fn name(self) -> &'static str {
@@ -52,6 +57,7 @@ impl Lane {
             Lane::Auto => "fill_auto",
             Lane::Dispatch => "dispatch",
             Lane::Classify => "classify",
+            Lane::Walk => "spans unstored",
         }
     }
 
@@ -59,8 +65,8 @@ impl Lane {
     fn contender(self) -> Option<Contender> {
         match self {
             Lane::Path(path) => Some(Contender::Path(path)),
-            Lane::Auto => Some(Contender::Method(MethodId::Exact.method())),
-            Lane::Dispatch | Lane::Classify => None,
+            Lane::Auto => Some(Contender::Auto),
+            Lane::Dispatch | Lane::Classify | Lane::Walk => None,
         }
     }
 
@@ -77,9 +83,33 @@ impl Lane {
                     black_box(classify(black_box(polygon)));
                 }
             }),
+            (Lane::Walk, _) => {
+                let (mut lengths, mut scratch) = (SpanLengths(0), Scratch::new());
+                Box::new(move || {
+                    for polygon in polygons {
+                        let _ = fill_auto_with(polygon, &mut lengths, &mut scratch);
+                    }
+                    black_box(&mut lengths);
+                })
+            }
             (_, Some(contender)) => contender.pass(polygons),
             (_, None) => Box::new(|| {}),
         }
+    }
+}
+
+/// A 320x200 sink that adds up the lengths of the spans it is given and
+/// stores nothing.
+struct SpanLengths(u64);
+
+impl SpanSink for SpanLengths {
+    fn size(&self) -> Size {
+        SCREEN
+    }
+
+    #[inline(always)]
+    fn span(&mut self, _y: i32, x_start: i32, x_end: i32, _color: u8) {
+        self.0 = self.0.wrapping_add((x_end - x_start) as u64);
     }
 }
 
@@ -99,7 +129,9 @@ pub struct PathRow {
     pub failures: Option<u64>,
     /// Only where the lane takes every polygon of the family.
     pub ns_per_polygon: Option<f64>,
-    /// Heap allocations per polygon (`None` where they are not counted).
+    /// Heap allocations per polygon once the lane has run over the family
+    /// (a scratch has grown to the largest polygon), `None` where they are
+    /// not counted.
     pub allocations_per_polygon: Option<f64>,
     /// For a path: the polygons `fill_auto` sends down it.
     pub chosen_by_fill_auto: Option<u64>,
@@ -150,8 +182,10 @@ pub fn measure(family: &Family, timing: Timing, progress: &(dyn Fn() + Sync)) ->
         .zip(&takes_all)
         .map(|(&(lane, contender, tally), &takes)| {
             let ns = if takes { times.pop().flatten() } else { None };
-            // The pass is made first: only the fills' own allocations count.
-            let pass = lane.run(&polygons, contender);
+            // The pass is made and run once first: only the fills' own
+            // allocations in a steady state count, not a scratch growing.
+            let mut pass = lane.run(&polygons, contender);
+            pass();
             let allocations = heap::per_item(polygons.len(), pass);
             PathRow {
                 family: family.name,
@@ -246,7 +280,10 @@ mod tests {
     fn on_triangles_every_path_draws_and_fill_auto_takes_the_triangle_path() {
         let rows = measure(&family("small_triangles"), FAST, &|| {});
         let names: Vec<&str> = rows.iter().map(|r| r.lane).collect();
-        assert_eq!(names, ["triangle", "monotone", "active edges", "fill_auto", "dispatch", "classify"]);
+        assert_eq!(
+            names,
+            ["triangle", "monotone", "active edges", "fill_auto", "dispatch", "classify", "spans unstored"]
+        );
         for row in &rows[..4] {
             assert_eq!(
                 (row.refusals, row.wrong_pixels, row.overdraw, row.failures),

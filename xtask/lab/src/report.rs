@@ -95,68 +95,18 @@ fn exact_goals(out: &mut String, results: &Results) {
         count(sum(|r| r.failures)),
         count(sum(|r| r.refusals)),
     );
-    let ns = |name: &str, family: &str| results.row(name, family)?.ns_per_polygon;
-    let ratio = |a: Option<f64>, b: Option<f64>| Some(a? / b?);
-    let exact_over_store = |family: &str| results.row(EXACT, family)?.time_vs_store;
     let _ = writeln!(out, "| measure | measured | goal | met |\n|---|---:|---|---|");
-    let mut goal = |text: &str, value: Option<f64>, target: Goal| {
-        let (shown, met) = match value {
-            Some(v) => (format!("{v:.2}×"), if target.holds(v) { "yes" } else { "no" }),
-            None => ("not measured".to_string(), "no"),
+    for goal in &results.goals {
+        let shown = match (&goal.note, goal.value) {
+            (Some(note), _) => note.clone(),
+            (None, Some(v)) if goal.goal.ends_with('×') => format!("{v:.2}×"),
+            (None, Some(v)) => format!("{v}"),
+            (None, None) => "not measured".to_string(),
         };
-        let _ = writeln!(out, "| {text} | {shown} | {target} | {met} |");
-    };
-    goal(
-        "small triangles: tiny-skia's time / exact's",
-        ratio(ns("tiny-skia", "small_triangles"), ns(EXACT, "small_triangles")),
-        Goal::AtLeast(15.0),
-    );
-    goal("small triangles: exact's time / the store bound's", exact_over_store("small_triangles"), Goal::AtMost(1.5));
-    goal(
-        "large convex: the memset bound's time / exact's",
-        results.row(EXACT, "large_convex").and_then(|r| Some(1.0 / r.time_vs_memset?)),
-        Goal::AtLeast(1.0),
-    );
-    for family in ["concave", "stars", "holes", "nonconvex_shapes"] {
-        goal(&format!("{family}: exact's time / the store bound's"), exact_over_store(family), Goal::AtMost(2.0));
+        let _ =
+            writeln!(out, "| {} | {shown} | {} | {} |", goal.measure, goal.goal, if goal.met { "yes" } else { "no" });
     }
-    let slower: Vec<String> = results
-        .rows
-        .iter()
-        .filter(|r| r.kind == Kind::Peer)
-        .filter_map(|peer| {
-            let mine = results.row(EXACT, peer.family)?.ns_per_polygon?;
-            (peer.ns_per_polygon? < mine).then(|| format!("{} on {}", peer.name, peer.family))
-        })
-        .collect();
-    let peers = if slower.is_empty() { "faster on every family".to_string() } else { slower.join(", ") };
-    let met = if slower.is_empty() { "yes" } else { "no" };
-    let _ = writeln!(out, "| exact against every peer | {peers} | faster on every family | {met} |\n");
-}
-
-/// A bound a ratio must keep.
-#[derive(Clone, Copy)]
-enum Goal {
-    AtLeast(f64),
-    AtMost(f64),
-}
-
-impl Goal {
-    fn holds(self, value: f64) -> bool {
-        match self {
-            Goal::AtLeast(goal) => value >= goal,
-            Goal::AtMost(goal) => value <= goal,
-        }
-    }
-}
-
-impl std::fmt::Display for Goal {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Goal::AtLeast(goal) => write!(f, "≥ {goal:.1}×"),
-            Goal::AtMost(goal) => write!(f, "≤ {goal:.1}×"),
-        }
-    }
+    out.push('\n');
 }
 
 /// What modelling costs: each family through each of exact's paths, fill_auto
@@ -167,8 +117,11 @@ fn modelling_tables(out: &mut String, results: &Results) {
         "## What modelling costs\n\nEach family drawn by `{EXACT}` through each of its paths alone (a path refuses \
          polygons outside its class), by `fill_auto` (its classification, then the path it picks), and classified \
          alone: `dispatch` is `fill_auto`'s own classification, `classify` is `raster::classify` (every class, \
-         simplicity included). Cells: time per polygon, time over the cheapest path's that takes the whole family, \
-         heap allocations per polygon; ← marks the path `fill_auto` picks, with how many polygons.\n"
+         simplicity included); `spans unstored` is `fill_auto` into a sink that stores nothing, what finding the \
+         spans costs alone. The paths and `fill_auto` keep one `Scratch` from polygon to polygon, as a program \
+         drawing frame after frame would. Cells: time per polygon, time over the cheapest path's that takes the \
+         whole family, heap allocations per polygon once the lane has gone over the family (a scratch grown to the \
+         largest polygon allocates no more); ← marks the path `fill_auto` picks, with how many polygons.\n"
     );
     let lanes = crate::modelling::Lane::ALL.map(|lane| lane.name());
     let _ = writeln!(out, "| family | {} |\n|---|{}", lanes.join(" | "), "---:|".repeat(lanes.len()));
@@ -188,7 +141,7 @@ fn modelling_tables(out: &mut String, results: &Results) {
                 if let Some(ratio) = r.time_vs_cheapest {
                     let _ = write!(cell, " ({ratio:.2}×)");
                 }
-                if lane == "dispatch" {
+                if lane == "dispatch" || lane == "spans unstored" {
                     if let (Some(ns), Some(total)) = (r.ns_per_polygon, auto.and_then(|a| a.ns_per_polygon)) {
                         let _ = write!(cell, " ({:.0}% of fill_auto)", 100.0 * ns / total);
                     }

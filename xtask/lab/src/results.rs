@@ -5,8 +5,9 @@
 
 use serde::Serialize;
 
-use crate::contender::Contender;
+use crate::contender::{Contender, Own};
 use crate::corpus::{Axis, Family, Group};
+use crate::goals::GoalRow;
 use crate::measure::{Judged, Tally};
 use crate::modelling::{PathRow, ShowRow};
 use crate::spans;
@@ -33,6 +34,22 @@ pub struct Results {
     pub modelling: Vec<PathRow>,
     /// The show's shaded entries as they need and over-modelled.
     pub show_modelling: Vec<ShowRow>,
+    /// `exact` against its goals ([`crate::goals`]), once all is measured.
+    pub goals: Vec<GoalRow>,
+    /// What the lab binary was built for.
+    pub build: Build,
+}
+
+/// The CPU features the lab was compiled to use (`cargo xtask lab` builds
+/// it with `-C target-cpu=native`).
+#[derive(Clone, Debug, Serialize)]
+pub struct Build {
+    pub avx2: bool,
+    pub avx512f: bool,
+}
+
+impl Build {
+    pub const THIS: Build = Build { avx2: cfg!(target_feature = "avx2"), avx512f: cfg!(target_feature = "avx512f") };
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -53,7 +70,8 @@ pub struct ContenderInfo {
     /// Seed file, crate, or what the bound does.
     pub source: &'static str,
     pub summary: String,
-    /// Own sample point in subpixels from the pixel's corner (none for bounds).
+    /// Own sample point in subpixels from the pixel's corner (none for
+    /// bounds, and for a peer that decides by area coverage).
     pub sample: Option<(i32, i32)>,
 }
 
@@ -136,7 +154,10 @@ impl Results {
                 kind: if c.is_peer() { Kind::Peer } else { Kind::Method },
                 source: c.source(),
                 summary: c.summary(),
-                sample: Some((c.sample().x, c.sample().y)),
+                sample: match c.own() {
+                    Own::Sample(sample) => Some((sample.x, sample.y)),
+                    Own::Coverage { .. } => None,
+                },
             })
             .collect();
         infos.extend(Bound::ALL.map(|b| ContenderInfo {
@@ -155,6 +176,8 @@ impl Results {
             sweeps: vec![],
             modelling: vec![],
             show_modelling: vec![],
+            goals: vec![],
+            build: Build::THIS,
         }
     }
 

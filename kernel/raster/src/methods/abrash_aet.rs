@@ -46,8 +46,7 @@ use alloc::vec::Vec;
 use super::abrash_int::ErrorTermStep;
 use crate::geometry::{FillRule, Polygon};
 use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::Builtin;
-use crate::methods::MethodId;
+use crate::methods::interface::{Builtin, MethodId};
 use crate::sink::SpanSink;
 
 /// Listing 40.1.

@@ -22,8 +22,7 @@ use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
 use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::Builtin;
-use crate::methods::MethodId;
+use crate::methods::interface::{Builtin, MethodId};
 use crate::sink::SpanSink;
 
 /// Listing 38.1.

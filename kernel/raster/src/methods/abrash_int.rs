@@ -29,8 +29,7 @@ use core::ops::Range;
 use super::abrash_float::{fill_with, Segment, CONVENTION};
 use crate::geometry::{FillRule, Polygon};
 use crate::method::{Class, Heap, MethodInfo, Refusal};
-use crate::methods::Builtin;
-use crate::methods::MethodId;
+use crate::methods::interface::{Builtin, MethodId};
 use crate::sink::SpanSink;
 
 /// Listings 38.1, 39.1 and 39.2.

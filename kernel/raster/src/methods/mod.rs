@@ -1,111 +1,25 @@
-//! The one interface over every fill method, [`Method`], and every method,
-//! one module each, named after its source, each named by a [`MethodId`].
-
-use core::fmt;
-use core::str::FromStr;
+//! Every fill method, one module each, named after its source, each named
+//! by a [`MethodId`]; the interface they share is in `interface.rs`.
 
 use crate::geometry::Polygon;
-use crate::method::{MethodInfo, Refusal};
+use crate::method::Refusal;
 use crate::sink::SpanSink;
 
 pub mod abrash_aet;
 pub mod abrash_float;
 pub mod abrash_int;
 pub mod exact;
+mod interface;
 pub mod lamothe;
 pub mod pendleton;
 #[cfg(test)]
 pub(crate) mod test_support;
 pub mod wgt;
 
-/// A fill method. Implementations never panic, never loop without bound
-/// (their work is bounded by the clipped area and the edge count) and
-/// never emit a span outside the sink's [`Size`](crate::Size).
-///
-/// The trait is object safe, so methods can be listed and picked at run
-/// time (`&dyn Method`); through it, every span is a call through the
-/// sink's vtable. [`fill_into`](#method.fill_into) takes the sink's own
-/// type instead, and for this crate's methods (those with an [`id`]) fills
-/// through [`MethodId::fill`], where the sink's store is compiled into the
-/// method's loops.
-///
-/// [`id`]: Method::id
-pub trait Method: Sync {
-    fn info(&self) -> &'static MethodInfo;
-    /// Fills `polygon` into `sink`, or declines it.
-    fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal>;
-    /// Which of this crate's methods it is; `None` for any other (a test's
-    /// stand-in).
-    fn id(&self) -> Option<MethodId> {
-        None
-    }
-}
-
-impl dyn Method + '_ {
-    /// [`Method::fill`] into a sink of a known type: statically dispatched
-    /// for this crate's methods, so the sink's `span` is inlined into the
-    /// fill; through the vtable for any other method.
-    pub fn fill_into<S: SpanSink>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
-        match self.id() {
-            Some(id) => id.fill(polygon, sink),
-            None => self.fill(polygon, sink),
-        }
-    }
-}
-
-/// A method of this crate: its fill is generic over the sink, so that
-/// called through [`MethodId::fill`] on a sink of a known type it compiles
-/// with that sink's store inlined, and on `&mut dyn SpanSink` (what
-/// [`Method::fill`] passes) it is the same code, calling through the
-/// vtable. Implementing it implements [`Method`].
-pub(crate) trait Builtin: Sync {
-    const ID: MethodId;
-    const INFO: &'static MethodInfo;
-    fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal>;
-}
-
-impl<T: Builtin> Method for T {
-    fn info(&self) -> &'static MethodInfo {
-        T::INFO
-    }
-
-    fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
-        self.fill_into(polygon, sink)
-    }
-
-    fn id(&self) -> Option<MethodId> {
-        Some(T::ID)
-    }
-}
-
-/// Names one method of [`ALL`]: the typed value a method name becomes once
-/// it is parsed, at the edge (command line, serial line, scene file).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum MethodId {
-    AbrashFloat,
-    AbrashInt,
-    AbrashAet,
-    Pendleton,
-    Lamothe,
-    LamotheFixed,
-    Wgt,
-    Exact,
-}
+pub(crate) use interface::Builtin;
+pub use interface::{Method, MethodId, UnknownMethod};
 
 impl MethodId {
-    /// Every method, in the order the demo, the protocol and the lab list
-    /// them (the digit keys of the demo count in this order from 1).
-    pub const ALL: [MethodId; 8] = [
-        MethodId::AbrashFloat,
-        MethodId::AbrashInt,
-        MethodId::AbrashAet,
-        MethodId::Pendleton,
-        MethodId::Lamothe,
-        MethodId::LamotheFixed,
-        MethodId::Wgt,
-        MethodId::Exact,
-    ];
-
     /// The method itself.
     pub const fn method(self) -> &'static dyn Method {
         match self {
@@ -142,37 +56,6 @@ impl MethodId {
         self.method().info().name
     }
 }
-
-impl fmt::Display for MethodId {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for MethodId {
-    type Err = UnknownMethod;
-
-    fn from_str(name: &str) -> Result<Self, UnknownMethod> {
-        MethodId::ALL.into_iter().find(|id| id.name() == name).ok_or(UnknownMethod)
-    }
-}
-
-/// A name that is not a method's. Its message lists the names that are.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct UnknownMethod;
-
-impl fmt::Display for UnknownMethod {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("unknown method; the methods are")?;
-        for (i, id) in MethodId::ALL.iter().enumerate() {
-            f.write_str(if i == 0 { " " } else { ", " })?;
-            f.write_str(id.name())?;
-        }
-        Ok(())
-    }
-}
-
-impl core::error::Error for UnknownMethod {}
 
 /// All methods, in [`MethodId::ALL`]'s order.
 pub static ALL: &[&dyn Method] = &{

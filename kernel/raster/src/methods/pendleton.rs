@@ -51,8 +51,7 @@ use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Point, Polygon, SUBPIXEL_BITS};
 use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::Builtin;
-use crate::methods::MethodId;
+use crate::methods::interface::{Builtin, MethodId};
 use crate::sink::SpanSink;
 
 /// `poly()` and its helpers.
@@ -263,10 +262,10 @@ fn poly<S: SpanSink + ?Sized>(color: u8, pnts: &[FpPoint], sink: &mut S) {
 mod tests {
     use super::*;
     use crate::coverage::CoverageSink;
+    use crate::methods::interface::Method;
     use crate::methods::test_support::{
         assert_clipping_changes_no_pixel, draw, empty, fill, full, SMALL, TALL_TRIANGLES,
     };
-    use crate::methods::Method;
 
     /// The picture of a polygon from coordinates in half pixels.
     fn draw_halves(points: &[(i32, i32)]) -> alloc::string::String {

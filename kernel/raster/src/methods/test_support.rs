@@ -8,7 +8,7 @@ use alloc::string::String;
 
 use crate::coverage::CoverageSink;
 use crate::geometry::{Point, Polygon, SUBPIXEL_ONE};
-use crate::methods::Method;
+use crate::methods::interface::Method;
 use crate::sink::{Size, SCREEN};
 
 /// The target of the small pictures.

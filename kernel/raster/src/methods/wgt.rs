@@ -49,8 +49,7 @@ use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Polygon};
 use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::Builtin;
-use crate::methods::MethodId;
+use crate::methods::interface::{Builtin, MethodId};
 use crate::sink::SpanSink;
 
 /// The tutorial's `fillpoly`.
@@ -182,8 +181,8 @@ mod tests {
     use super::*;
     use crate::coverage::CoverageSink;
     use crate::geometry::Point;
+    use crate::methods::interface::Method;
     use crate::methods::test_support::{draw, fill, full, SMALL};
-    use crate::methods::Method;
     use crate::sink::SCREEN;
 
     /// The first and last pixel drawn on row `y`, checking the row is one

@@ -1,67 +1,84 @@
 //! The exact method's general path: any number of contours, crossing or
 //! not, under either fill rule. An edge table sorted by first scan line
 //! feeds an active edge table (Black Book ch. 40's global and active edge
-//! tables), kept sorted by crossing column; the directions summed from the
+//! tables), kept sorted by visible column; the directions summed from the
 //! left decide which crossings open and close the runs the fill rule calls
-//! inside, and each run is emitted as one whole span.
+//! inside.
 //!
-//! The rows go in runs between events (an edge starting or ending): within
-//! a run the active edges stay the same, and unless two of them cross their
-//! order does too, and so does the part each plays (opening a run, closing
-//! one, or neither). A row then costs one pass over the active edges that
-//! emits, steps and checks the order at once; only a row where the order
-//! changed sorts again and works the parts out again. A run of two edges
-//! with the inside between them (most rows of most simple polygons) takes
-//! the monotone path's two-edge loop instead. Where there is a crossing for
-//! every four columns or more (scribbles of thousands of edges), keeping
-//! them sorted costs more than summing their windings per column, which a
-//! row then does instead (`emit_by_columns`).
+//! The rows go in stretches between events (an edge starting or ending):
+//! within one the active edges stay the same, and unless two of them cross
+//! their order does too, and so do the inside runs, worked out once as
+//! pairs of places in that order ([`Run`]). A row then costs its spans and
+//! one pass over the active edges that steps them and checks their order;
+//! only a row where the order changed sorts again and works the runs out
+//! again. Where one edge ends on the row another of the same direction
+//! starts (a vertex the boundary passes through: most vertices of most
+//! polygons), the new edge takes the old one's place and the runs stay, if
+//! the order holds. Two edges with the inside between them take the
+//! monotone path's two-edge loop. Where there is a crossing for every four
+//! columns or more (scribbles of thousands of edges), keeping them sorted
+//! costs more than summing their windings per column, which a row then
+//! does instead ([`emit_by_columns`]). Where the tables live is
+//! [`tables`](super::tables)' business: nothing here allocates.
 
-use alloc::vec::Vec;
+use core::ops::Range;
 
-use crate::geometry::{FillRule, Point, Polygon};
+use crate::geometry::{FillRule, Polygon};
 use crate::method::Refusal;
 use crate::sink::{Size, SpanSink};
 
-use super::edge::{first_sample_at_or_after, visible_column, visible_rows, Crossing, EdgeStepper, ShortEdge};
+use super::edge::{visible_column, Crossing, EdgeStepper, ShortEdge};
 use super::monotone::{columns_fit, span_rows};
+use super::tables::{self, start_row, Active, Run, Scratch, Stepper, Tables};
 
-/// Fills `polygon` by its fill rule. Refuses only when memory for the edge
-/// tables cannot be had.
+/// Fills `polygon` by its fill rule, with tables on the stack or in
+/// `scratch` (a new one when there is none). Refuses only when the
+/// scratch must grow and memory cannot be had.
 pub(crate) fn fill_active_edges<S: SpanSink + ?Sized>(
     polygon: &Polygon,
     size: Size,
     sink: &mut S,
+    scratch: Option<&mut Scratch>,
 ) -> Result<(), Refusal> {
-    let (mut edges, clip, short) = edge_table(polygon, size)?;
-    edges.sort_unstable_by_key(|edge| edge.rows.start);
-    if short {
-        fill_table::<ShortEdge, _>(&edges, clip, polygon, size, sink)
+    // The box of every vertex: whether columns may leave the target, and
+    // whether every edge may be a `ShortEdge`.
+    let mut vertices = polygon.contours.iter().flatten();
+    let Some(&first) = vertices.next() else { return Ok(()) };
+    let (mut min_x, mut max_x, mut min_y, mut max_y) = (first.x, first.x, first.y, first.y);
+    for p in vertices {
+        (min_x, max_x, min_y, max_y) = (min_x.min(p.x), max_x.max(p.x), min_y.min(p.y), max_y.max(p.y));
+    }
+    let clip = !columns_fit(min_x, max_x, size.width);
+    let target = Target { color: polygon.color, width: size.width };
+    let edges = polygon.vertex_count();
+    if ShortEdge::fits((min_x, max_x), (min_y, max_y)) {
+        tables::with_tables::<ShortEdge, _>(edges, size.width, scratch, |tables| {
+            fill_table(tables, polygon, clip, size, target, sink)
+        })
     } else {
-        fill_table::<EdgeStepper, _>(&edges, clip, polygon, size, sink)
+        tables::with_tables::<EdgeStepper, _>(edges, size.width, scratch, |tables| {
+            fill_table(tables, polygon, clip, size, target, sink)
+        })
     }
 }
 
-/// Fills the sorted edge table `edges` of `polygon`, its edges walked as `E`.
-fn fill_table<E: Crossing, S: SpanSink + ?Sized>(
-    edges: &[TableEdge],
-    clip: bool,
+/// Builds the edge table of `polygon` in `tables` and walks it.
+fn fill_table<E: Stepper, S: SpanSink + ?Sized>(
+    mut tables: Tables<'_, E>,
     polygon: &Polygon,
+    clip: bool,
     size: Size,
+    target: Target,
     sink: &mut S,
-) -> Result<(), Refusal> {
-    let mut active: Vec<ActiveEdge<E>> = Vec::new();
-    active.try_reserve_exact(edges.len()).map_err(|_| Refusal::OutOfMemory)?;
-    let mut sorter = Sorter::for_edges(edges.len(), size.width)?;
-    let target = Target { color: polygon.color, width: size.width };
-    let (active, sorter) = (&mut active, &mut sorter);
-    match (polygon.rule, clip) {
-        (FillRule::EvenOdd, false) => walk::<false, false, _, _>(edges, active, sorter, target, sink),
-        (FillRule::EvenOdd, true) => walk::<false, true, _, _>(edges, active, sorter, target, sink),
-        (FillRule::NonZero, false) => walk::<true, false, _, _>(edges, active, sorter, target, sink),
-        (FillRule::NonZero, true) => walk::<true, true, _, _>(edges, active, sorter, target, sink),
-    }
-    Ok(())
+) {
+    let count = tables::build(polygon, size, &mut tables);
+    let walk = match (polygon.rule, clip) {
+        (FillRule::EvenOdd, false) => walk::<false, false, E, S>,
+        (FillRule::EvenOdd, true) => walk::<false, true, E, S>,
+        (FillRule::NonZero, false) => walk::<true, false, E, S>,
+        (FillRule::NonZero, true) => walk::<true, true, E, S>,
+    };
+    walk(count, tables, target, sink);
 }
 
 /// What every span shares.
@@ -71,121 +88,287 @@ struct Target {
     width: i32,
 }
 
-/// Walks the rows of the edge table, top down. `NON_ZERO` picks the rule;
-/// without `CLIP` every crossing column lies in the target's `0..=width`.
+/// A visible column (in `0..=width`): clamped under `CLIP`, else already
+/// in range.
+#[inline(always)]
+fn visible<const CLIP: bool>(column: i64, width: i32) -> i32 {
+    if CLIP {
+        visible_column(column, width)
+    } else {
+        column as i32
+    }
+}
+
+/// Walks the rows of the `count` chains of `tables`, top down. `NON_ZERO`
+/// picks the rule; without `CLIP` every crossing column lies in the
+/// target's `0..=width`.
 fn walk<const NON_ZERO: bool, const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(
-    edges: &[TableEdge],
-    active: &mut Vec<ActiveEdge<E>>,
-    sorter: &mut Sorter<E>,
+    count: usize,
+    tables: Tables<'_, E>,
     target: Target,
     sink: &mut S,
 ) {
-    let mut next = 0;
+    let Tables { edges, chains, starts, active, columns, runs, mut wide } = tables;
+    let (edges, chains, starts) = (&*edges, &*chains, &starts[..count]);
+    // Active chains, chains joined, inside runs.
+    let (mut k, mut next, mut planned) = (0, 0, 0);
     let mut row = 0;
     loop {
-        if active.is_empty() {
-            // Nothing crosses the rows in between: go to the next edge's first.
-            match edges.get(next) {
-                Some(edge) => row = edge.rows.start,
+        if k == 0 {
+            // Nothing crosses the rows in between: go to the next chain's first.
+            match starts.get(next) {
+                Some(&key) => row = start_row(key),
                 None => return,
             }
         }
-        while let Some(edge) = edges.get(next).filter(|edge| edge.rows.start <= row) {
-            let stepper = if edge.rows.end - row == 1 {
-                E::at_last_row(edge.top, edge.bottom, row)
-            } else {
-                E::at_row(edge.top, edge.bottom, row)
-            };
-            active.push(ActiveEdge {
-                stepper,
-                // Visible rows end at the target's height, an `i32`.
-                end_row: edge.rows.end as i32,
-                winding: edge.winding,
-                part: Part::Neither,
-            });
-            next += 1;
-        }
-        if sorter.tallies(active.len()) {
-            // So many crossings for the width that summing them per column
-            // is cheaper than keeping them sorted; and edges start and end
-            // on most rows, so this goes a row at a time.
-            emit_by_columns::<NON_ZERO, _, _>(row, active, &mut sorter.windings, target, sink);
-            row += 1;
-            continue;
-        }
-        // Every active edge meets `row` and every pending one starts below
-        // it, so the run has at least this row.
-        let starts = edges.get(next).map_or(i64::MAX, |edge| edge.rows.start);
-        let run_end = active.iter().map(|edge| i64::from(edge.end_row)).fold(starts, i64::min);
-        row = sorted_run::<NON_ZERO, CLIP, _, _>(row, run_end, active, sorter, target, sink);
-        // Drop the edges that ended, keeping the order of the rest.
+        // The chains that end above `row` leave; the ones that start on it join.
         let mut kept = 0;
-        for i in 0..active.len() {
-            if i64::from(active[i].end_row) > row {
+        for i in 0..k {
+            if i64::from(active[i].chain_end_row) != row {
                 active[kept] = active[i];
                 kept += 1;
             }
         }
-        active.truncate(kept);
+        let joining = starts[next..].iter().take_while(|&&key| start_row(key) == row).count();
+        for &key in &starts[next..next + joining] {
+            active[kept] = tables::join(key, chains, edges);
+            kept += 1;
+        }
+        (k, next) = (kept, next + joining);
+        if k == 0 {
+            continue;
+        }
+        if let Some(wide) = wide.as_mut().filter(|wide| wide.tallies(k)) {
+            // So many crossings for the width that summing them per column
+            // is cheaper than keeping them sorted; and chains start and end
+            // on most rows, so this goes a row at a time.
+            emit_by_columns::<NON_ZERO, _, _>(row, &mut active[..k], edges, wide.windings, target, sink);
+            row += 1;
+            continue;
+        }
+        // Every active chain meets `row` and every pending one starts below
+        // it, so the stretch has at least this row.
+        let starting = starts.get(next).map_or(i64::MAX, |&key| start_row(key));
+        let end = active[..k].iter().map(|chain| i64::from(chain.chain_end_row)).fold(starting, i64::min);
+        let mut settled = false;
+        while row < end {
+            if !settled {
+                tables::sort(&mut active[..k], &mut columns[..k], target.width, wide.as_mut());
+                columns[k] = target.width;
+                planned = plan::<NON_ZERO, _>(&active[..k], runs);
+            }
+            if let ([a, b], [Run { open: 0, close: 1 }]) = (&mut active[..k], &runs[..planned]) {
+                two_chains::<CLIP, _, _>(row..end, [a, b], edges, target, sink);
+                row = end;
+                columns[0] = visible::<CLIP>(a.stepper.column(), target.width);
+                columns[1] = visible::<CLIP>(b.stepper.column(), target.width);
+                settled = columns[0] <= columns[1];
+                continue;
+            }
+            // Up to the next vertex every edge stays the same straight line.
+            let segment = row..next_vertex_row(&active[..k]).min(end);
+            let (active, columns) = (&mut active[..k], &mut columns[..=k]);
+            // Fewer rows than this walk faster by rows.
+            const FEW: i64 = 3;
+            let paired = rows_in_pairs(segment.clone(), active, &runs[..planned]);
+            if paired > FEW {
+                let rows = row..row + paired;
+                for run in &runs[..planned] {
+                    let (left, right) = active.split_at_mut(run.close as usize);
+                    let (a, b) = (&mut left[run.open as usize].stepper, &mut right[0].stepper);
+                    span_rows::<true, CLIP, _, _>(rows.clone(), a, b, target.color, target.width, sink);
+                }
+                row = rows.end;
+            } else {
+                let tables =
+                    Tables { edges: &mut [], chains: &mut [], starts: &mut [], active, columns, runs, wide: None };
+                let sorted;
+                (row, sorted) =
+                    rows_in_order::<NON_ZERO, CLIP, _, _>(segment.clone(), tables, &mut planned, target, sink);
+                if !sorted {
+                    settled = false;
+                    continue;
+                }
+            }
+            // At the vertex, chains whose edge ended go on with their next.
+            let (mut in_order, mut previous) = (true, 0);
+            for (chain, column) in active.iter_mut().zip(columns.iter_mut()) {
+                chain.resume(row, edges);
+                *column = visible::<CLIP>(chain.stepper.column(), target.width);
+                in_order &= previous <= *column;
+                previous = *column;
+            }
+            settled = in_order;
+        }
     }
 }
 
-/// Fills the rows `row..run_end`, over which no edge starts or ends, with
-/// the crossings kept sorted; returns `run_end`.
-fn sorted_run<const NON_ZERO: bool, const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(
-    mut row: i64,
-    run_end: i64,
-    active: &mut Vec<ActiveEdge<E>>,
-    sorter: &mut Sorter<E>,
+/// For how many of `rows` (the rows up to the next vertex, so every edge
+/// is one straight line over them) the runs of `active` can be walked one
+/// after the other, each as two edges: none where some crossing opens or
+/// closes no run (or one reaches the right border), or where the
+/// crossings' positions ([`Crossing::position_in`]) are not in order on
+/// the first row; else up to the first row where two neighbours' positions
+/// swap, if they do. Positions are linear in the row, so they stay in
+/// order until then, and so do the columns: each run's opening crossing is
+/// never right of its closing one. (Finding where two neighbours swap is
+/// one division, for those that do.)
+#[inline(always)]
+fn rows_in_pairs<E: Crossing>(rows: Range<i64>, active: &[Active<E>], runs: &[Run]) -> i64 {
+    if 2 * runs.len() != active.len() || runs.iter().any(|run| run.close as usize == active.len()) {
+        return 0;
+    }
+    let (count, last) = (rows.end - rows.start, rows.end - rows.start - 1);
+    let mut hold = count;
+    // The previous crossing's position on the first row and its step.
+    let mut previous: Option<(i64, i64)> = None;
+    for chain in active {
+        let (Some(first), Some(next)) = (chain.stepper.position_in(0), chain.stepper.position_in(1)) else {
+            return 0;
+        };
+        let step = next - first;
+        if let Some((previous_first, previous_step)) = previous {
+            let (gap, closing) = (first - previous_first, previous_step - step);
+            if gap < 0 {
+                return 0;
+            }
+            // The gap closes by `closing` a row: it is below zero first on
+            // row `gap / closing + 1`, if that is not past the last.
+            if closing > 0 && gap / closing < last {
+                hold = hold.min(gap / closing + 1);
+            }
+        }
+        previous = Some((first, step));
+    }
+    hold
+}
+
+/// Two chains with the inside between them, outside right of both, over
+/// `rows`: whatever their order (they may cross), the inside is the span
+/// between them, as on the monotone path, and rows go in runs between
+/// their vertices, where each chain takes its next edge.
+#[inline(always)]
+fn two_chains<const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(
+    rows: Range<i64>,
+    [a, b]: [&mut Active<E>; 2],
+    edges: &[tables::Edge<E>],
     target: Target,
     sink: &mut S,
-) -> i64 {
-    sorter.sort(active, target.width);
-    let mut open_at_end = assign_parts::<NON_ZERO, _>(active);
-    if let ([a, b], false) = (active.as_mut_slice(), open_at_end) {
-        // Two crossings, outside right of both: whatever their order
-        // (they may cross), the inside is the span between them, as on
-        // the monotone path.
+) {
+    let mut row = rows.start;
+    while row < rows.end {
+        let run_end = a.edge_end_row().min(b.edge_end_row()).min(rows.end);
         span_rows::<false, CLIP, _, _>(row..run_end, &mut a.stepper, &mut b.stepper, target.color, target.width, sink);
         row = run_end;
+        a.resume(row, edges);
+        b.resume(row, edges);
     }
-    let mut sorted = true;
-    while row < run_end {
-        if !sorted {
-            sorter.sort(active, target.width);
-            open_at_end = assign_parts::<NON_ZERO, _>(active);
-        }
-        sorted = emit_and_step::<CLIP, _, _>(row, active, open_at_end, target, sink);
-        row += 1;
-    }
-    row
 }
 
-/// Emits the inside runs of `row` without sorting the crossings, steps
-/// every edge to the next row and drops the ones that end (out of order:
-/// the sorted path sorts whatever it is given): each crossing's winding is
-/// added at its visible column in `windings` (`width + 1` of them), and the
-/// running sum from the left is each pixel's winding number.
-/// `O(edges + width)` a row; the runs are the maximal ones, left to right,
-/// as [`emit_and_step`]'s.
+/// Works out the inside runs of `active`, in order, into `runs`, and
+/// returns how many: each crossing's winding sum (of the crossings before
+/// it and up to it) under the rule says whether it opens a run, closes one
+/// or neither. A pixel's inside test sums every crossing at or left of
+/// it; where several share a column, the states between them cover no
+/// pixel, so any order of theirs gives the same pixels. A run still open
+/// after the last crossing reaches the right border (edges right of the
+/// target are not in the table, so the sum need not come back to zero).
+/// `runs` has a place per active edge and one more.
+fn plan<const NON_ZERO: bool, E>(active: &[Active<E>], runs: &mut [Run]) -> usize {
+    // Each crossing adds +1 or -1: no `i64` overflow for any edge count.
+    // Without a branch per crossing (which way each goes is anyone's
+    // guess): every crossing writes a run, which only a closing one keeps.
+    let (mut winding, mut open, mut count) = (0i64, 0, 0);
+    for (i, edge) in active.iter().enumerate() {
+        let was_inside = is_inside::<NON_ZERO>(winding);
+        winding += i64::from(edge.winding);
+        let inside = is_inside::<NON_ZERO>(winding);
+        open = if inside && !was_inside { i as u32 } else { open };
+        runs[count] = Run { open, close: i as u32 };
+        count += usize::from(was_inside && !inside);
+    }
+    runs[count] = Run { open, close: active.len() as u32 };
+    count + usize::from(is_inside::<NON_ZERO>(winding))
+}
+
+/// Emits the runs of `tables` on each of `rows` (rows up to a vertex, so
+/// every edge goes on over them) and steps the edges to the row after,
+/// keeping them in order (and `planned`, the count of runs, with it) where
+/// a few of them cross; returns that row, or an earlier one where the
+/// order needs a full sort, and whether the edges are sorted there.
+/// `tables.columns` are the edges' visible columns on the first row, and
+/// the right border.
+#[inline(always)]
+fn rows_in_order<const NON_ZERO: bool, const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(
+    rows: Range<i64>,
+    tables: Tables<'_, E>,
+    planned: &mut usize,
+    target: Target,
+    sink: &mut S,
+) -> (i64, bool) {
+    let Tables { active, columns, runs, .. } = tables;
+    let mut row = rows.start;
+    loop {
+        for run in &runs[..*planned] {
+            let (start, end) = (columns[run.open as usize], columns[run.close as usize]);
+            if start < end {
+                // `row` is a visible row, in `0..height`; `0 <= start < end <= width`.
+                sink.span(row as i32, start, end, target.color);
+            }
+        }
+        row += 1;
+        if row == rows.end {
+            // The caller takes each chain past the vertex, then its column.
+            for chain in active.iter_mut() {
+                chain.stepper.step();
+            }
+            return (row, true);
+        }
+        // Visible columns are never negative.
+        let (mut in_order, mut previous) = (true, 0);
+        for (chain, column) in active.iter_mut().zip(columns.iter_mut()) {
+            chain.stepper.step();
+            *column = visible::<CLIP>(chain.stepper.column(), target.width);
+            in_order &= previous <= *column;
+            previous = *column;
+        }
+        if !in_order {
+            // Under the even-odd rule the runs pair the crossings in order
+            // whatever their directions; under the non-zero rule they
+            // follow the directions.
+            if !tables::insertion_sort(active, columns) {
+                return (row, false);
+            }
+            if NON_ZERO {
+                *planned = plan::<NON_ZERO, _>(active, runs);
+            }
+        }
+    }
+}
+
+/// The first row below the current where one of `active`'s edges ends.
+#[inline(always)]
+fn next_vertex_row<E: Crossing>(active: &[Active<E>]) -> i64 {
+    active.iter().map(Active::edge_end_row).min().unwrap_or(i64::MAX)
+}
+
+/// Emits the inside runs of `row` without sorting the crossings and steps
+/// every edge to the next row: each crossing's winding is added at its
+/// visible column in `windings` (`width + 1` of them), and the running sum
+/// from the left is each pixel's winding number. `O(edges + width)` a
+/// row; the runs are the maximal ones, left to right.
 fn emit_by_columns<const NON_ZERO: bool, E: Crossing, S: SpanSink + ?Sized>(
     row: i64,
-    active: &mut Vec<ActiveEdge<E>>,
+    active: &mut [Active<E>],
+    edges: &[tables::Edge<E>],
     windings: &mut [i32],
     target: Target,
     sink: &mut S,
 ) {
     windings.fill(0);
-    let mut i = 0;
-    while let Some(edge) = active.get_mut(i) {
-        windings[visible_column(edge.stepper.column(), target.width) as usize] += i32::from(edge.winding);
-        if i64::from(edge.end_row) > row + 1 {
-            edge.stepper.step();
-            i += 1;
-        } else {
-            // The last edge takes its place and is seen next.
-            active.swap_remove(i);
-        }
+    for chain in active {
+        windings[visible_column(chain.stepper.column(), target.width) as usize] += i32::from(chain.winding);
+        chain.advance(row + 1, edges);
     }
     // Which pixels are inside, 64 a word, without a branch per pixel; then
     // one step per change of state, where a run opens or closes.
@@ -217,241 +400,7 @@ fn emit_by_columns<const NON_ZERO: bool, E: Crossing, S: SpanSink + ?Sized>(
     }
 }
 
-/// An edge of the polygon, top to bottom, with the visible rows it meets.
-struct TableEdge {
-    top: Point,
-    bottom: Point,
-    /// +1 where the contour runs down the edge, -1 where it runs up.
-    winding: i8,
-    rows: core::ops::Range<i64>,
-}
-
-/// An edge crossing the current row.
-#[derive(Clone, Copy)]
-struct ActiveEdge<E> {
-    stepper: E,
-    end_row: i32,
-    /// +1 or -1, as [`TableEdge::winding`].
-    winding: i8,
-    part: Part,
-}
-
-/// What a crossing does to the run of inside pixels, in the current order.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Part {
-    /// Outside on its left, inside from it on.
-    Opens,
-    /// Inside on its left, outside from it on.
-    Closes,
-    /// Leaves the pixels on both sides alike.
-    Neither,
-}
-
-/// Every edge that meets a visible row and can lie left of a visible pixel
-/// centre, and whether some crossing column may lie outside the target's
-/// `0..=width` (then columns are clamped), and whether every edge in it
-/// may be a [`ShortEdge`]. Horizontal edges never meet a row; an edge whose
-/// leftmost point is right of the last centre counts for no visible pixel.
-fn edge_table(polygon: &Polygon, size: Size) -> Result<(Vec<TableEdge>, bool, bool), Refusal> {
-    let mut edges = Vec::new();
-    edges.try_reserve_exact(polygon.vertex_count()).map_err(|_| Refusal::OutOfMemory)?;
-    let (mut min_x, mut max_x, mut min_y, mut max_y) = (i32::MAX, i32::MIN, i32::MAX, i32::MIN);
-    for contour in &polygon.contours {
-        let following = contour.iter().cycle().skip(1);
-        for (&from, &to) in contour.iter().zip(following) {
-            let (top, bottom, winding) = if from.y <= to.y { (from, to, 1) } else { (to, from, -1) };
-            let rows = visible_rows(top.y, bottom.y, size.height);
-            let leftmost_column = first_sample_at_or_after(top.x.min(bottom.x).into());
-            if !rows.is_empty() && leftmost_column < i64::from(size.width) {
-                edges.push(TableEdge { top, bottom, winding, rows });
-                (min_x, max_x) = (min_x.min(top.x.min(bottom.x)), max_x.max(top.x.max(bottom.x)));
-                (min_y, max_y) = (min_y.min(top.y), max_y.max(bottom.y));
-            }
-        }
-    }
-    Ok((edges, !columns_fit(min_x, max_x, size.width), ShortEdge::fits((min_x, max_x), (min_y, max_y))))
-}
-
-/// Sorts the active edges by visible column (the column clamped to the
-/// target, see [`visible_column`]). That is the order the inside test
-/// needs: the crossings at or left of a visible pixel are a prefix of it.
-///
-/// The list comes sorted but for edges that just started or crossed, so a
-/// short one takes an insertion sort, about one pass and no call. A long
-/// one, where many edges may cross at once (insertion sort would go
-/// quadratic, as the book's bubble sort does in ch. 40), is counted into
-/// place when the target is narrow next to the edge count (`O(n + width)`),
-/// and otherwise sorted in `O(n log n)` by 64-bit keys, visible column
-/// above index, then moved into that order once: cheaper than sorting the
-/// edges themselves, three to six times larger.
-struct Sorter<E> {
-    /// Per visible column, edges at it, then where the next of them goes.
-    counts: Vec<u32>,
-    /// Per visible column, the windings of the crossings at it, for rows
-    /// with so many crossings that they are summed rather than sorted.
-    windings: Vec<i32>,
-    keys: Vec<u64>,
-    scratch: Vec<ActiveEdge<E>>,
-}
-
-/// A table of `columns` zeros, or a refusal when memory cannot be had.
-fn per_column<T: Default + Clone>(columns: usize) -> Result<Vec<T>, Refusal> {
-    let mut table = Vec::new();
-    table.try_reserve_exact(columns).map_err(|_| Refusal::OutOfMemory)?;
-    table.resize(columns, T::default());
-    Ok(table)
-}
-
-/// The longest active list sorted by insertion.
-const SHORT: usize = 16;
-
-impl<E: Crossing> Sorter<E> {
-    /// Room for `edges` active edges on a target `width` wide, so that
-    /// sorting never allocates: a count per visible column when there are
-    /// at most four per edge, or a key per edge.
-    fn for_edges(edges: usize, width: i32) -> Result<Self, Refusal> {
-        let (mut counts, mut windings, mut keys, mut scratch) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-        // Every winding sum stays within `±edges`, an `i32`.
-        if edges > SHORT && i32::try_from(edges).is_ok() {
-            scratch.try_reserve_exact(edges).map_err(|_| Refusal::OutOfMemory)?;
-            let columns = width.max(0) as usize + 1;
-            if columns / 4 <= edges {
-                (counts, windings) = (per_column(columns)?, per_column(columns)?);
-            } else {
-                keys.try_reserve_exact(edges).map_err(|_| Refusal::OutOfMemory)?;
-            }
-        }
-        Ok(Self { counts, windings, keys, scratch })
-    }
-
-    /// Whether a run of `active` crossings is cheaper summed per column
-    /// ([`emit_by_columns`]) than kept sorted: where there are per-column
-    /// tables and at least a crossing for every four columns.
-    fn tallies(&self, active: usize) -> bool {
-        !self.windings.is_empty() && self.windings.len() / 4 <= active
-    }
-
-    fn sort(&mut self, active: &mut Vec<ActiveEdge<E>>, width: i32) {
-        let column = |edge: &ActiveEdge<E>| visible_column(edge.stepper.column(), width) as usize;
-        if active.len() <= SHORT {
-            // By the unclamped column: that order is also by the clamped one.
-            for i in 1..active.len() {
-                let mut j = i;
-                while j > 0 && active[j - 1].stepper.column() > active[j].stepper.column() {
-                    active.swap(j - 1, j);
-                    j -= 1;
-                }
-            }
-            return;
-        }
-        // Room was made for every edge and fewer than 2^32 of them (else
-        // neither buffer has room and the library sort takes over), so
-        // nothing below allocates and every count and index fits a `u32`.
-        if active.len() > self.scratch.capacity() {
-            active.sort_unstable_by_key(column);
-        } else if !self.counts.is_empty() {
-            self.counts.fill(0);
-            for edge in active.iter() {
-                self.counts[column(edge)] += 1;
-            }
-            let mut next = 0;
-            for count in &mut self.counts {
-                (*count, next) = (next, next + *count);
-            }
-            self.scratch.clear();
-            self.scratch.extend_from_slice(active);
-            for edge in active.iter() {
-                let slot = &mut self.counts[column(edge)];
-                self.scratch[*slot as usize] = *edge;
-                *slot += 1;
-            }
-            core::mem::swap(active, &mut self.scratch);
-        } else {
-            // Visible columns are below 2^31 and indices below 2^32.
-            self.keys.clear();
-            self.keys.extend(active.iter().enumerate().map(|(i, edge)| (column(edge) as u64) << 32 | i as u64));
-            self.keys.sort_unstable();
-            self.scratch.clear();
-            self.scratch.extend(self.keys.iter().map(|&key| active[(key & u64::from(u32::MAX)) as usize]));
-            core::mem::swap(active, &mut self.scratch);
-        }
-    }
-}
-
-/// Works out each crossing's [`Part`] in the current order: the winding
-/// sum of the crossings before it and up to it, under the rule. A pixel's
-/// inside test sums every crossing at or left of it; where several share
-/// a column, the states between them cover no pixel, so any order of
-/// theirs gives the same pixels. Returns whether the pixels right of the
-/// last crossing are inside (edges right of the target are not in the
-/// table, so the sum need not come back to zero).
-fn assign_parts<const NON_ZERO: bool, E>(active: &mut [ActiveEdge<E>]) -> bool {
-    // Each crossing adds +1 or -1: no `i64` overflow for any edge count.
-    let mut winding = 0i64;
-    for edge in active {
-        let was_inside = is_inside::<NON_ZERO>(winding);
-        winding += i64::from(edge.winding);
-        edge.part = match (was_inside, is_inside::<NON_ZERO>(winding)) {
-            (false, true) => Part::Opens,
-            (true, false) => Part::Closes,
-            _ => Part::Neither,
-        };
-    }
-    is_inside::<NON_ZERO>(winding)
-}
-
-/// Emits the inside runs of `row` and steps every edge to the next row.
-/// Returns whether the visible columns are still in order there.
-///
-/// Runs that touch (one closes at the column where the next opens) are
-/// emitted as one span, so no pixel is emitted twice and the spans are the
-/// maximal runs. A run still open after the last crossing (`open_at_end`)
-/// reaches the right border. Columns are clamped to the target, which
-/// changes no visible pixel's inside test.
-#[inline(always)]
-fn emit_and_step<const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(
-    row: i64,
-    active: &mut [ActiveEdge<E>],
-    open_at_end: bool,
-    target: Target,
-    sink: &mut S,
-) -> bool {
-    let width = i64::from(target.width);
-    // The open run's start, and the run waiting to be emitted: the next one
-    // may touch it. `-1`, left of every visible column, stands for none.
-    let (mut start, mut pending) = (0, (-1, -1));
-    let (mut sorted, mut previous) = (true, 0);
-    // Without `CLIP`, columns lie in `0..=width` already.
-    let visible = |column: i64| if CLIP { column.clamp(0, width) } else { column };
-    for edge in active.iter_mut() {
-        let column = visible(edge.stepper.column());
-        match edge.part {
-            Part::Opens => start = column,
-            Part::Closes if pending.1 == start => pending.1 = column,
-            Part::Closes => {
-                emit(row, pending, target, sink);
-                pending = (start, column);
-            }
-            Part::Neither => {}
-        }
-        edge.stepper.step();
-        let next = visible(edge.stepper.column());
-        sorted &= previous <= next;
-        previous = next;
-    }
-    if open_at_end {
-        if pending.1 == start {
-            pending.1 = width;
-        } else {
-            emit(row, pending, target, sink);
-            pending = (start, width);
-        }
-    }
-    emit(row, pending, target, sink);
-    sorted
-}
-
-/// Emits a run of `row`, columns in `-1..=width`, unless it is empty.
+/// Emits a run of `row`, columns in `0..=width`, unless it is empty.
 #[inline(always)]
 fn emit<S: SpanSink + ?Sized>(row: i64, (start, end): (i64, i64), target: Target, sink: &mut S) {
     if start < end {

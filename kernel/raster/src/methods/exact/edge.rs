@@ -34,10 +34,11 @@ pub(super) fn visible_rows(top_y: i32, bottom_y: i32, height: i32) -> Range<i64>
 /// A pixel column clamped to the target's `0..=width`. Clamping every
 /// crossing keeps the inside test of each visible pixel unchanged: a
 /// crossing left of the target still counts for all of it, one right of it
-/// for none.
+/// for none. (Not `clamp`, whose check that the bounds are in order
+/// would be made on every row: `width` is never negative here.)
 #[inline(always)]
 pub(super) fn visible_column(column: i64, width: i32) -> i32 {
-    column.clamp(0, width.into()) as i32
+    column.max(0).min(width.into()) as i32
 }
 
 /// An edge walking down the scan lines it meets.
@@ -59,7 +60,7 @@ pub(super) fn visible_column(column: i64, width: i32) -> i32 {
 /// own x range (below 2^24 in size) on every row the edge meets, and moves
 /// at most `|dx| / dy + 1 < 2^33` per step, so it fits an `i64` even a step
 /// past the edge's last row, where the fills leave it unused.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(super) struct EdgeStepper {
     /// First pixel column at or right of the crossing on the current row.
     pub column: i64,
@@ -187,7 +188,7 @@ impl EdgeStepper {
 
 /// What the row loops need of an edge: its crossing column on the current
 /// row, and the move to the next row.
-pub(super) trait Crossing: Copy {
+pub(super) trait Crossing: Copy + Default + core::fmt::Debug {
     /// The edge from `top` down to `bottom` on scan line `row`, which it
     /// must meet.
     fn at_row(top: Point, bottom: Point, row: i64) -> Self;
@@ -201,6 +202,15 @@ pub(super) trait Crossing: Copy {
     fn column(&self) -> i64;
     /// Moves to the next scan line.
     fn step(&mut self);
+    /// Where the crossing is `rows` scan lines below the current (a row the
+    /// edge meets), as a number that orders crossings: of two edges, the
+    /// one with the smaller number there has the column never right of
+    /// the other's, and the number moves linearly with the row. `None`
+    /// where the stepper cannot tell without stepping there.
+    #[inline(always)]
+    fn position_in(&self, _rows: i64) -> Option<i64> {
+        None
+    }
 }
 
 impl Crossing for EdgeStepper {
@@ -256,7 +266,7 @@ const SHORT: i64 = 1 << 17;
 /// `t < dy`; `x_top * 2^27` is below `2^58` for any `i32`, and the position
 /// stays within a pixel of the edge's x range (in `i32`) on its rows, or a
 /// step past them: under `2^59` in size, so no `i64` overflows.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(super) struct ShortEdge {
     /// The crossing, rounded up, plus `1 - 2^-25` px, in `2^-35` px.
     position: i64,
@@ -298,6 +308,13 @@ impl Crossing for ShortEdge {
     #[inline(always)]
     fn step(&mut self) {
         self.position += self.step;
+    }
+
+    /// The position itself: linear in the row, the column its floor. Within
+    /// the rows the edge meets it keeps the bounds above.
+    #[inline(always)]
+    fn position_in(&self, rows: i64) -> Option<i64> {
+        Some(self.position + rows * self.step)
     }
 }
 
@@ -460,6 +477,26 @@ mod tests {
         let at_zero = EdgeStepper::at_row(top, bottom, 0);
         assert_eq!(at_zero.error, at_zero.denominator - 1);
         assert_eq!(ShortEdge::at_row(top, bottom, 0).column(), at_zero.column);
+    }
+
+    /// A short edge's position some rows ahead is where stepping takes it,
+    /// and its floor is the column there; the general stepper cannot tell.
+    #[test]
+    fn short_edges_know_their_position_rows_ahead() {
+        let (top, bottom) = (Point::new(1000, 300), Point::new(-20_000, 60_000));
+        let rows = first_sample_at_or_after(top.y.into())..first_sample_at_or_after(bottom.y.into());
+        let start = ShortEdge::at_row(top, bottom, rows.start);
+        let mut stepped = start;
+        for ahead in 0..rows.end - rows.start {
+            let position = start.position_in(ahead).expect("a short edge knows");
+            assert_eq!(
+                (position, position >> FRACTION_BITS),
+                (stepped.position, stepped.column()),
+                "{ahead} rows ahead"
+            );
+            stepped.step();
+        }
+        assert_eq!(EdgeStepper::at_row(top, bottom, rows.start).position_in(1), None);
     }
 
     #[test]

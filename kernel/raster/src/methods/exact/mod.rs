@@ -15,37 +15,43 @@
 //!   short (`edge.rs` gives the bounds).
 //! - Range: exact for every `i32` vertex coordinate and every target
 //!   [`Size`](crate::Size), so nothing is refused as out of range; the only
-//!   refusal is [`Refusal::OutOfMemory`] when the edge tables cannot be
-//!   allocated.
+//!   refusal is [`Refusal::OutOfMemory`] when the edge tables of a polygon
+//!   too large for the stack cannot be allocated.
 //! - Classes: all ([`Class::Complex`]): several contours, holes,
 //!   self-intersections, both fill rules.
 //! - Work: rows are clipped to the target before any is visited, so a
 //!   polygon spanning the whole `i32` plane costs the target's rows times
 //!   its edges, never 2^24 rows; no pixel is emitted twice within a fill.
 //!
-//! - Speed: triangles and monotone polygons allocate nothing and cost two
-//!   edge steps and one span per row; the rest cost one pass over the
-//!   crossings per row, sorting only where edges cross (or, where there is
-//!   a crossing for every four columns, summing them per column instead).
+//! - Speed: triangles and monotone polygons cost two edge steps and one
+//!   span per row; the rest walk monotone chains, each inside run as two
+//!   edges between vertices where no crossings swap, else one row at a
+//!   time, sorting only where edges cross (or, where there is a crossing for
+//!   every four columns, summing them per column instead).
+//! - Memory: nothing is allocated for a polygon of up to 256 edges (64
+//!   when they may be 512 px or longer); a larger one takes its tables from
+//!   a [`Scratch`], which the caller may keep ([`fill_auto_with`]).
 //!
 //! Stages, one file each: `edge` (scan lines and exact crossing columns),
 //! `monotone` (the triangle fill and the two-chain path for monotone
-//! polygons), `active_edges` (the edge-table path for the rest). Each is a
-//! [`Path`] that can be asked for alone; the choice between them is
-//! [`fill_auto`]'s ([`choose_path`]).
+//! polygons), `active_edges` (the edge-table path for the rest) over
+//! `tables` (where its tables live, and how they are built and sorted).
+//! Each path is a [`Path`] that can be asked for alone; the choice between
+//! them is [`fill_auto`]'s ([`choose_path`]).
 
 mod active_edges;
 mod edge;
 mod monotone;
+mod tables;
 
 use active_edges::fill_active_edges;
 use monotone::{fill_monotone, fill_triangle};
+pub use tables::Scratch;
 
 use crate::classify::{is_monotone, Shape};
 use crate::geometry::{FillRule, Point, Polygon};
 use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::Builtin;
-use crate::methods::MethodId;
+use crate::methods::interface::{Builtin, MethodId};
 use crate::sink::SpanSink;
 
 /// The exact method.
@@ -63,7 +69,7 @@ static INFO: MethodInfo = MethodInfo {
         "i32 vertices in 1/256 px; i64 edge setup (i128 for edges over 2^23 px), i64 error-term stepping (exact fixed point for polygons under 512 px); no floats",
     handles: Class::Complex,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
-    heap: Heap::BeyondConvex,
+    heap: Heap::ManyEdges,
 };
 
 impl Builtin for Exact {
@@ -87,7 +93,7 @@ pub enum Path {
     /// One contour monotone in y (triangles included): two chains from the
     /// top vertex down, one span per row, no allocation.
     Monotone,
-    /// Any polygon: the active edge table, which allocates its tables.
+    /// Any polygon: the active edge table, on the stack or in a [`Scratch`].
     ActiveEdges,
 }
 
@@ -115,7 +121,39 @@ impl Path {
 
     /// Fills `polygon` exactly by this path, or refuses it with
     /// [`Refusal::OutsideClass`] if it is not of the path's class.
+    ///
+    /// ```
+    /// use raster::methods::exact::Path;
+    /// use raster::{CoverageSink, Polygon, Refusal, Size};
+    ///
+    /// let square = Polygon::from_pixels(&[(0, 0), (3, 0), (3, 3), (0, 3)], (0, 0), 1);
+    /// let mut drawn = CoverageSink::new(Size { width: 4, height: 4 });
+    /// assert_eq!(Path::Triangle.fill(&square, &mut drawn), Err(Refusal::OutsideClass));
+    /// assert_eq!(Path::Monotone.fill(&square, &mut drawn), Ok(()));
+    /// assert_eq!(drawn.ascii(), "###.\n###.\n###.\n....\n");
+    /// ```
     pub fn fill<S: SpanSink + ?Sized>(self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
+        self.fill_in(polygon, sink, None)
+    }
+
+    /// [`Path::fill`] with the caller's [`Scratch`] for polygons too large
+    /// for the tables the active-edge path keeps on the stack.
+    pub fn fill_with<S: SpanSink + ?Sized>(
+        self,
+        polygon: &Polygon,
+        sink: &mut S,
+        scratch: &mut Scratch,
+    ) -> Result<(), Refusal> {
+        self.fill_in(polygon, sink, Some(scratch))
+    }
+
+    /// [`Path::fill_with`], with or without a caller's scratch.
+    fn fill_in<S: SpanSink + ?Sized>(
+        self,
+        polygon: &Polygon,
+        sink: &mut S,
+        scratch: Option<&mut Scratch>,
+    ) -> Result<(), Refusal> {
         if !self.takes(polygon) {
             return Err(Refusal::OutsideClass);
         }
@@ -129,7 +167,7 @@ impl Path {
                 fill_monotone(contour, polygon.color, size, sink);
                 Ok(())
             }
-            _ => fill_active_edges(polygon, size, sink),
+            _ => fill_active_edges(polygon, size, sink, scratch),
         }
     }
 }
@@ -189,7 +227,86 @@ pub fn choose_path(polygon: &Polygon) -> Option<Path> {
 /// contours the two-chain path, everything else the active edge table.
 /// Simple and complex polygons share that path, so telling them apart would
 /// cost without saving anything.
+///
+/// # Examples
+///
+/// A square with a square hole, one contour each: the even-odd rule leaves
+/// the hole empty, and so does the non-zero rule, the hole going round the
+/// other way. Its class is [`Class::Complex`](crate::Class) (several
+/// contours), so it takes the active edge table:
+///
+/// ```
+/// use raster::methods::exact::{choose_path, Path};
+/// use raster::{classify, fill_auto, Class, FillRule, Framebuffer, Point, Polygon, Size};
+///
+/// let square = |from: i32, to: i32| -> Vec<Point> {
+///     [(from, from), (to, from), (to, to), (from, to)].map(|(x, y)| Point::from_pixels(x, y)).to_vec()
+/// };
+/// let mut hole = square(2, 4);
+/// hole.reverse();
+/// let framed = Polygon { contours: vec![square(0, 6), hole], color: 1, rule: FillRule::NonZero };
+/// assert_eq!(classify(&framed), Class::Complex);
+/// assert_eq!(choose_path(&framed), Some(Path::ActiveEdges));
+///
+/// let mut target = Framebuffer::new(Size { width: 6, height: 6 });
+/// fill_auto(&framed, &mut target).unwrap();
+/// let row = |y: usize| &target.pixels()[y * 6..y * 6 + 6];
+/// assert_eq!(row(1), [1, 1, 1, 1, 1, 1]);
+/// assert_eq!(row(3), [1, 1, 0, 0, 1, 1]);
+///
+/// // A triangle takes the triangle path, a convex polygon the two chains.
+/// assert_eq!(choose_path(&Polygon::from_pixels(&[(0, 0), (4, 1), (1, 4)], (0, 0), 1)), Some(Path::Triangle));
+/// assert_eq!(choose_path(&Polygon::new(square(0, 3), 1)), Some(Path::Monotone));
+/// ```
 pub fn fill_auto<S: SpanSink + ?Sized>(polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
+    fill_auto_in(polygon, sink, None)
+}
+
+/// [`fill_auto`] with the caller's [`Scratch`], for polygons too large
+/// for the tables the active-edge path keeps on the stack (over 256 edges,
+/// or over 64 when they may be 512 px or longer): kept from fill to fill,
+/// it allocates only when a polygon needs more room than every one before
+/// it, so a caller drawing frame after frame allocates nothing once it has
+/// drawn the largest polygon.
+///
+/// # Examples
+///
+/// ```
+/// use raster::{fill_auto_with, Framebuffer, Point, Polygon, Scratch, SCREEN};
+///
+/// // A comb of 150 teeth 1 px wide, hanging from a bar 50 px deep: 600
+/// // edges, too many for the tables on the stack.
+/// let mut comb = vec![Point::from_pixels(0, 0), Point::from_pixels(300, 0)];
+/// for tooth in (0..150).rev() {
+///     let x = 2 * tooth;
+///     comb.extend([Point::from_pixels(x + 1, 100), Point::from_pixels(x, 100)]);
+///     if tooth > 0 {
+///         comb.extend([Point::from_pixels(x, 50), Point::from_pixels(x - 1, 50)]);
+///     }
+/// }
+/// let comb = Polygon::new(comb, 9);
+/// let (mut scratch, mut screen) = (Scratch::new(), Framebuffer::new(SCREEN));
+/// for _frame in 0..3 {
+///     // The first frame grows the scratch; the others take nothing.
+///     fill_auto_with(&comb, &mut screen, &mut scratch).unwrap();
+/// }
+/// assert_eq!((screen.get(1, 25), screen.get(0, 75), screen.get(1, 75)), (Some(9), Some(9), Some(0)));
+/// ```
+pub fn fill_auto_with<S: SpanSink + ?Sized>(
+    polygon: &Polygon,
+    sink: &mut S,
+    scratch: &mut Scratch,
+) -> Result<(), Refusal> {
+    fill_auto_in(polygon, sink, Some(scratch))
+}
+
+/// [`fill_auto_with`], with or without a caller's scratch.
+#[inline(always)]
+fn fill_auto_in<S: SpanSink + ?Sized>(
+    polygon: &Polygon,
+    sink: &mut S,
+    scratch: Option<&mut Scratch>,
+) -> Result<(), Refusal> {
     let size = sink.size();
     if size.width <= 0 || size.height <= 0 {
         return Ok(());
@@ -204,7 +321,7 @@ pub fn fill_auto<S: SpanSink + ?Sized>(polygon: &Polygon, sink: &mut S) -> Resul
             fill_monotone(contour, polygon.color, size, sink);
             Ok(())
         }
-        Route::ActiveEdges => fill_active_edges(polygon, size, sink),
+        Route::ActiveEdges => fill_active_edges(polygon, size, sink, scratch),
     }
 }
 
@@ -212,8 +329,8 @@ pub fn fill_auto<S: SpanSink + ?Sized>(polygon: &Polygon, sink: &mut S) -> Resul
 mod tests {
     use super::*;
     use crate::geometry::Point;
+    use crate::methods::interface::Method;
     use crate::methods::test_support::fill;
-    use crate::methods::Method;
     use crate::sink::Size;
 
     fn draw(polygon: &Polygon) -> alloc::string::String {

@@ -39,23 +39,32 @@ pub(crate) fn fill_triangle<S: SpanSink + ?Sized>([a, b, c]: [Point; 3], color: 
     if rows.is_empty() {
         return;
     }
+    let (min_x, max_x) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+    let short = ShortEdge::fits((min_x, max_x), (top.y, bottom.y));
     // Which side of the long edge the middle vertex is on: the sign of the
-    // cross product (exact in `i128`: 33-bit differences, 66-bit products).
-    // Right of it, the long edge is the left one on every row, as the
-    // triangle lies between the two crossings and a ceiling keeps their
-    // order; on it, nothing is enclosed.
-    let d = |p: Point, q: Point| (i128::from(q.x) - i128::from(p.x), i128::from(q.y) - i128::from(p.y));
-    let ((lx, ly), (mx, my)) = (d(top, bottom), d(top, middle));
-    let long_is_left = match (mx * ly).cmp(&(lx * my)) {
+    // cross product, exact in `i64` for a triangle of short edges (18-bit
+    // differences) and in `i128` for any (33-bit differences, 66-bit
+    // products). Right of it, the long edge is the left one on every row,
+    // as the triangle lies between the two crossings and a ceiling keeps
+    // their order; on it, nothing is enclosed.
+    let side = if short {
+        let d = |p: Point, q: Point| (i64::from(q.x) - i64::from(p.x), i64::from(q.y) - i64::from(p.y));
+        let ((lx, ly), (mx, my)) = (d(top, bottom), d(top, middle));
+        (mx * ly).cmp(&(lx * my))
+    } else {
+        let d = |p: Point, q: Point| (i128::from(q.x) - i128::from(p.x), i128::from(q.y) - i128::from(p.y));
+        let ((lx, ly), (mx, my)) = (d(top, bottom), d(top, middle));
+        (mx * ly).cmp(&(lx * my))
+    };
+    let long_is_left = match side {
         Ordering::Greater => true,
         Ordering::Less => false,
         Ordering::Equal => return,
     };
-    let (min_x, max_x) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
     let clip = !columns_fit(min_x, max_x, size.width);
     let middle_row = first_sample_at_or_after(middle.y.into()).clamp(rows.start, rows.end);
     let parts = (rows.start..middle_row, middle_row..rows.end);
-    if ShortEdge::fits((min_x, max_x), (top.y, bottom.y)) {
+    if short {
         triangle_rows::<ShortEdge, _>([top, middle, bottom], parts, long_is_left, clip, color, size.width, sink);
     } else {
         triangle_rows::<EdgeStepper, _>([top, middle, bottom], parts, long_is_left, clip, color, size.width, sink);
@@ -64,6 +73,8 @@ pub(crate) fn fill_triangle<S: SpanSink + ?Sized>([a, b, c]: [Point; 3], color: 
 
 /// The rows of the triangle `top middle bottom` (sorted by y) above the
 /// middle vertex's first row, then the rest, with edges walked as `E`.
+/// All three edges are set up before any row is walked, so that their
+/// divisions overlap.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn triangle_rows<E: Crossing, S: SpanSink + ?Sized>(
@@ -76,13 +87,14 @@ fn triangle_rows<E: Crossing, S: SpanSink + ?Sized>(
     sink: &mut S,
 ) {
     let mut long = E::at_row(top, bottom, upper_rows.start);
-    if !upper_rows.is_empty() {
-        let mut upper = E::at_row(top, middle, upper_rows.start);
+    // A part without rows may have a horizontal edge: no setup.
+    let upper = (!upper_rows.is_empty()).then(|| E::at_row(top, middle, upper_rows.start));
+    let lower = (!lower_rows.is_empty()).then(|| E::at_row(middle, bottom, lower_rows.start));
+    if let Some(mut upper) = upper {
         let (left, right) = if long_is_left { (&mut long, &mut upper) } else { (&mut upper, &mut long) };
         emit_ordered(upper_rows, left, right, clip, color, width, sink);
     }
-    if !lower_rows.is_empty() {
-        let mut lower = E::at_row(middle, bottom, lower_rows.start);
+    if let Some(mut lower) = lower {
         let (left, right) = if long_is_left { (&mut long, &mut lower) } else { (&mut lower, &mut long) };
         emit_ordered(lower_rows, left, right, clip, color, width, sink);
     }

@@ -25,11 +25,10 @@
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
 use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::Builtin;
-use crate::methods::MethodId;
+use crate::methods::interface::{Builtin, MethodId};
 use crate::sink::SpanSink;
 
-use super::{EdgePair, FlatHalves};
+use super::halves::{fill_polygon, EdgePair, FlatHalves};
 
 /// LaMothe's fixed-point `Draw_TriangleFP_2D`, with his quad split and fan.
 pub struct LamotheFixed;
@@ -59,7 +58,7 @@ impl Builtin for LamotheFixed {
     const INFO: &'static MethodInfo = &INFO;
 
     fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
-        super::fill_polygon(self, polygon, sink)
+        fill_polygon(self, polygon, sink)
     }
 }
 
@@ -137,7 +136,7 @@ impl EdgePair for FixedEdges {
 
 #[cfg(test)]
 mod tests {
-    use super::super::Lamothe;
+    use super::super::float::Lamothe;
     use super::*;
     use crate::methods::test_support::draw;
 

@@ -21,11 +21,10 @@
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
 use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::Builtin;
-use crate::methods::MethodId;
+use crate::methods::interface::{Builtin, MethodId};
 use crate::sink::SpanSink;
 
-use super::{EdgePair, FlatHalves};
+use super::halves::{fill_polygon, EdgePair, FlatHalves};
 
 /// LaMothe's float `Draw_Triangle_2D`, with his quad split and fan.
 pub struct Lamothe;
@@ -49,7 +48,7 @@ impl Builtin for Lamothe {
     const INFO: &'static MethodInfo = &INFO;
 
     fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
-        super::fill_polygon(self, polygon, sink)
+        fill_polygon(self, polygon, sink)
     }
 }
 
