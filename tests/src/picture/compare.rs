@@ -78,9 +78,10 @@ pub fn compare_image_rows(name: &str, expected: &Image, actual: &Image, rows: Ra
 
 /// Whether the images have the same size and are equal pixel for pixel
 /// (as [`compare_images`] compares them) in rows `rows`. Writes nothing:
-/// for polling a picture that is expected to change.
+/// for polling a picture that is expected to change, and stops at the
+/// first differing pixel (a poll tries many candidates that differ early).
 pub fn images_match_in_rows(expected: &Image, actual: &Image, rows: Range<u32>) -> bool {
-    same_size(expected, actual) && differing_pixels(expected, actual, rows).is_empty()
+    same_size(expected, actual) && pixels_in_rows(expected, rows).all(|i| same_pixel(expected, actual, i))
 }
 
 fn same_size(expected: &Image, actual: &Image) -> bool {
@@ -90,9 +91,15 @@ fn same_size(expected: &Image, actual: &Image) -> bool {
 /// Row-major indices of the pixels in rows `rows` (cut at the height) that
 /// differ between two images of the same size.
 fn differing_pixels(expected: &Image, actual: &Image, rows: Range<u32>) -> Vec<usize> {
-    let width = expected.width() as usize;
-    let rows = rows.start.min(expected.height()) as usize..rows.end.min(expected.height()) as usize;
-    (rows.start * width..rows.end.max(rows.start) * width).filter(|&i| !same_pixel(expected, actual, i)).collect()
+    pixels_in_rows(expected, rows).filter(|&i| !same_pixel(expected, actual, i)).collect()
+}
+
+/// Row-major indices of the pixels of `image` in rows `rows`, cut at its
+/// height.
+fn pixels_in_rows(image: &Image, rows: Range<u32>) -> Range<usize> {
+    let width = image.width() as usize;
+    let rows = rows.start.min(image.height()) as usize..rows.end.min(image.height()) as usize;
+    rows.start * width..rows.end.max(rows.start) * width
 }
 
 /// Succeeds when two DAC palettes (6-bit levels) are equal entry for

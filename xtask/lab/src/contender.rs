@@ -7,19 +7,9 @@ use raster::methods::exact::{fill_auto_with, Path, Scratch};
 use raster::reference::SampleOffset;
 use raster::{fill_auto, Framebuffer, Method, Polygon, SpanSink, SCREEN};
 
+use crate::convention::Own;
 use crate::corpus::Family;
 use crate::peers::Peer;
-
-/// How a contender decides which pixels are in: what the lab judges it
-/// against "under its own convention".
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Own {
-    /// At one sample point a pixel, in subpixels from its corner.
-    Sample(SampleOffset),
-    /// By the part of the pixel covered: in where it is above
-    /// `threshold / 255` ([`crate::area`]).
-    Coverage { threshold: u8 },
-}
 
 /// A method of `raster`, a peer library, or, only in "what modelling
 /// costs" (not one of [`Contender::all`]), one of `exact`'s paths asked

@@ -2,24 +2,8 @@
 //! computed from the other results once every family is measured, written
 //! to results.json with them and shown in report.md.
 
-use serde::Serialize;
-
-use crate::results::{Kind, Results};
-use crate::EXACT;
-
-/// One goal: what is measured, its value in this run, the bound it must
-/// keep and whether it does.
-#[derive(Clone, Debug, Serialize)]
-pub struct GoalRow {
-    pub measure: String,
-    /// The measured ratio or count; `None` where this run has no figure.
-    pub value: Option<f64>,
-    /// What it shows instead of a number, where it is not one (the peers
-    /// faster than `exact`).
-    pub note: Option<String>,
-    pub goal: String,
-    pub met: bool,
-}
+use crate::results::EXACT;
+use crate::results::{GoalRow, Kind, Results};
 
 /// A bound a measure must keep.
 #[derive(Clone, Copy)]

@@ -24,6 +24,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 pub mod area;
 pub mod charts;
 pub mod contender;
+pub mod convention;
 pub mod corpus;
 pub mod goals;
 pub mod heap;
@@ -38,15 +39,8 @@ pub mod timing;
 
 use contender::Contender;
 use corpus::Budget;
-use results::Results;
+use results::{Results, EXACT};
 use timing::Timing;
-
-/// The method held to zero wrong pixels, overdraw, gaps and failures.
-pub const EXACT: &str = "exact";
-
-/// Error rates (in %) below this count as none where rates are averaged in
-/// logarithms or drawn on a log axis.
-pub const ZERO_FLOOR: f64 = 1e-4;
 
 /// What `cargo xtask lab` asks for.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -20,7 +20,8 @@ use raster::reference::{self, SampleOffset};
 use raster::{CoverageReport, CoverageSink, Polygon, SCREEN};
 
 use crate::area;
-use crate::contender::{Contender, Own};
+use crate::contender::Contender;
+use crate::convention::Own;
 use crate::corpus::Family;
 use crate::spans::{self, Recorder, Span};
 use crate::stats::MeanVector;

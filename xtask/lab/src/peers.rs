@@ -41,7 +41,7 @@ use vello_cpu::kurbo::BezPath;
 use vello_cpu::peniko::Fill;
 use vello_cpu::{Pixmap, RasterizerSettings, RenderContext, Resources, TargetInit};
 
-use crate::contender::Own;
+use crate::convention::Own;
 
 /// A peer library.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -7,8 +7,8 @@ use std::fmt::Write;
 
 use crate::corpus::Group;
 use crate::results::{Kind, Results, Row};
+use crate::results::{EXACT, ZERO_FLOOR};
 use crate::stats::pareto_front;
-use crate::{EXACT, ZERO_FLOOR};
 
 /// The whole report.
 pub fn markdown(results: &Results) -> String {

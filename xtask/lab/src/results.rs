@@ -5,13 +5,20 @@
 
 use serde::Serialize;
 
-use crate::contender::{Contender, Own};
+use crate::contender::Contender;
+use crate::convention::Own;
 use crate::corpus::{Axis, Family, Group};
-use crate::goals::GoalRow;
 use crate::measure::{Judged, Tally};
 use crate::modelling::{PathRow, ShowRow};
 use crate::spans;
 use crate::timing::{Bound, Speeds};
+
+/// The method held to zero wrong pixels, overdraw, gaps and failures.
+pub const EXACT: &str = "exact";
+
+/// Error rates (in %) below this count as none where rates are averaged in
+/// logarithms or drawn on a log axis.
+pub const ZERO_FLOOR: f64 = 1e-4;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -19,6 +26,20 @@ pub enum Kind {
     Method,
     Peer,
     Bound,
+}
+
+/// One goal: what is measured, its value in this run, the bound it must
+/// keep and whether it does.
+#[derive(Clone, Debug, Serialize)]
+pub struct GoalRow {
+    pub measure: String,
+    /// The measured ratio or count; `None` where this run has no figure.
+    pub value: Option<f64>,
+    /// What it shows instead of a number, where it is not one (the peers
+    /// faster than `exact`).
+    pub note: Option<String>,
+    pub goal: String,
+    pub met: bool,
 }
 
 #[derive(Clone, Debug, Serialize)]

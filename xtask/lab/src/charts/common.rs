@@ -8,8 +8,8 @@ use plotters::style::FontTransform;
 
 use anyhow::Result;
 
+use crate::results::EXACT;
 use crate::results::{Kind, Results};
-use crate::EXACT;
 
 /// The charts' font: DejaVu Sans, embedded (`super::register_font`).
 pub(super) const FONT: &str = "sans-serif";

@@ -1,0 +1,17 @@
+//! How a contender decides which pixels are in, which is what the lab
+//! judges it against "under its own convention": the peers name theirs
+//! ([`crate::peers::Peer::own`]), measuring judges by it, and the results
+//! record it.
+
+use raster::reference::SampleOffset;
+
+/// How a contender decides which pixels are in: what the lab judges it
+/// against "under its own convention".
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Own {
+    /// At one sample point a pixel, in subpixels from its corner.
+    Sample(SampleOffset),
+    /// By the part of the pixel covered: in where it is above
+    /// `threshold / 255` ([`crate::area`]).
+    Coverage { threshold: u8 },
+}
