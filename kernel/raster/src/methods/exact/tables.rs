@@ -2,9 +2,9 @@
 //! them.
 //!
 //! A polygon of up to 256 edges (64 when its edges may be 512 px or
-//! longer) keeps them on the stack, in arrays sized to its class of 16,
-//! 64 or 256 edges, so that filling it takes nothing from the heap and
-//! clears no more than twice the room it needs. A larger polygon takes
+//! longer) keeps them on the stack, in arrays sized to its class of 8, 16,
+//! 32, 64, 128 or 256 edges, so that filling it takes nothing from the heap
+//! and clears no more than twice the room it needs. A larger polygon takes
 //! them from a [`Scratch`], which a caller may keep from fill to fill
 //! ([`fill_auto_with`](super::fill_auto_with)): it allocates only when a
 //! polygon needs more room than every one before it. Only such polygons
@@ -236,7 +236,9 @@ pub(super) fn with_tables<E: Stepper, R>(
     Ok(match edges {
         0..=8 => OnStack::<8, E>::run(fill),
         9..=16 => OnStack::<16, E>::run(fill),
-        17..=64 => OnStack::<64, E>::run(fill),
+        17..=32 => OnStack::<32, E>::run(fill),
+        33..=64 => OnStack::<64, E>::run(fill),
+        _ if edges <= most.min(128) => OnStack::<128, E>::run(fill),
         _ if edges <= most => OnStack::<256, E>::run(fill),
         _ => E::in_scratch(scratch.unwrap_or(&mut Scratch::new()), edges, width, fill)?,
     })
