@@ -2,9 +2,9 @@
 //! them.
 //!
 //! A polygon of up to 256 edges (64 when its edges may be 512 px or
-//! longer) keeps them on the stack, in arrays sized to its class of 16,
-//! 64 or 256 edges, so that filling it takes nothing from the heap and
-//! clears no more than twice the room it needs. A larger polygon takes
+//! longer) keeps them on the stack, in arrays sized to its class of 8, 16,
+//! 32, 64, 128 or 256 edges, so that filling it takes nothing from the heap
+//! and clears no more than twice the room it needs. A larger polygon takes
 //! them from a [`Scratch`], which a caller may keep from fill to fill
 //! ([`fill_auto_with`](super::fill_auto_with)): it allocates only when a
 //! polygon needs more room than every one before it. Only such polygons
@@ -224,7 +224,7 @@ fn close_chain<E>(tables: &mut Tables<'_, E>, chains: usize) {
 }
 
 /// Runs `fill` on tables for `edges` edges: on the stack when they fit
-/// ([`OnStack`]), else in `scratch` (a new one when there is none).
+/// ([`on_stack`]), else in `scratch` (a new one when there is none).
 pub(super) fn with_tables<E: Stepper, R>(
     edges: usize,
     width: i32,
@@ -234,49 +234,38 @@ pub(super) fn with_tables<E: Stepper, R>(
     // The wide stepper's tables are three times the size: fewer fit.
     let most = if size_of::<E>() <= size_of::<ShortEdge>() { 256 } else { 64 };
     Ok(match edges {
-        0..=8 => OnStack::<8, E>::run(fill),
-        9..=16 => OnStack::<16, E>::run(fill),
-        17..=64 => OnStack::<64, E>::run(fill),
-        _ if edges <= most => OnStack::<256, E>::run(fill),
+        0..=8 => on_stack::<8, E, _>(fill),
+        9..=16 => on_stack::<16, E, _>(fill),
+        17..=32 => on_stack::<32, E, _>(fill),
+        33..=64 => on_stack::<64, E, _>(fill),
+        _ if edges <= most.min(128) => on_stack::<128, E, _>(fill),
+        _ if edges <= most => on_stack::<256, E, _>(fill),
         _ => E::in_scratch(scratch.unwrap_or(&mut Scratch::new()), edges, width, fill)?,
     })
 }
 
-/// Tables for up to `N` edges, on the stack: one value, so that clearing
-/// it is one `memset`.
-struct OnStack<const N: usize, E> {
-    edges: [Edge<E>; N],
-    chains: [Chain; N],
-    starts: [u64; N],
-    active: [Active<E>; N],
-    /// One more place than edges in the last two.
-    runs: [[Run; N]; 2],
-    columns: [[i32; N]; 2],
-}
-
-impl<const N: usize, E: Crossing> OnStack<N, E> {
-    /// Runs `fill` on cleared tables. Never inlined, so that the caller's
-    /// frame holds only the class of tables it uses.
-    #[inline(never)]
-    fn run<R>(fill: impl FnOnce(Tables<'_, E>) -> R) -> R {
-        let mut tables = OnStack {
-            edges: [Edge::<E>::default(); N],
-            chains: [Chain::default(); N],
-            starts: [0; N],
-            active: [Active::<E>::default(); N],
-            runs: [[Run::default(); N]; 2],
-            columns: [[0; N]; 2],
-        };
-        fill(Tables {
-            edges: &mut tables.edges,
-            chains: &mut tables.chains,
-            starts: &mut tables.starts,
-            active: &mut tables.active,
-            columns: &mut tables.columns.as_flattened_mut()[..=N],
-            runs: &mut tables.runs.as_flattened_mut()[..=N],
-            wide: None,
-        })
-    }
+/// Runs `fill` on cleared tables for up to `N` edges, on the stack (one
+/// more place in the last two). Each is a local of its own, cleared in
+/// place: built as fields of one value, the tables of the larger classes
+/// were cleared, then copied into it. Never inlined, so that the caller's
+/// frame holds only the class of tables it uses.
+#[inline(never)]
+fn on_stack<const N: usize, E: Crossing, R>(fill: impl FnOnce(Tables<'_, E>) -> R) -> R {
+    let mut edges = [Edge::<E>::default(); N];
+    let mut chains = [Chain::default(); N];
+    let mut starts = [0; N];
+    let mut active = [Active::<E>::default(); N];
+    let mut runs = [[Run::default(); N]; 2];
+    let mut columns = [[0; N]; 2];
+    fill(Tables {
+        edges: &mut edges,
+        chains: &mut chains,
+        starts: &mut starts,
+        active: &mut active,
+        columns: &mut columns.as_flattened_mut()[..=N],
+        runs: &mut runs.as_flattened_mut()[..=N],
+        wide: None,
+    })
 }
 
 /// Room for `exact`'s general path, for polygons with too many edges for
