@@ -2,8 +2,7 @@
 //! computed from the other results once every family is measured, written
 //! to results.json with them and shown in report.md.
 
-use crate::results::EXACT;
-use crate::results::{GoalRow, Kind, Results};
+use crate::results::{GoalRow, Kind, Results, EXACT};
 
 /// A bound a measure must keep.
 #[derive(Clone, Copy)]

@@ -6,8 +6,7 @@
 use std::fmt::Write;
 
 use crate::corpus::Group;
-use crate::results::{Kind, Results, Row};
-use crate::results::{EXACT, ZERO_FLOOR};
+use crate::results::{Kind, Results, Row, EXACT, ZERO_FLOOR};
 use crate::stats::pareto_front;
 
 /// The whole report.

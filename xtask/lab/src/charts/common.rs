@@ -8,8 +8,7 @@ use plotters::style::FontTransform;
 
 use anyhow::Result;
 
-use crate::results::EXACT;
-use crate::results::{Kind, Results};
+use crate::results::{Kind, Results, EXACT};
 
 /// The charts' font: DejaVu Sans, embedded (`super::register_font`).
 pub(super) const FONT: &str = "sans-serif";

@@ -8,8 +8,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::common::{compact, contenders, draw_legend, log_range, marker, FONT};
-use crate::results::ZERO_FLOOR;
-use crate::results::{Kind, MeanPoint, Results};
+use crate::results::{Kind, MeanPoint, Results, ZERO_FLOOR};
 use crate::stats::pareto_front;
 
 type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;

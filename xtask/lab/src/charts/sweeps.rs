@@ -7,8 +7,7 @@ use plotters::prelude::*;
 
 use super::common::{compact, contenders, draw_legend, log_range, FONT};
 use crate::corpus::Axis;
-use crate::results::EXACT;
-use crate::results::{Kind, Results};
+use crate::results::{Kind, Results, EXACT};
 
 pub(super) fn rotation<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, results: &Results) -> Result<()>
 where
