@@ -185,10 +185,14 @@ fn space_enter_digits_and_escape_move_the_running_demo() -> Result<()> {
     Ok(())
 }
 
+/// How many different frames of an animation the harness must see to
+/// judge that it plays forward.
+const FRAMES_TO_SEE: usize = 4;
+
 /// How many times the timer test goes back to `lamothe-rotate` (Escape,
-/// then Space up to it) when a pass of it went by with fewer than four of
-/// its frames caught: on a loaded machine, with QEMUs side by side on two
-/// cores, one screendump and its matching can take seconds.
+/// then Space up to it) when a pass of it went by with fewer than
+/// [`FRAMES_TO_SEE`] of its frames caught (a host too busy to take the
+/// dumps while it played).
 const VISITS: usize = 4;
 
 /// With no key at all the timer turns the pages: the second page follows
@@ -223,14 +227,14 @@ fn with_no_key_the_timer_turns_the_pages_and_animations_play_by_themselves() -> 
         let shown = frames_seen(&mut qemu, &frames, Duration::from_secs(20), one_pass)?;
         let seen: Vec<usize> = shown.iter().map(|&(frame, _)| frame).collect();
         eprintln!("harness: lamothe-rotate, visit {visit} of {VISITS}: frames seen in turn: {seen:?}");
-        if shown.len() >= 4 {
+        if shown.len() >= FRAMES_TO_SEE {
             return moves_forward("lamothe-rotate", &shown, frames.len());
         }
     }
-    bail!("lamothe-rotate: fewer than four of its frames were seen in each of {VISITS} passes")
+    bail!("lamothe-rotate: fewer than {FRAMES_TO_SEE} of its frames were seen in each of {VISITS} passes")
 }
 
-/// Takes screendumps until four different frames of an animation
+/// Takes screendumps until [`FRAMES_TO_SEE`] different frames of an animation
 /// (`frames`, its host renders on QEMU's screen) have been seen: for at
 /// most `arrives_within` until the first of them shows (a loaded machine
 /// may take seconds to act on the keys that lead to it), then for at most
@@ -244,7 +248,7 @@ fn frames_seen(
 ) -> Result<Vec<(usize, Instant)>> {
     let mut shown: Vec<(usize, Instant)> = Vec::new();
     let started = Instant::now();
-    while shown.len() < 4 {
+    while shown.len() < FRAMES_TO_SEE {
         let watching = match shown.first() {
             None => started.elapsed() < arrives_within,
             Some(&(_, first)) => first.elapsed() < then_for,
@@ -264,7 +268,7 @@ fn frames_seen(
     Ok(shown)
 }
 
-/// Checks that at least four frames were `shown` and that each is ahead of
+/// Checks that at least [`FRAMES_TO_SEE`] frames were `shown` and that each is ahead of
 /// the one before, modulo the loop of `loop_len` frames (it may wrap
 /// between two dumps), by less than half the loop. Only dumps taken less
 /// than half a loop's playing time apart are held to that: on a loaded
@@ -272,7 +276,7 @@ fn frames_seen(
 /// later than that may honestly be more than half a loop ahead.
 fn moves_forward(name: &str, shown: &[(usize, Instant)], loop_len: usize) -> Result<()> {
     let seen: Vec<usize> = shown.iter().map(|&(frame, _)| frame).collect();
-    ensure!(shown.len() >= 4, "{name} showed only the frames {seen:?}");
+    ensure!(shown.len() >= FRAMES_TO_SEE, "{name} showed only the frames {seen:?}");
     let half_loop = Duration::from_millis(loop_len as u64 * 1000 / u64::from(FRAMES_PER_SECOND) / 2);
     let close: Vec<usize> = shown
         .windows(2)
