@@ -18,7 +18,9 @@
 //! per emulated instruction with `-icount shift=0`; the PIT follows the
 //! same clock, so the rate measured is the one the guest sees either way.
 
-use core::sync::atomic::{AtomicU64, Ordering};
+use core::sync::atomic::{AtomicU64, AtomicU8, Ordering};
+
+use protocol::{ClockSource, TscRate};
 
 use crate::pit::{self, Stopwatch};
 
@@ -35,11 +37,26 @@ const ASSUMED_HZ: u64 = 1_000_000_000;
 
 /// TSC cycles per second, once [`init`] has measured it.
 static CYCLES_PER_SECOND: AtomicU64 = AtomicU64::new(ASSUMED_HZ);
+/// Where that rate came from, as an index into `ClockSource::ALL`.
+static SOURCE: AtomicU8 = AtomicU8::new(ClockSource::Assumed as u8);
 
 /// Measures the TSC's rate. Takes about 10 ms with a PIT.
 pub fn init() {
-    let rate = rate_from_pit().or_else(rate_from_cpuid).unwrap_or(ASSUMED_HZ);
+    let (rate, source) = match rate_from_pit() {
+        Some(rate) => (rate, ClockSource::Pit),
+        None => match rate_from_cpuid() {
+            Some(rate) => (rate, ClockSource::Cpuid),
+            None => (ASSUMED_HZ, ClockSource::Assumed),
+        },
+    };
     CYCLES_PER_SECOND.store(rate, Ordering::Relaxed);
+    SOURCE.store(source as u8, Ordering::Relaxed);
+}
+
+/// The TSC's rate and how it was found, as `CLOCK` reports it.
+pub fn rate() -> TscRate {
+    let source = ClockSource::ALL[usize::from(SOURCE.load(Ordering::Relaxed))];
+    TscRate { hz: cycles_per_second(), source }
 }
 
 /// The time-stamp counter.

@@ -9,7 +9,7 @@ use alloc::string::{String, ToString};
 use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt::Write;
-use protocol::{Command, CommandError, Firmware, FrameKind, Pong, Ready, MAX_LINE};
+use protocol::{Command, CommandError, Firmware, FrameKind, PciId, Pong, Ready, MAX_LINE};
 use raster::MethodId;
 use scenes::show::{Stage, ENTRIES_IN_ORDER};
 use scenes::{builtin, file, Op, Scene};
@@ -17,7 +17,11 @@ use scenes::{builtin, file, Op, Scene};
 use crate::exit::exit_qemu;
 use crate::pci::DisplayController;
 use crate::video::Screen;
-use crate::{bench, demo, fault, heap, player, serial};
+use crate::{bench, clock, demo, fault, heap, player, serial};
+
+/// The firmware and the display controller `announce` named, for the
+/// `READY` command to name again.
+static BOOTED: spin::Once<(Firmware, Option<PciId>)> = spin::Once::new();
 
 /// Tells the host the kernel is up: on the VGA path a `LOG` frame per
 /// register or DAC entry that did not read back as written, then `READY`
@@ -28,9 +32,15 @@ pub fn announce(screen: &Screen, firmware: Firmware, display: Option<DisplayCont
     for mismatch in screen.mismatches() {
         serial::send_frame(FrameKind::Log, mismatch.to_string().as_bytes());
     }
-    let ready =
-        Ready { firmware, display: display.map(|display| display.id), video: screen.video(), losses: serial::losses() };
-    serial::send_frame(FrameKind::Ready, ready.to_string().as_bytes());
+    BOOTED.call_once(|| (firmware, display.map(|display| display.id)));
+    serial::send_frame(FrameKind::Ready, ready(screen).to_string().as_bytes());
+}
+
+/// What `READY` says now: the firmware and display `announce` found, the
+/// video path, and the line's losses so far.
+fn ready(screen: &Screen) -> Ready {
+    let (firmware, display) = BOOTED.get().copied().unwrap_or_default();
+    Ready { firmware, display, video: screen.video(), losses: serial::losses() }
 }
 
 /// Serves the host forever, starting with `first_byte` (the byte that
@@ -88,11 +98,19 @@ impl Console<'_> {
         }
     }
 
+    /// Runs one line and answers it; a sealed line's answer echoes its
+    /// sequence number, a damaged one is answered `ERR` without one and
+    /// runs nothing.
     fn execute(&mut self, line: &[u8]) {
-        let reply = Command::parse(line).map_err(|error| error.to_string()).and_then(|command| self.run(command));
+        let (seq, reply) = match protocol::unseal(line) {
+            Ok((seq, command)) => {
+                (seq, Command::parse(command).map_err(|error| error.to_string()).and_then(|command| self.run(command)))
+            }
+            Err(damaged) => (None, Err(damaged.to_string())),
+        };
         match reply {
-            Ok((kind, payload)) => serial::send_frame(kind, &payload),
-            Err(text) => serial::send_frame(FrameKind::Err, text.as_bytes()),
+            Ok((kind, payload)) => serial::send_reply(kind, seq, &payload),
+            Err(text) => serial::send_reply(FrameKind::Err, seq, text.as_bytes()),
         }
     }
 
@@ -141,6 +159,8 @@ impl Console<'_> {
                 ok(format_args!("demo from={from} stay={} method={method}", start.stay))
             }
             Command::VgaCheck => self.screen.check().and_then(ok),
+            Command::Ready => Ok((FrameKind::Ready, ready(self.screen).to_string().into_bytes())),
+            Command::Clock => ok(clock::rate()),
             Command::Exit(code) => exit_qemu(code),
             Command::Fault(kind) => fault::provoke(kind),
         }

@@ -154,9 +154,15 @@ pub fn losses() -> LineLosses {
 
 /// Sends one frame: header line, payload, `\n` (kernel/protocol/src/lib.rs).
 pub fn send_frame(kind: FrameKind, payload: &[u8]) {
+    send_reply(kind, None, payload);
+}
+
+/// Sends the frame answering a command line, its header echoing the
+/// line's sequence number if the line was sealed (`protocol::Sealed`).
+pub fn send_reply(kind: FrameKind, seq: Option<u32>, payload: &[u8]) {
     if PRESENT.load(Ordering::Acquire) {
         let _sending = SENDING.lock();
-        write_frame(kind, payload);
+        write_frame(FrameHeader::for_reply(kind, payload, seq), payload);
     }
 }
 
@@ -169,12 +175,11 @@ pub fn send_frame(kind: FrameKind, payload: &[u8]) {
 /// still says the run failed.
 pub fn send_fatal(payload: &[u8]) {
     if PRESENT.load(Ordering::Acquire) && !COM1.is_locked() {
-        write_frame(FrameKind::Fatal, payload);
+        write_frame(FrameHeader::for_payload(FrameKind::Fatal, payload), payload);
     }
 }
 
-fn write_frame(kind: FrameKind, payload: &[u8]) {
-    let header = FrameHeader::for_payload(kind, payload);
+fn write_frame(header: FrameHeader, payload: &[u8]) {
     let mut wire = Wire;
     if writeln!(wire, "{header}").is_ok() && send_bytes(payload).is_ok() {
         // A frame cut short is ended by nothing: the host's next header

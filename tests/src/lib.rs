@@ -18,6 +18,7 @@
 pub mod bochs;
 pub mod browser;
 pub mod checks;
+pub mod line;
 pub mod picture;
 pub mod prerequisites;
 pub mod qemu;

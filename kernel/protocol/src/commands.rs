@@ -68,6 +68,14 @@ pub enum Command<'a> {
     Exit(u8),
     /// `FAULT KIND`: test only; provokes a fault, which must be reported.
     Fault(FaultKind),
+    /// `READY`: answers a `READY` frame as at boot, its line losses as of
+    /// now: how a host that connects after the kernel booted learns what
+    /// machine it talks to.
+    Ready,
+    /// `CLOCK`: answers `OK` with the time-stamp counter's rate and how the
+    /// kernel measured it ([`TscRate`](crate::TscRate)), the unit of every
+    /// rdtsc figure it reports.
+    Clock,
 }
 
 /// Why a command line was rejected.
@@ -149,6 +157,8 @@ impl<'a> Command<'a> {
                 Command::Bench { scene, repeats }
             }
             "VGACHECK" => Command::VgaCheck,
+            "READY" => Command::Ready,
+            "CLOCK" => Command::Clock,
             "DEMO" => Command::Demo {
                 entry: words.next().filter(|&entry| entry != EVERY_ENTRY),
                 method: words.next().map(parse_method).transpose()?,
@@ -199,6 +209,8 @@ impl fmt::Display for Command<'_> {
             }
             Command::Exit(code) => write!(f, "EXIT {code}"),
             Command::Fault(kind) => write!(f, "FAULT {}", kind.name()),
+            Command::Ready => write!(f, "READY"),
+            Command::Clock => write!(f, "CLOCK"),
         }
     }
 }
@@ -230,6 +242,8 @@ mod tests {
             Command::VgaCheck,
             Command::Exit(16),
             Command::Fault(FaultKind::PageFault),
+            Command::Ready,
+            Command::Clock,
         ];
         for command in commands {
             let text = command.to_string();
@@ -245,6 +259,7 @@ mod tests {
         assert_eq!(Command::parse(b"CLEAR"), Err(CommandError::MissingArgument("colour")));
         assert_eq!(Command::parse(b"CLEAR 256"), Err(CommandError::BadArgument("256")));
         assert_eq!(Command::parse(b"DUMP now"), Err(CommandError::ExtraArgument("now")));
+        assert_eq!(Command::parse(b"CLOCK pit"), Err(CommandError::ExtraArgument("pit")));
         assert_eq!(Command::parse(b"POLY exact"), Err(CommandError::MissingArgument("polygon")));
         assert_eq!(Command::parse(b"FAULT nap"), Err(CommandError::BadArgument("nap")));
         assert_eq!(Command::parse(b"BENCH"), Err(CommandError::MissingArgument("scene")));

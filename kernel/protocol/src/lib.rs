@@ -8,16 +8,23 @@
 //! CRC32 of the payload in 8 lowercase hex digits), then LEN payload bytes,
 //! then `\n` ([`FrameHeader`], in `frames`); anything between frames is
 //! noise and the host skips it. The texts some frames carry ([`ShowReply`],
-//! [`Pong`], [`Ready`]) are in `replies`.
+//! [`Pong`], [`Ready`], [`TscRate`]) are in `replies`. A host on a line
+//! that can damage bytes seals its command lines (`#SEQ COMMAND CRC32`,
+//! [`Sealed`], in `sealed`): the kernel refuses a damaged one and echoes
+//! the sequence number in its reply's header.
 #![no_std]
 
 mod commands;
 mod frames;
 mod replies;
+mod sealed;
 
 pub use commands::{Command, CommandError, FaultKind};
 pub use frames::{FrameHeader, FrameKind};
-pub use replies::{Firmware, HeapState, LineLosses, PciId, Pong, Presentation, Ready, ShowReply, Video, PONG};
+pub use replies::{
+    ClockSource, Firmware, HeapState, LineLosses, PciId, Pong, Presentation, Ready, ShowReply, TscRate, Video, PONG,
+};
+pub use sealed::{unseal, Damaged, Sealed, SEAL_MARK};
 
 /// Longest command line the kernel accepts, terminator excluded.
 pub const MAX_LINE: usize = 4096;

@@ -161,6 +161,56 @@ impl Pong {
     }
 }
 
+/// How the kernel knows its time-stamp counter's rate (`kernel/src/clock.rs`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ClockSource {
+    /// Counted against the PIT for 10 ms at boot.
+    Pit,
+    /// Stated by the CPU (CPUID leaf 0x15 or 0x16).
+    Cpuid,
+    /// Nothing measured it: a rate taken on trust, so times in seconds are
+    /// not to be believed.
+    Assumed,
+}
+
+impl ClockSource {
+    pub const ALL: [ClockSource; 3] = [ClockSource::Pit, ClockSource::Cpuid, ClockSource::Assumed];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            ClockSource::Pit => "pit",
+            ClockSource::Cpuid => "cpuid",
+            ClockSource::Assumed => "assumed",
+        }
+    }
+}
+
+/// The `OK` text of `CLOCK`: `tsc_hz=N source=pit|cpuid|assumed`, the
+/// time-stamp counter's ticks per second and how the kernel knows it.
+/// rdtsc ticks over `hz` are seconds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TscRate {
+    pub hz: u64,
+    pub source: ClockSource,
+}
+
+impl fmt::Display for TscRate {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "tsc_hz={} source={}", self.hz, self.source.name())
+    }
+}
+
+impl TscRate {
+    /// Parses the text written by `Display`.
+    pub fn parse(text: &str) -> Option<Self> {
+        let mut fields = Fields::new(text);
+        let hz = fields.parsed("tsc_hz")?;
+        let source = fields.text("source")?;
+        let source = ClockSource::ALL.into_iter().find(|s| s.name() == source)?;
+        fields.end().then_some(Self { hz, source })
+    }
+}
+
 /// A PCI function's vendor and device IDs, written `vvvv:dddd` in hex as
 /// `lspci -n` does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -325,6 +375,24 @@ mod tests {
         assert_eq!(ShowReply::parse(&text.replace("cycles=12345", "cycles=x")), None);
         assert_eq!(ShowReply::parse(&std::format!("{text} extra=1")), None);
         assert_eq!(ShowReply::parse(&text.replace("method=wgt", "method=wgt2")), None);
+    }
+
+    #[test]
+    fn tsc_rates_round_trip_and_reject_garbage() {
+        for source in ClockSource::ALL {
+            let rate = TscRate { hz: 2_893_421_000, source };
+            assert_eq!(TscRate::parse(&rate.to_string()), Some(rate));
+        }
+        assert_eq!(TscRate { hz: 7, source: ClockSource::Pit }.to_string(), "tsc_hz=7 source=pit");
+        for garbage in [
+            "tsc_hz=7",
+            "tsc_hz=x source=pit",
+            "tsc_hz=7 source=hpet",
+            "source=pit tsc_hz=7",
+            "tsc_hz=7 source=pit x=1",
+        ] {
+            assert_eq!(TscRate::parse(garbage), None, "{garbage}");
+        }
     }
 
     #[test]

@@ -4,12 +4,15 @@ use std::io::Write;
 use std::time::Duration;
 
 use anyhow::{bail, ensure, Context, Result};
-use protocol::{Command, FrameKind, LineLosses, Pong, Ready, ShowReply, BENCH_UNIT_LINE, DUMP_LEN, FRAMEBUFFER_LEN};
+use protocol::{
+    Command, FrameKind, LineLosses, Pong, Ready, ShowReply, TscRate, BENCH_UNIT_LINE, DUMP_LEN, FRAMEBUFFER_LEN,
+};
 use raster::{MethodId, Refusal, SCREEN};
 use scenes::palette::ENTRIES;
 use scenes::show;
 
 use super::serial::{Frame, FrameReader};
+use crate::line::Sealing;
 use crate::picture::render::SceneFile;
 use crate::picture::Image;
 
@@ -34,7 +37,7 @@ pub enum Reply {
 }
 
 impl Reply {
-    fn decode(frame: Frame) -> Result<Self> {
+    pub(crate) fn decode(frame: Frame) -> Result<Self> {
         Ok(match frame.kind {
             FrameKind::Ready => Reply::Ready(frame.text()),
             FrameKind::Ok => Reply::Ok(frame.text()),
@@ -48,7 +51,7 @@ impl Reply {
     }
 
     /// One line for error messages; never the bytes of a dump.
-    fn describe(&self) -> String {
+    pub(crate) fn describe(&self) -> String {
         match self {
             Reply::Ready(text) => format!("READY \"{text}\""),
             Reply::Ok(text) => format!("OK \"{text}\""),
@@ -169,15 +172,26 @@ impl Dump {
 
 /// A protocol session over a serial line.
 pub struct Console {
-    frames: FrameReader,
+    pub(crate) frames: FrameReader,
     input: Box<dyn Write + Send>,
-    logs: Vec<String>,
+    pub(crate) logs: Vec<String>,
+    /// How commands go out on a line that can damage bytes (sealed, each
+    /// reply matched to its line, steps retried); `None`: plain lines, as
+    /// over QEMU's stdio, which loses nothing.
+    pub(crate) sealing: Option<Sealing>,
 }
 
 impl Console {
-    /// A console that sends to `input` and reads frames from `frames`.
+    /// A console that sends plain lines to `input` and reads frames from
+    /// `frames`.
     pub fn new(input: impl Write + Send + 'static, frames: FrameReader) -> Self {
-        Self { frames, input: Box::new(input), logs: Vec::new() }
+        Self { frames, input: Box::new(input), logs: Vec::new(), sealing: None }
+    }
+
+    /// A console that seals every command (`crate::line`) and retries a
+    /// step the line damaged up to `retries` times.
+    pub fn sealed(input: impl Write + Send + 'static, frames: FrameReader, retries: u32) -> Self {
+        Self { sealing: Some(Sealing::new(retries)), ..Self::new(input, frames) }
     }
 
     /// Waits for the READY frame and returns what it says (display
@@ -224,8 +238,12 @@ impl Console {
         }
     }
 
-    /// Sends `command` and returns its reply, whatever it is.
+    /// Sends `command` and returns its reply, whatever it is (sealed, if
+    /// the console seals its commands).
     pub fn request(&mut self, command: &Command) -> Result<Reply> {
+        if self.sealing.is_some() {
+            return self.request_sealed(command);
+        }
         self.send(command)?;
         self.reply().with_context(|| format!("waiting for the reply to `{command}`"))
     }
@@ -310,6 +328,20 @@ impl Console {
             Reply::List(listing) => Ok(listing),
             other => bail!("`LIST` answered {}", other.describe()),
         }
+    }
+
+    /// Sends `READY` and returns the kernel's `READY` text as of now.
+    pub fn ready_now(&mut self) -> Result<String> {
+        match self.request(&Command::Ready)? {
+            Reply::Ready(text) => Ok(text),
+            other => bail!("`READY` answered {}", other.describe()),
+        }
+    }
+
+    /// Sends `CLOCK` and returns the kernel's time-stamp counter rate.
+    pub fn tsc_rate(&mut self) -> Result<TscRate> {
+        let text = self.ok(&Command::Clock)?;
+        TscRate::parse(&text).with_context(|| format!("`CLOCK` answered OK \"{text}\", not a TSC rate"))
     }
 }
 

@@ -10,7 +10,7 @@ use std::io::Read;
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use protocol::{FrameHeader, FrameKind, DUMP_LEN, FRAME_MARK};
 
 /// Longest header line, `@FATAL 18446744073709551615 xxxxxxxx` with room
@@ -21,11 +21,45 @@ const MAX_PAYLOAD: usize = DUMP_LEN;
 /// How many of the last received bytes an error shows.
 const TAIL_LEN: usize = 160;
 
+/// Why no frame came: what a host on a line that can damage bytes
+/// retries for ([`ReadError::kind`]), or the end of the stream, which it
+/// does not.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReadErrorKind {
+    /// The stream ended: the other side closed it.
+    Closed,
+    /// No complete frame before the deadline.
+    Silent,
+    /// A frame stopped half way and stayed stopped.
+    Stalled,
+    /// A frame failed its CRC, announced an impossible length, or was not
+    /// ended by its newline.
+    Damaged,
+}
+
+/// A failure to read a frame: its kind and a message that ends with the
+/// last bytes received.
+#[derive(Debug)]
+pub struct ReadError {
+    pub kind: ReadErrorKind,
+    message: String,
+}
+
+impl std::fmt::Display for ReadError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for ReadError {}
+
 /// One checked frame.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Frame {
     pub kind: FrameKind,
     pub payload: Vec<u8>,
+    /// The sequence number of the sealed command it answers, if any.
+    pub seq: Option<u32>,
 }
 
 impl Frame {
@@ -36,7 +70,8 @@ impl Frame {
 }
 
 /// Starts a thread that forwards everything `source` yields into the
-/// returned channel; the channel closes when `source` ends.
+/// returned channel; the channel closes when `source` ends (a read of 0
+/// bytes or an error).
 pub fn forward_bytes(mut source: impl Read + Send + 'static) -> Receiver<Vec<u8>> {
     let (sender, receiver) = mpsc::channel();
     std::thread::spawn(move || {
@@ -58,43 +93,126 @@ pub struct FrameReader {
     /// The last [`TAIL_LEN`] bytes received, for error messages.
     tail: VecDeque<u8>,
     closed: bool,
+    /// Bytes received so far, noise included.
+    received: u64,
+    /// When the last byte arrived.
+    last_byte: Instant,
 }
 
 impl FrameReader {
     pub fn new(source: Receiver<Vec<u8>>) -> Self {
-        Self { source, pending: Vec::new(), tail: VecDeque::with_capacity(TAIL_LEN), closed: false }
+        Self {
+            source,
+            pending: Vec::new(),
+            tail: VecDeque::with_capacity(TAIL_LEN),
+            closed: false,
+            received: 0,
+            last_byte: Instant::now(),
+        }
     }
 
     /// The next frame, skipping noise. Fails on a frame whose CRC or length
     /// does not check, when the stream closes, and after `timeout`; every
     /// error shows the last bytes received.
     pub fn next_frame(&mut self, timeout: Duration) -> Result<Frame> {
-        let deadline = Instant::now() + timeout;
+        self.next_frame_until(Instant::now() + timeout, None)
+    }
+
+    /// [`FrameReader::next_frame`] with a `deadline`, and if `stall` is
+    /// given a bound on the silence inside a frame: once a frame has begun,
+    /// no byte for `stall` means the rest of it is lost (the kernel sends a
+    /// frame's bytes one after the other; a dropped byte leaves its header
+    /// waiting for one more than will ever come).
+    pub fn next_frame_until(&mut self, deadline: Instant, stall: Option<Duration>) -> Result<Frame> {
+        let started = Instant::now();
         loop {
             if let Some(frame) = self.take_frame()? {
                 return Ok(frame);
             }
             if self.closed {
-                bail!("the serial stream ended (QEMU exited?) before a complete frame; {}", self.last_bytes());
+                return Err(
+                    self.error(ReadErrorKind::Closed, "the serial stream ended (QEMU exited?) before a complete frame")
+                );
             }
-            let remaining = deadline.saturating_duration_since(Instant::now());
-            match self.source.recv_timeout(remaining) {
+            let now = Instant::now();
+            // After `take_frame`, bytes left pending are a frame begun.
+            let stalls_at = stall.filter(|_| !self.pending.is_empty()).map(|stall| (stall, self.last_byte + stall));
+            if let Some((stall, _)) = stalls_at.filter(|&(_, at)| at <= now) {
+                let what = format!(
+                    "a frame stopped half way: no byte for {:.1} s after {} bytes of it",
+                    stall.as_secs_f64(),
+                    self.pending.len()
+                );
+                return Err(self.error(ReadErrorKind::Stalled, &what));
+            }
+            if deadline <= now {
+                let what = format!("no complete frame within {:.1} s", (now - started).as_secs_f64());
+                return Err(self.error(ReadErrorKind::Silent, &what));
+            }
+            let wake = stalls_at.map_or(deadline, |(_, at)| at.min(deadline));
+            match self.source.recv_timeout(wake - now) {
                 Ok(chunk) => self.receive(&chunk),
-                Err(RecvTimeoutError::Timeout) => {
-                    bail!("no complete frame within {:.1} s; {}", timeout.as_secs_f64(), self.last_bytes())
-                }
+                Err(RecvTimeoutError::Timeout) => {}
                 Err(RecvTimeoutError::Disconnected) => self.closed = true,
             }
         }
     }
 
+    /// Throws away what is pending and whatever arrives until the line has
+    /// been quiet for `quiet` (at most `limit` in all): the rest of a
+    /// damaged or stale reply, before a command is sent again.
+    pub fn discard_until_quiet(&mut self, quiet: Duration, limit: Duration) {
+        let give_up = Instant::now() + limit;
+        self.pending.clear();
+        loop {
+            let wait = quiet.min(give_up.saturating_duration_since(Instant::now()));
+            match self.source.recv_timeout(wait) {
+                Ok(chunk) if !chunk.is_empty() => self.note_received(&chunk),
+                Ok(_) => {}
+                Err(RecvTimeoutError::Timeout) => return,
+                Err(RecvTimeoutError::Disconnected) => {
+                    self.closed = true;
+                    return;
+                }
+            }
+            if Instant::now() >= give_up {
+                return;
+            }
+        }
+    }
+
+    /// Whether the stream has ended (the other side closed it).
+    pub fn closed(&self) -> bool {
+        self.closed
+    }
+
+    /// Bytes received so far, frames and noise.
+    pub fn received(&self) -> u64 {
+        self.received
+    }
+
     fn receive(&mut self, chunk: &[u8]) {
+        if chunk.is_empty() {
+            return;
+        }
+        self.note_received(chunk);
         self.pending.extend_from_slice(chunk);
+    }
+
+    /// Counts `chunk` and keeps its end for error messages.
+    fn note_received(&mut self, chunk: &[u8]) {
+        self.received += chunk.len() as u64;
+        self.last_byte = Instant::now();
         let keep = chunk.len().min(TAIL_LEN);
         if self.tail.len() + keep > TAIL_LEN {
             self.tail.drain(..self.tail.len() + keep - TAIL_LEN);
         }
         self.tail.extend(&chunk[chunk.len() - keep..]);
+    }
+
+    /// A [`ReadError`] of `kind` saying `what`, with the last bytes received.
+    fn error(&self, kind: ReadErrorKind, what: &str) -> anyhow::Error {
+        ReadError { kind, message: format!("{what}; {}", self.last_bytes()) }.into()
     }
 
     fn last_bytes(&self) -> String {
@@ -125,10 +243,8 @@ impl FrameReader {
             };
             if header.len > MAX_PAYLOAD {
                 self.pending.drain(..=line_len);
-                bail!(
-                    "garbage frame header `{header}`: no frame carries more than {MAX_PAYLOAD} bytes; {}",
-                    self.last_bytes()
-                );
+                let what = format!("garbage frame header `{header}`: no frame carries more than {MAX_PAYLOAD} bytes");
+                return Err(self.error(ReadErrorKind::Damaged, &what));
             }
             let payload_start = line_len + 1;
             let frame_end = payload_start + header.len + 1;
@@ -138,24 +254,20 @@ impl FrameReader {
             let frame: Vec<u8> = self.pending.drain(..frame_end).collect();
             let payload = &frame[payload_start..frame_end - 1];
             if !header.matches(payload) {
-                bail!(
-                    "{} frame of {} bytes fails its CRC32 check (header says {:08x}, payload hashes to {:08x}); {}",
+                let what = format!(
+                    "{} frame of {} bytes fails its CRC32 check (header says {:08x}, payload hashes to {:08x})",
                     header.kind.name(),
                     header.len,
                     header.crc,
-                    crc32fast::hash(payload),
-                    self.last_bytes()
+                    FrameHeader::for_reply(header.kind, payload, header.seq).crc
                 );
+                return Err(self.error(ReadErrorKind::Damaged, &what));
             }
             if frame[frame_end - 1] != b'\n' {
-                bail!(
-                    "{} frame of {} bytes is not followed by a newline; {}",
-                    header.kind.name(),
-                    header.len,
-                    self.last_bytes()
-                );
+                let what = format!("{} frame of {} bytes is not followed by a newline", header.kind.name(), header.len);
+                return Err(self.error(ReadErrorKind::Damaged, &what));
             }
-            return Ok(Some(Frame { kind: header.kind, payload: payload.to_vec() }));
+            return Ok(Some(Frame { kind: header.kind, payload: payload.to_vec(), seq: header.seq }));
         }
     }
 }
@@ -185,7 +297,7 @@ mod tests {
     }
 
     fn frame(kind: FrameKind, payload: &[u8]) -> Frame {
-        Frame { kind, payload: payload.to_vec() }
+        Frame { kind, payload: payload.to_vec(), seq: None }
     }
 
     #[test]
