@@ -17,6 +17,7 @@
 
 pub mod bochs;
 pub mod browser;
+pub mod serial_check;
 pub mod checks;
 pub mod line;
 pub mod picture;
@@ -31,4 +32,4 @@ pub use boot_image::{build_image, cargo, process};
 pub use picture::compare::compare_images;
 pub use picture::{render, Image};
 pub use qemu::console::{BenchRow, Console, Dump, Listing, Reply};
-pub use qemu::{Adapter, Clock, Display, Medium, Qemu, QemuOptions};
+pub use qemu::{Adapter, Clock, Display, Medium, Qemu, QemuOptions, SerialLine};

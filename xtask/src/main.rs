@@ -2,6 +2,7 @@
 //! Building, booting and talking to the kernel live in the `harness`
 //! library, shared with the tests.
 
+mod check;
 mod dump;
 mod fuzz;
 mod kbench;
@@ -35,6 +36,7 @@ fn main() -> Result<()> {
         Action::Lab(opt) => lab::lab(&opt),
         Action::Lint => lint::lint(),
         Action::Kbench(opt) => kbench::kbench(&opt),
+        Action::Check(opt) => check::check(&opt),
         Action::Explore(opt) => explorer_site::explore(opt.out.as_deref(), opt.results.as_deref()),
         Action::Fuzz(opt) => fuzz::fuzz(&opt),
         Action::Soak(opt) => soak::soak(&opt),

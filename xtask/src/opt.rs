@@ -49,8 +49,16 @@ pub enum Action {
     /// Boots the kernel with instruction counting, times every method on
     /// every demo scene with `BENCH` (rdtsc ticks, one per emulated
     /// instruction, apart from the host lab) and writes kernel_bench.md and
-    /// kernel_bench.json under --out.
+    /// kernel_bench.json under --out. With --serial DEVICE, on the machine
+    /// at the other end of that serial line instead: TSC ticks and
+    /// microseconds.
     Kbench(KbenchOpt),
+    /// Runs the harness's checks on a PC booted from the stick, over the
+    /// serial cable on DEVICE: every demo page with every method and the
+    /// first frame of every show entry against the host render, VGACHECK,
+    /// BENCH in the PC's TSC ticks; retries what the line damages; writes
+    /// report.md and report.json under --out; fails if any picture differs.
+    Check(CheckOpt),
     /// Builds the explorer page (the raster code for wasm32, a hand-written
     /// page), serves it on 127.0.0.1 and prints its address; with --out,
     /// writes it to DIR and stops.
@@ -181,6 +189,45 @@ pub struct KbenchOpt {
     /// Where kernel_bench.md and kernel_bench.json go.
     #[arg(long, default_value = "target/lab")]
     pub out: PathBuf,
+    /// Bench the kernel on the PC whose COM1 is cabled to this tty
+    /// (e.g. /dev/ttyUSB0) rather than under QEMU.
+    #[arg(long, value_name = "DEVICE")]
+    pub serial: Option<PathBuf>,
+    /// With --serial: how many times a step the line damages is retried.
+    #[arg(long, default_value_t = DEFAULT_RETRIES)]
+    pub retries: u32,
+}
+
+/// Retries of one step the serial line damaged, by default.
+const DEFAULT_RETRIES: u32 = 8;
+
+#[derive(Args, Debug)]
+pub struct CheckOpt {
+    /// The tty the PC's COM1 is cabled to (/dev/ttyUSB0, /dev/ttyS0, a
+    /// pseudo-terminal).
+    #[arg(long, value_name = "DEVICE")]
+    pub serial: PathBuf,
+    /// Where report.md and report.json go.
+    #[arg(long, value_name = "DIR", default_value = "target/check")]
+    pub out: PathBuf,
+    /// How many times a step the line damages is retried (0: the first
+    /// damage fails the check).
+    #[arg(long, default_value_t = DEFAULT_RETRIES)]
+    pub retries: u32,
+    /// A quick look instead of the whole check: two pages with two
+    /// methods, one animation, one bench scene.
+    #[arg(long)]
+    pub quick: bool,
+    /// BENCH draws per method and scene; the median is reported.
+    #[arg(
+        long,
+        default_value_t = BENCH_DEFAULT_REPEATS,
+        value_parser = clap::value_parser!(u8).range(1..=i64::from(BENCH_MAX_REPEATS)),
+    )]
+    pub repeats: u8,
+    /// Seconds to wait for the kernel to answer at all (a PC still booting).
+    #[arg(long, value_name = "SECONDS", default_value_t = 120)]
+    pub wait: u64,
 }
 
 #[derive(Args, Debug)]

@@ -11,4 +11,5 @@ mod tty;
 
 pub use relay::{FaultCounts, FaultRates, Relay};
 pub use sealed::{LineStats, Sealing, Trouble, TroubleKind};
+pub use sealed::transfer_time;
 pub use tty::{open_console, BAUD};

@@ -34,6 +34,8 @@ const STALL: Duration = Duration::from_secs(3);
 /// rest of a damaged reply, or the `ERR` for the second half of a line
 /// split by a damaged byte, arrives within it.
 const SETTLE: Duration = Duration::from_millis(300);
+/// How often the host asks `READY` while it waits for the kernel.
+const ASK_EVERY: Duration = Duration::from_secs(3);
 /// Bits per byte on the line: 8N1 is a start bit, 8 data bits, a stop bit.
 const BITS_PER_BYTE: u64 = 10;
 
@@ -169,6 +171,11 @@ impl Console {
         self.sealing.as_ref().map(|sealing| &sealing.stats)
     }
 
+    /// Most retries of one step (0 for a console that does not seal).
+    pub fn retries_allowed(&self) -> u32 {
+        self.sealing.as_ref().map_or(0, |sealing| sealing.retries)
+    }
+
     /// Bytes received so far, frames and noise.
     pub fn bytes_received(&self) -> u64 {
         self.frames.received()
@@ -179,6 +186,11 @@ impl Console {
     /// instead is a [`Trouble`] (counted); the stream's end, a `FATAL` or
     /// the kernel booting again are errors of their own.
     pub(crate) fn request_sealed(&mut self, command: &Command) -> Result<Reply> {
+        self.request_sealed_within(command, reply_timeout(command, crate::line::BAUD))
+    }
+
+    /// [`Console::request_sealed`] with a reply deadline of `timeout`.
+    fn request_sealed_within(&mut self, command: &Command, timeout: Duration) -> Result<Reply> {
         let sealing = self.sealing.as_mut().expect("called for a sealing console");
         let seq = sealing.next_seq;
         sealing.next_seq = seq.wrapping_add(1);
@@ -186,7 +198,7 @@ impl Console {
         sealing.stats.commands += 1;
         sealing.stats.bytes_sent += line.len() as u64;
         self.send_bytes(line.as_bytes()).with_context(|| format!("failed to send `{command}`"))?;
-        let deadline = Instant::now() + reply_timeout(command, crate::line::BAUD);
+        let deadline = Instant::now() + timeout;
         loop {
             let frame = match self.frames.next_frame_until(deadline, Some(STALL)) {
                 Ok(frame) => frame,
@@ -262,8 +274,8 @@ impl Console {
         }
     }
 
-    /// Finds the kernel: sends `READY` every few seconds until it answers
-    /// (or sends its `READY` at boot), within `bound`. Returns the `READY`
+    /// Finds the kernel: sends `READY` every [`ASK_EVERY`] until it
+    /// answers (or sends its `READY` at boot), within `bound`. Returns the `READY`
     /// text and whether it came at boot. A `LOG` frame on the way is kept.
     /// Fails with what to check when nothing answers.
     pub fn wait_for_kernel(&mut self, bound: Duration, device: &str) -> Result<(String, bool)> {
@@ -277,8 +289,8 @@ impl Console {
             }
             console.frames.discard_until_quiet(SETTLE, STALL);
         };
-        while Instant::now() < give_up {
-            match self.request(&Command::Ready) {
+        while let Some(left) = give_up.checked_duration_since(Instant::now()).filter(|left| !left.is_zero()) {
+            match self.request_sealed_within(&Command::Ready, left.min(ASK_EVERY)) {
                 Ok(Reply::Ready(text)) => {
                     forget_troubles(self);
                     return Ok((text, false));
@@ -427,6 +439,31 @@ mod tests {
         assert_eq!(error.to_string(), "the kernel failed: FATAL \"panic\"");
         assert_eq!(kernel.lines.lock().unwrap().len(), 2);
         assert_eq!(console.line_stats().unwrap().retries, 0);
+    }
+
+    #[test]
+    fn a_silent_line_is_an_error_saying_what_to_check() {
+        let (sender, receiver) = mpsc::channel::<Vec<u8>>();
+        let mut console = Console::sealed(std::io::sink(), FrameReader::new(receiver), 3);
+        let error = console.wait_for_kernel(Duration::from_millis(300), "/dev/ttyS0").unwrap_err().to_string();
+        assert!(
+            error.starts_with("no answer from the kernel on /dev/ttyS0 within 0 s: nothing at all arrived."),
+            "{error}"
+        );
+        assert!(error.contains("null-modem cable on its COM1"), "{error}");
+        sender.send(b"\xff\xfe garbage at the wrong baud rate".to_vec()).unwrap();
+        let error = console.wait_for_kernel(Duration::from_millis(300), "/dev/ttyS0").unwrap_err().to_string();
+        assert!(error.contains("33 bytes arrived, none of them a frame (a wrong baud rate"), "{error}");
+    }
+
+    #[test]
+    fn the_ready_of_boot_or_the_answer_to_ready_finds_the_kernel() {
+        let ready = b"firmware=bios display=none video=none overruns=0 dropped=0";
+        let (mut asked, _) = console(0, |seq, _| frame(FrameKind::Ready, ready, Some(seq)));
+        let found = asked.wait_for_kernel(Duration::from_secs(5), "/dev/ttyS0").unwrap();
+        assert_eq!(found, (String::from_utf8(ready.to_vec()).unwrap(), false));
+        let (mut booted, _) = console(0, |_, _| frame(FrameKind::Ready, ready, None));
+        assert!(booted.wait_for_kernel(Duration::from_secs(5), "/dev/ttyS0").unwrap().1, "READY at boot");
     }
 
     #[test]

@@ -84,6 +84,20 @@ pub fn images_match_in_rows(expected: &Image, actual: &Image, rows: Range<u32>) 
     same_size(expected, actual) && pixels_in_rows(expected, rows).all(|i| same_pixel(expected, actual, i))
 }
 
+/// How many pixels differ (as [`compare_images`] compares them): every
+/// pixel of `expected` if the sizes differ. Writes nothing.
+pub fn differing_pixel_count(expected: &Image, actual: &Image) -> usize {
+    if !same_size(expected, actual) {
+        return expected.pixel_count();
+    }
+    differing_pixels(expected, actual, 0..expected.height()).len()
+}
+
+/// How many DAC entries differ between two palettes (6-bit levels).
+pub fn differing_palette_entries(expected: &[[u8; 3]; ENTRIES], actual: &[[u8; 3]; ENTRIES]) -> usize {
+    expected.iter().zip(actual).filter(|(expected, actual)| expected != actual).count()
+}
+
 fn same_size(expected: &Image, actual: &Image) -> bool {
     (expected.width(), expected.height()) == (actual.width(), actual.height())
 }
@@ -106,11 +120,10 @@ fn pixels_in_rows(image: &Image, rows: Range<u32>) -> Range<usize> {
 /// entry; otherwise fails counting the differing entries and naming the
 /// first. A palette has no picture to write: its values are the message.
 pub fn compare_palettes(name: &str, expected: &[[u8; 3]; ENTRIES], actual: &[[u8; 3]; ENTRIES]) -> Result<()> {
-    let differing: Vec<usize> = (0..ENTRIES).filter(|&i| expected[i] != actual[i]).collect();
-    if let Some(&first) = differing.first() {
+    if let Some(first) = (0..ENTRIES).find(|&i| expected[i] != actual[i]) {
         bail!(
             "{name}: {} of {ENTRIES} DAC entries differ; entry {first} reads {:?}, expected {:?}",
-            differing.len(),
+            differing_palette_entries(expected, actual),
             actual[first],
             expected[first]
         );
@@ -161,6 +174,13 @@ mod tests {
             assert!(error.contains(&path.display().to_string()), "{error}");
             std::fs::remove_file(path).unwrap();
         }
+    }
+
+    #[test]
+    fn differing_pixels_are_counted_and_a_size_mismatch_counts_them_all() {
+        assert_eq!(differing_pixel_count(&grey(&[1, 2, 3]), &grey(&[1, 2, 3])), 0);
+        assert_eq!(differing_pixel_count(&grey(&[1, 2, 3]), &grey(&[1, 0, 0])), 2);
+        assert_eq!(differing_pixel_count(&grey(&[1, 2, 3]), &grey(&[1, 2])), 3);
     }
 
     #[test]

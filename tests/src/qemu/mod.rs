@@ -172,6 +172,18 @@ pub enum Clock {
     InstructionCount,
 }
 
+/// Where COM1 goes on the host.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SerialLine {
+    /// QEMU's standard input and output, pipes to the harness: [`Qemu::console`].
+    #[default]
+    Stdio,
+    /// A pseudo-terminal QEMU makes ([`Qemu::pty`]): a tty device that a
+    /// program opens as it would a real serial port. [`Qemu::console`]
+    /// then hears nothing.
+    Pty,
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct QemuOptions {
     pub firmware: Firmware,
@@ -179,6 +191,7 @@ pub struct QemuOptions {
     pub display: Display,
     pub adapter: Adapter,
     pub clock: Clock,
+    pub serial: SerialLine,
 }
 
 /// Where a run keeps its QMP socket and, under UEFI, its copy of the
@@ -236,8 +249,12 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
     }
     // No human monitor: QMP is the control channel and stdio is COM1.
     flag(&mut args, "-monitor", "none");
-    // COM1 on QEMU's stdin and stdout, both pipes to us: the protocol line.
-    flag(&mut args, "-serial", "stdio");
+    match options.serial {
+        // COM1 on QEMU's stdin and stdout, both pipes to us: the protocol line.
+        SerialLine::Stdio => flag(&mut args, "-serial", "stdio"),
+        // COM1 on a pseudo-terminal, found through QMP (`Qemu::pty`).
+        SerialLine::Pty => flag(&mut args, "-serial", "pty"),
+    }
     // Screendump and quit; `wait=off` lets the guest run with no client yet.
     flag(&mut args, "-qmp", with_path("unix:", &qmp_socket(run_dir), ",server=on,wait=off"));
     // `EXIT n` and fault reports leave QEMU with exit status (n << 1) | 1.
@@ -351,6 +368,13 @@ impl Qemu {
             self.qmp = Some(Qmp::connect(&qmp_socket(&self.run_dir))?);
         }
         Ok(self.qmp.as_mut().expect("connected above"))
+    }
+
+    /// The pseudo-terminal COM1 is on, with [`SerialLine::Pty`].
+    pub fn pty(&mut self) -> Result<PathBuf> {
+        let filename = self.qmp()?.chardev_filename("serial0")?;
+        let path = filename.strip_prefix("pty:").with_context(|| format!("COM1 is on {filename}, not a pty"))?;
+        Ok(PathBuf::from(path))
     }
 
     /// QEMU's screendump of the display now.
@@ -509,6 +533,14 @@ mod tests {
             let proven = Firmware::ALL.into_iter().any(|firmware| adapter.proven_under(firmware));
             assert!(proven, "{adapter:?} is proven under no firmware");
         }
+    }
+
+    #[test]
+    fn com1_goes_to_stdio_or_to_a_pty() {
+        assert!(has_pair(&arguments(QemuOptions::default()), "-serial", "stdio"));
+        let args = arguments(QemuOptions { serial: SerialLine::Pty, ..QemuOptions::default() });
+        assert!(has_pair(&args, "-serial", "pty"), "{args:?}");
+        assert_eq!(args.iter().filter(|a| *a == "-serial").count(), 1, "{args:?}");
     }
 
     #[test]

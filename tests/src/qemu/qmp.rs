@@ -109,6 +109,18 @@ impl Qmp {
         Ok(())
     }
 
+    /// The host file behind QEMU's character device `label` (`serial0` is
+    /// COM1), as `query-chardev` names it: `pty:/dev/pts/3` for a
+    /// pseudo-terminal.
+    pub fn chardev_filename(&mut self, label: &str) -> Result<String> {
+        let devices = self.execute("query-chardev", json!({}))?;
+        let device = devices
+            .as_array()
+            .and_then(|devices| devices.iter().find(|device| device["label"] == label))
+            .with_context(|| format!("QEMU has no character device `{label}`: {devices}"))?;
+        device["filename"].as_str().map(str::to_string).with_context(|| format!("`{label}` has no file: {device}"))
+    }
+
     /// Asks QEMU to exit.
     pub fn quit(mut self) -> Result<()> {
         self.execute_allowing_close("quit", json!({}))?;
