@@ -17,12 +17,12 @@
 
 pub mod bochs;
 pub mod browser;
-pub mod serial_check;
 pub mod checks;
 pub mod line;
 pub mod picture;
 pub mod prerequisites;
 pub mod qemu;
+pub mod serial_check;
 pub mod soak;
 pub mod workspace;
 

@@ -10,6 +10,6 @@ mod sealed;
 mod tty;
 
 pub use relay::{FaultCounts, FaultRates, Relay};
-pub use sealed::{LineStats, Sealing, Trouble, TroubleKind};
 pub use sealed::transfer_time;
+pub use sealed::{LineStats, Sealing, Trouble, TroubleKind};
 pub use tty::{open_console, BAUD};

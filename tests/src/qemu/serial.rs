@@ -164,19 +164,25 @@ impl FrameReader {
     pub fn discard_until_quiet(&mut self, quiet: Duration, limit: Duration) {
         let give_up = Instant::now() + limit;
         self.pending.clear();
+        // Quiet since the last byte, or since now if none comes: an empty
+        // chunk (a reader's sign of life) is not a byte.
+        let mut quiet_since = Instant::now();
         loop {
-            let wait = quiet.min(give_up.saturating_duration_since(Instant::now()));
-            match self.source.recv_timeout(wait) {
-                Ok(chunk) if !chunk.is_empty() => self.note_received(&chunk),
-                Ok(_) => {}
-                Err(RecvTimeoutError::Timeout) => return,
+            let now = Instant::now();
+            let until = (quiet_since + quiet).min(give_up);
+            if now >= until {
+                return;
+            }
+            match self.source.recv_timeout(until - now) {
+                Ok(chunk) if !chunk.is_empty() => {
+                    self.note_received(&chunk);
+                    quiet_since = Instant::now();
+                }
+                Ok(_) | Err(RecvTimeoutError::Timeout) => {}
                 Err(RecvTimeoutError::Disconnected) => {
                     self.closed = true;
                     return;
                 }
-            }
-            if Instant::now() >= give_up {
-                return;
             }
         }
     }
@@ -376,6 +382,37 @@ mod tests {
         let error = reader.next_frame(Duration::from_secs(10)).unwrap_err().to_string();
         assert!(error.starts_with("the serial stream ended"), "{error}");
         assert!(started.elapsed() < Duration::from_secs(1));
+    }
+
+    #[test]
+    fn a_frame_that_stops_half_way_is_given_up_after_the_stall_bound() {
+        let bytes = frame_bytes(FrameKind::Dump, &[7; 100]);
+        let (mut reader, _sender) = open_reader(&[&bytes[..60]]);
+        let started = Instant::now();
+        let error = reader.next_frame_until(started + Duration::from_secs(10), Some(SHORT)).unwrap_err();
+        assert!(started.elapsed() < Duration::from_secs(5), "the stall bound, not the deadline, ended the wait");
+        assert_eq!(error.downcast_ref::<ReadError>().map(|error| error.kind), Some(ReadErrorKind::Stalled));
+        assert!(error.to_string().starts_with("a frame stopped half way: no byte for 0.1 s after 60 bytes of it"));
+    }
+
+    #[test]
+    fn the_line_is_quiet_when_no_byte_comes_whatever_empty_chunks_do() {
+        let (sender, receiver) = mpsc::channel();
+        let mut reader = FrameReader::new(receiver);
+        sender.send(b"rest of a damaged reply".to_vec()).unwrap();
+        let ticker = std::thread::spawn(move || {
+            for _ in 0..150 {
+                if sender.send(Vec::new()).is_err() {
+                    break;
+                }
+                std::thread::sleep(Duration::from_millis(10));
+            }
+        });
+        let started = Instant::now();
+        reader.discard_until_quiet(Duration::from_millis(100), Duration::from_secs(5));
+        assert!(started.elapsed() < Duration::from_secs(1), "{:?}", started.elapsed());
+        assert_eq!(reader.received(), 23);
+        ticker.join().unwrap();
     }
 
     #[test]

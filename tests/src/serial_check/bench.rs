@@ -62,8 +62,8 @@ impl TickUnit {
                 .to_string(),
             TickUnit::Tsc(rate) => format!(
                 "Median time-stamp counter ticks for the kernel to draw each whole scene once onto the screen, \
-                 measured by the kernel on the machine itself (rdtsc): the CPU's real cost, video memory and \
-                 caches included. The TSC runs at {:.3} MHz ({}); microseconds are ticks over that rate. On CPUs \
+                 measured by the kernel with rdtsc on the machine it runs on: on a PC the CPU's real cost, video \
+                 memory and caches included (under an emulator, the emulator's clock). The TSC runs at {:.3} MHz ({}); microseconds are ticks over that rate. On CPUs \
                  with an invariant TSC a tick is a fixed slice of time, not a core clock cycle.",
                 rate.hz as f64 / 1e6,
                 match rate.source {

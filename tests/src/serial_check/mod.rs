@@ -191,9 +191,10 @@ pub fn run(
         Reply::Err(text) => (false, text),
         other => anyhow::bail!("`VGACHECK` answered {}", other.describe()),
     };
-    let bench = BenchTable::measure(console, TickUnit::Tsc(tsc), &scope.bench_scenes, options.repeats, |what, console| {
-        step(what, console)
-    })?;
+    let bench =
+        BenchTable::measure(console, TickUnit::Tsc(tsc), &scope.bench_scenes, options.repeats, |what, console| {
+            step(what, console)
+        })?;
     step("PING", console);
     let line = console.retrying(Console::ping).context("the last PING")?;
     Ok(CheckReport {

@@ -24,7 +24,10 @@ pub fn write_reports(report: &CheckReport, dir: &Path) -> Result<(PathBuf, PathB
 /// One line saying how the pictures came out.
 fn verdict(report: &CheckReport) -> String {
     match report.differing().count() {
-        0 => format!("All {} pictures equal the host render, pixel for pixel and palette entry for entry.", report.pictures.len()),
+        0 => format!(
+            "All {} pictures equal the host render, pixel for pixel and palette entry for entry.",
+            report.pictures.len()
+        ),
         differing => format!("{differing} of {} pictures differ from the host render.", report.pictures.len()),
     }
 }
@@ -142,9 +145,9 @@ fn to_json(report: &CheckReport) -> Value {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::line::LineStats;
     use crate::serial_check::bench::{BenchTable, TickUnit};
     use crate::serial_check::Picture;
-    use crate::line::LineStats;
     use protocol::{ClockSource, LineLosses, TscRate};
     use raster::MethodId;
     use std::time::Duration;
