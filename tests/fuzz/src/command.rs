@@ -5,13 +5,22 @@
 //! the same command; a `POLY` command's polygon, when the kernel's
 //! `parse_poly` takes it, fills with the command's method inside the
 //! screen; every accepted reply text or frame header formats back to
-//! itself parsed again.
+//! itself parsed again. A line that opens as a sealed one opens to the
+//! command it seals, which seals again to the same line.
 
-use protocol::{Command, FaultKind, FrameHeader, FrameKind, Pong, Ready, ShowReply, BENCH_MAX_REPEATS};
+use protocol::{
+    unseal, Command, FaultKind, FrameHeader, FrameKind, Pong, Ready, Sealed, ShowReply, TscRate, BENCH_MAX_REPEATS,
+};
 use raster::{CoverageSink, MethodId, SCREEN};
 use scenes::file;
 
 pub fn check(data: &[u8]) {
+    if let Ok((Some(seq), sealed)) = unseal(data) {
+        if let Ok(command) = Command::parse(sealed) {
+            let line = Sealed { seq, command: &command }.to_string();
+            assert_eq!(unseal(line.as_bytes()), Ok((Some(seq), command.to_string().as_bytes())), "{line:?}");
+        }
+    }
     if let Ok(command) = Command::parse(data) {
         let line = command.to_string();
         assert_eq!(Command::parse(line.as_bytes()), Ok(command), "{command:?} formats as {line:?}");
@@ -33,6 +42,9 @@ pub fn check(data: &[u8]) {
     if let Some(ready) = Ready::parse(text) {
         assert_eq!(Ready::parse(&ready.to_string()), Some(ready), "{text:?}");
     }
+    if let Some(rate) = TscRate::parse(text) {
+        assert_eq!(TscRate::parse(&rate.to_string()), Some(rate), "{text:?}");
+    }
     if let Some(header) = FrameHeader::parse(text) {
         assert_eq!(FrameHeader::parse(&header.to_string()), Some(header), "{text:?}");
     }
@@ -49,6 +61,8 @@ pub fn seeds() -> Vec<(String, Vec<u8>)> {
         Command::Clear(7),
         Command::Exit(16),
         Command::Demo { entry: None, method: None },
+        Command::Ready,
+        Command::Clock,
     ];
     for page in &scenes::builtin::ALL {
         commands.push(Command::Draw { scene: page.name, method: None });
@@ -69,6 +83,12 @@ pub fn seeds() -> Vec<(String, Vec<u8>)> {
         .enumerate()
         .map(|(i, command)| (format!("command-{i}"), command.to_string().into_bytes()))
         .collect();
+    seeds.extend(
+        commands
+            .iter()
+            .enumerate()
+            .map(|(i, command)| (format!("sealed-{i}"), Sealed { seq: i as u32, command }.to_string().into_bytes())),
+    );
     let polygons = scenes::builtin::ALL.iter().flat_map(|page| page.scene().ops).filter_map(|op| match op {
         scenes::Op::Fill(polygon) => Some(polygon),
         scenes::Op::Clear(_) => None,
@@ -93,6 +113,8 @@ pub fn seeds() -> Vec<(String, Vec<u8>)> {
         Pong::default().to_string(),
         Ready::default().to_string(),
         FrameHeader::for_payload(FrameKind::Ok, b"pong").to_string(),
+        FrameHeader::for_reply(FrameKind::Ok, b"pong", Some(17)).to_string(),
+        TscRate { hz: 2_593_000_000, source: protocol::ClockSource::Pit }.to_string(),
     ];
     seeds.extend(replies.into_iter().enumerate().map(|(i, text)| (format!("reply-{i}"), text.into_bytes())));
     seeds
@@ -100,10 +122,12 @@ pub fn seeds() -> Vec<(String, Vec<u8>)> {
 
 /// The words of the protocol.
 pub fn dictionary() -> Vec<String> {
-    let mut words: Vec<String> =
-        ["PING", "LIST", "DRAW", "SHOW", "CLEAR", "POLY", "DUMP", "BENCH", "VGACHECK", "DEMO", "EXIT", "FAULT", "*"]
-            .map(String::from)
-            .into();
+    let mut words: Vec<String> = [
+        "PING", "LIST", "DRAW", "SHOW", "CLEAR", "POLY", "DUMP", "BENCH", "VGACHECK", "DEMO", "EXIT", "FAULT", "READY",
+        "CLOCK", "*", "#",
+    ]
+    .map(String::from)
+    .into();
     words.extend(MethodId::ALL.map(|method| method.name().to_string()));
     words.extend(FaultKind::ALL.map(|kind| kind.name().to_string()));
     words.extend(scenes::show::ENTRIES_IN_ORDER.iter().map(|entry| entry.name.to_string()));
@@ -124,6 +148,8 @@ pub fn dictionary() -> Vec<String> {
             "rule=",
             "nonzero",
             "|",
+            "tsc_hz=",
+            "source=",
         ]
         .map(String::from),
     );
