@@ -154,18 +154,18 @@ mod tests {
         let good = sealed(3, &Command::Ping);
         let crc = &good[good.len() - 8..];
         for bad in [
-            std::format!("#3 PING"),
+            "#3 PING".to_string(),
             std::format!("#3 PING {}", crc.to_uppercase()),
             std::format!("#3 PING {crc}0"),
             std::format!("# PING {crc}"),
             std::format!("#x PING {crc}"),
             std::format!("#3PING {crc}"),
-            std::format!("#"),
+            "#".to_string(),
         ] {
             assert_eq!(unseal(bad.as_bytes()), Err(Damaged), "{bad}");
         }
         // A well-formed seal whose sequence number overflows is damaged too.
-        let huge = std::format!("#4294967296 PING");
+        let huge = "#4294967296 PING";
         let huge = std::format!("{huge} {:08x}", crc32fast::hash(huge.as_bytes()));
         assert_eq!(unseal(huge.as_bytes()), Err(Damaged));
     }

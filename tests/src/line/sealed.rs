@@ -332,12 +332,16 @@ mod tests {
     use std::sync::mpsc::{self, Sender};
     use std::sync::{Arc, Mutex};
 
+    /// What the stand-in kernel answers a line: the bytes it sends back
+    /// for a sequence number and command.
+    type Answer = dyn FnMut(u32, &str) -> Vec<u8> + Send;
+
     /// A kernel stand-in: answers each sealed line the console writes with
     /// the frames `answer` makes of its sequence number and command.
     #[derive(Clone)]
     struct Kernel {
         frames: Sender<Vec<u8>>,
-        answer: Arc<Mutex<dyn FnMut(u32, &str) -> Vec<u8> + Send>>,
+        answer: Arc<Mutex<Answer>>,
         lines: Arc<Mutex<Vec<String>>>,
     }
 
