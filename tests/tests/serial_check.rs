@@ -148,6 +148,34 @@ fn through_line_noise_at_several_rates_every_picture_is_still_equal_and_the_retr
     Ok(())
 }
 
+/// A command held up on its way in past the host's deadline is sent again
+/// under a new number, and the kernel runs both: the late reply to the
+/// first must be skipped. For `SHOW` it carries the ticks of a draw the
+/// screen no longer shows, so taking it would make the host label its
+/// render with other ticks than the kernel's label on the screen.
+#[test]
+fn a_late_reply_is_skipped_never_taken_for_the_answer_to_a_later_line() -> Result<()> {
+    let (_qemu, pty) = qemu_on_a_pty()?;
+    let held_up = FaultRates { pause: 1.0 / 200.0, ..FaultRates::NONE };
+    let relay = Relay::start(&pty, FaultRates::NONE, held_up, 3)?;
+    let mut console = open_console(relay.device(), 20)?;
+    // Shorter than the relay's pauses, so a paused command misses it.
+    console.set_answer_timeout(Duration::from_millis(500));
+    let scope = Scope {
+        pages: vec!["abrash38-1"],
+        methods: vec![MethodId::Exact],
+        show_entries: scenes::show::ENTRIES_IN_ORDER.iter().map(|entry| entry.name).collect(),
+        bench_scenes: vec!["abrash38-1"],
+    };
+    let options = CheckOptions { scope, repeats: 1, wait: WAIT };
+    let report = serial_check::run(&mut console, "the relay", &options, |_| {})?;
+    eprintln!("relay to kernel: {:?}; {:?}", relay.counts().1, report.stats);
+    every_picture_equal(&report)?;
+    ensure!(report.stats.count(TroubleKind::NoReply) > 0, "no command was held past its deadline");
+    ensure!(report.stats.stale_replies > 0, "no late reply came: {:?}", report.stats);
+    Ok(())
+}
+
 #[test]
 fn with_retries_off_the_same_noise_fails_the_check() -> Result<()> {
     let (_qemu, pty) = qemu_on_a_pty()?;
