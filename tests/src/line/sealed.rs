@@ -23,8 +23,9 @@ use protocol::{Command, FrameKind, Sealed, DUMP_LEN};
 use crate::qemu::console::{Console, Reply, REPLY_TIMEOUT};
 use crate::qemu::serial::{ReadError, ReadErrorKind};
 
-/// Longest wait for a reply that takes the kernel no time to speak of.
-/// Generous: under TCG on a loaded 2-core machine a draw can take seconds.
+/// Longest wait for a reply that takes the kernel no time to speak of, by
+/// default. Generous: under TCG on a loaded 2-core machine a draw can take
+/// seconds.
 const ANSWER_TIMEOUT: Duration = Duration::from_secs(10);
 /// Longest silence inside a frame before the rest of it is taken as lost:
 /// longer than any pause the line may make without losing anything (the
@@ -137,6 +138,9 @@ pub struct Sealing {
     next_seq: u32,
     /// Most retries of one step; 0 makes the first trouble an error.
     retries: u32,
+    /// The wait for a reply that takes no work, and the base of every
+    /// other wait ([`reply_timeout`]).
+    answer_timeout: Duration,
     pub stats: LineStats,
 }
 
@@ -145,18 +149,23 @@ impl Sealing {
         // Start where a session before this one is unlikely to have been,
         // so that a reply it left on the line matches none of ours.
         let clock = SystemTime::now().duration_since(SystemTime::UNIX_EPOCH).map_or(0, |t| t.subsec_nanos());
-        Self { next_seq: clock ^ std::process::id(), retries, stats: LineStats::default() }
+        Self {
+            next_seq: clock ^ std::process::id(),
+            retries,
+            answer_timeout: ANSWER_TIMEOUT,
+            stats: LineStats::default(),
+        }
     }
 }
 
-/// How long the answer to `command` may take at `baud`: a dump's bytes
-/// twice over (a stale one may be on the line ahead of it), `BENCH`'s
-/// draws, or a moment.
-fn reply_timeout(command: &Command, baud: u32) -> Duration {
+/// How long the answer to `command` may take at `baud`, `answer` being the
+/// wait for one that takes no work: that, plus a dump's bytes twice over (a
+/// stale one may be on the line ahead of it), or `BENCH`'s draws.
+fn reply_timeout(command: &Command, baud: u32, answer: Duration) -> Duration {
     match command {
-        Command::Dump => ANSWER_TIMEOUT + 2 * transfer_time(DUMP_LEN as u64, baud),
-        Command::Bench { .. } => REPLY_TIMEOUT,
-        _ => ANSWER_TIMEOUT,
+        Command::Dump => answer + 2 * transfer_time(DUMP_LEN as u64, baud),
+        Command::Bench { .. } => answer.max(REPLY_TIMEOUT),
+        _ => answer,
     }
 }
 
@@ -169,6 +178,15 @@ impl Console {
     /// The line's counts, if the console seals its commands.
     pub fn line_stats(&self) -> Option<&LineStats> {
         self.sealing.as_ref().map(|sealing| &sealing.stats)
+    }
+
+    /// Sets how long a sealing console waits for a reply that takes the
+    /// kernel no work (10 s by default; a dump's and a `BENCH`'s waits
+    /// grow from it).
+    pub fn set_answer_timeout(&mut self, timeout: Duration) {
+        if let Some(sealing) = self.sealing.as_mut() {
+            sealing.answer_timeout = timeout;
+        }
     }
 
     /// Most retries of one step (0 for a console that does not seal).
@@ -186,7 +204,8 @@ impl Console {
     /// instead is a [`Trouble`] (counted); the stream's end, a `FATAL` or
     /// the kernel booting again are errors of their own.
     pub(crate) fn request_sealed(&mut self, command: &Command) -> Result<Reply> {
-        self.request_sealed_within(command, reply_timeout(command, crate::line::BAUD))
+        let answer = self.sealing.as_ref().map_or(ANSWER_TIMEOUT, |sealing| sealing.answer_timeout);
+        self.request_sealed_within(command, reply_timeout(command, crate::line::BAUD, answer))
     }
 
     /// [`Console::request_sealed`] with a reply deadline of `timeout`.
@@ -472,9 +491,9 @@ mod tests {
 
     #[test]
     fn a_dump_may_take_twice_its_bytes_at_the_baud_rate() {
-        let dump = reply_timeout(&Command::Dump, 115_200);
+        let dump = reply_timeout(&Command::Dump, 115_200, ANSWER_TIMEOUT);
         // 64,768 bytes of 10 bits at 115200 baud: 5.62 s, twice.
         assert_eq!(dump.as_millis(), ANSWER_TIMEOUT.as_millis() + 11_244);
-        assert_eq!(reply_timeout(&Command::Ping, 115_200), ANSWER_TIMEOUT);
+        assert_eq!(reply_timeout(&Command::Ping, 115_200, ANSWER_TIMEOUT), ANSWER_TIMEOUT);
     }
 }
