@@ -38,10 +38,11 @@ pub fn check(opt: &CheckOpt) -> Result<()> {
         bar.set_position(progress.done as u64);
         let retries = progress.stats.map_or(0, |stats| stats.retries);
         bar.set_message(format!("{} (retries so far: {retries})", progress.step));
-        for trouble in progress.stats.map_or(&[][..], |stats| &stats.log[said..]) {
+        let log = progress.stats.map_or(&[][..], |stats| &stats.log[..]);
+        for trouble in log.get(said..).unwrap_or_default() {
             bar.println(format!("check: retrying after {trouble}"));
         }
-        said = progress.stats.map_or(0, |stats| stats.log.len());
+        said = log.len();
     });
     bar.finish_and_clear();
     let report = report?;

@@ -31,8 +31,7 @@ const WRITE_TIMEOUT: Duration = Duration::from_secs(10);
 /// ours to open, or taken.
 pub fn open_console(device: &Path, retries: u32) -> Result<Console> {
     let port = open_port(device)?;
-    let writer = port.try_clone_native().with_context(|| format!("cannot use {} twice", device.display()))?;
-    let mut writer = writer;
+    let mut writer = port.try_clone_native().with_context(|| format!("cannot use {} twice", device.display()))?;
     writer.set_timeout(WRITE_TIMEOUT)?;
     Ok(Console::sealed(writer, FrameReader::new(forward_tty(port)), retries))
 }
