@@ -21,6 +21,7 @@ pub mod checks;
 pub mod picture;
 pub mod prerequisites;
 pub mod qemu;
+pub mod secure_boot;
 pub mod soak;
 pub mod workspace;
 

@@ -190,6 +190,12 @@ impl Console {
         }
     }
 
+    /// Waits (at most `timeout`) for `text` on the line outside any frame
+    /// (see [`FrameReader::skip_to_text`]) and returns what came before it.
+    pub fn wait_for_text(&mut self, text: &str, timeout: Duration) -> Result<String> {
+        self.frames.skip_to_text(text, timeout)
+    }
+
     /// The LOG frames received so far, in order.
     pub fn logs(&self) -> &[String] {
         &self.logs

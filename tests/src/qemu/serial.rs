@@ -88,6 +88,32 @@ impl FrameReader {
         }
     }
 
+    /// Waits until `text` arrives, as text rather than in a frame (a
+    /// firmware's, shim's or a boot manager's console, which OVMF copies to
+    /// COM1), and returns everything received up to its end, which is
+    /// consumed. Fails when the stream closes and after `timeout`, showing
+    /// the last bytes received.
+    pub fn skip_to_text(&mut self, text: &str, timeout: Duration) -> Result<String> {
+        let deadline = Instant::now() + timeout;
+        loop {
+            if let Some(at) = self.pending.windows(text.len()).position(|window| window == text.as_bytes()) {
+                let seen: Vec<u8> = self.pending.drain(..at + text.len()).collect();
+                return Ok(String::from_utf8_lossy(&seen).into_owned());
+            }
+            if self.closed {
+                bail!("the serial stream ended (QEMU exited?) before `{text}`; {}", self.last_bytes());
+            }
+            let remaining = deadline.saturating_duration_since(Instant::now());
+            match self.source.recv_timeout(remaining) {
+                Ok(chunk) => self.receive(&chunk),
+                Err(RecvTimeoutError::Timeout) => {
+                    bail!("no `{text}` within {:.1} s; {}", timeout.as_secs_f64(), self.last_bytes())
+                }
+                Err(RecvTimeoutError::Disconnected) => self.closed = true,
+            }
+        }
+    }
+
     fn receive(&mut self, chunk: &[u8]) {
         self.pending.extend_from_slice(chunk);
         let keep = chunk.len().min(TAIL_LEN);
@@ -264,6 +290,17 @@ mod tests {
         let error = reader.next_frame(Duration::from_secs(10)).unwrap_err().to_string();
         assert!(error.starts_with("the serial stream ended"), "{error}");
         assert!(started.elapsed() < Duration::from_secs(1));
+    }
+
+    #[test]
+    fn text_is_found_across_chunks_and_what_came_before_is_returned() {
+        let (mut reader, _sender) =
+            open_reader(&[b"\x1b[01;01HVerification fai", b"led: (0x1A) Security Violation\r\n@RE"]);
+        let seen = reader.skip_to_text("Verification failed", SHORT).unwrap();
+        assert_eq!(seen, "\x1b[01;01HVerification failed");
+        assert_eq!(reader.skip_to_text("Violation", SHORT).unwrap(), ": (0x1A) Security Violation");
+        let error = reader.skip_to_text("READY", SHORT).unwrap_err().to_string();
+        assert!(error.starts_with("no `READY` within "), "{error}");
     }
 
     #[test]
