@@ -42,8 +42,9 @@ const NO_READY_WATCH: Duration = Duration::from_secs(10);
 /// shim's words when the loader's signature is not trusted (none, or a
 /// key not in the MOK list).
 const SHIM_REFUSES: &str = "Verification failed: (0x1A) Security Violation";
-/// The loader's, when a file on the stick is not the one it was signed for.
-const LOADER_REFUSES: &str = "polylab: refusing to boot.";
+/// The loader's words, start and end, when a file on the stick is not the
+/// one it was signed for.
+const LOADER_REFUSES: (&str, &str) = ("polylab: refusing to boot.", "write the image again.");
 
 /// A folder of the test's own, removed when it ends.
 fn scratch() -> Result<tempfile::TempDir> {
@@ -111,21 +112,22 @@ fn with_the_users_key_enrolled_cirrus_boots_and_every_page_is_exact_on_the_scree
 }
 
 /// Boots `image` with `certificates` enrolled and expects `reason` on
-/// COM1 with no READY before it, nor for a while after.
-fn refused(image: &Path, certificates: &[&Path], reason: &str, dir: &Path) -> Result<String> {
+/// COM1, then `until` (the end of what is said, if not empty), with no READY before it,
+/// nor for a while after; returns what was said.
+fn refused(image: &Path, certificates: &[&Path], (reason, until): (&str, &str), dir: &Path) -> Result<String> {
     let mut qemu = boot(image, certificates, Adapter::Std, false, dir)?;
-    let seen = qemu.console.wait_for_text(reason, FIRMWARE_TIMEOUT)?;
-    ensure!(!seen.contains("@READY"), "the kernel said READY before `{reason}`");
+    let (which, _) = qemu.console.wait_for_first_text(&[reason, "@READY"], FIRMWARE_TIMEOUT)?;
+    ensure!(which == 0, "the kernel said READY, and nothing said `{reason}`");
+    let rest = if until.is_empty() { String::new() } else { qemu.console.wait_for_text(until, SCREEN_TIMEOUT)? };
     let after = qemu.console.wait_for_text("@READY", NO_READY_WATCH);
     ensure!(after.is_err(), "the kernel said READY after `{reason}`");
-    let line = qemu.console.wait_for_text("\n", SCREEN_TIMEOUT).unwrap_or_default();
-    Ok(format!("{reason}{line}").trim().to_string())
+    Ok(format!("{reason}{rest}"))
 }
 
 #[test]
 fn with_no_key_enrolled_shim_refuses_the_loader() -> Result<()> {
     let (image, dir) = (build_image()?, scratch()?);
-    let said = refused(&image, &[], SHIM_REFUSES, dir.path())?;
+    let said = refused(&image, &[], (SHIM_REFUSES, ""), dir.path())?;
     eprintln!("harness: Secure Boot, no key enrolled: shim says `{said}`");
     Ok(())
 }
@@ -134,7 +136,7 @@ fn with_no_key_enrolled_shim_refuses_the_loader() -> Result<()> {
 fn with_another_key_enrolled_shim_refuses_the_loader() -> Result<()> {
     let (image, dir) = (build_image()?, scratch()?);
     let other = SigningKey::in_folder(&dir.path().join("other-key"))?;
-    let said = refused(&image, &[&other.cert], SHIM_REFUSES, dir.path())?;
+    let said = refused(&image, &[&other.cert], (SHIM_REFUSES, ""), dir.path())?;
     eprintln!("harness: Secure Boot, another key enrolled: shim says `{said}`");
     Ok(())
 }
@@ -144,14 +146,18 @@ fn a_loader_without_its_signature_is_refused_by_shim() -> Result<()> {
     let (image, dir) = (build_image()?, scratch()?);
     let certificate = users_certificate(&image, dir.path())?;
     let mut fat = FatImage::open(&image)?;
-    let (signed, unsigned) = (dir.path().join("signed.efi"), dir.path().join("unsigned.efi"));
-    std::fs::write(&signed, fat.read(LOADER_PATH)?)?;
+    let loader = dir.path().join("loader.efi");
+    let signed = fat.read(LOADER_PATH)?;
+    std::fs::write(&loader, &signed)?;
+    // sbattach strips the signature in place.
     let sbattach = boot_image::debian_packages().get(debian::SBATTACH)?;
-    output_of(Command::new(sbattach).arg("--remove").arg(&signed).arg("--output").arg(&unsigned))?;
-    fat.replace(LOADER_PATH, &std::fs::read(&unsigned)?)?;
+    output_of(Command::new(sbattach).arg("--remove").arg(&loader))?;
+    let unsigned = std::fs::read(&loader)?;
+    ensure!(unsigned.len() < signed.len(), "sbattach --remove left the loader's {} bytes", signed.len());
+    fat.replace(LOADER_PATH, &unsigned)?;
     let copy = dir.path().join("unsigned-loader.img");
     fat.write(&copy)?;
-    let said = refused(&copy, &[&certificate], SHIM_REFUSES, dir.path())?;
+    let said = refused(&copy, &[&certificate], (SHIM_REFUSES, ""), dir.path())?;
     eprintln!("harness: Secure Boot, the loader's signature removed: shim says `{said}`");
     Ok(())
 }
@@ -209,8 +215,8 @@ fn the_first_boot_enrolls_the_key_with_mokmanager_and_boots_after_the_reboot() -
     ];
     for (i, (words, picture, keys)) in steps.into_iter().enumerate() {
         let timeout = if i == 0 { FIRMWARE_TIMEOUT } else { SCREEN_TIMEOUT };
-        let seen = qemu.console.wait_for_text(words, timeout).with_context(|| format!("waiting for `{words}`"))?;
-        ensure!(!seen.contains("@READY"), "the kernel said READY before `{words}`");
+        let (which, _) = qemu.console.wait_for_first_text(&[words, "@READY"], timeout)?;
+        ensure!(which == 0, "the kernel said READY before `{words}`");
         // Let the screen finish drawing before it is saved and answered.
         std::thread::sleep(Duration::from_secs(1));
         qemu.screendump()?.write_png(&screens.join(format!("{picture}.png")))?;
