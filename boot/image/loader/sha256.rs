@@ -5,7 +5,7 @@
 //! built by `bootloader`'s build script with `cargo install --locked`
 //! against the lock file published with it, and a new dependency would
 //! mean splicing ten packages into that lock file. This file is compiled
-//! into the host tests too (boot/image/src/loader.rs), where it must give
+//! into the host tests too (boot/image/src/secure_boot/loader.rs), where it must give
 //! the `sha2` crate's digest for every length around the block boundaries
 //! and for the standard's test vectors.
 
