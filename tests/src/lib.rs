@@ -22,6 +22,7 @@ pub mod line;
 pub mod picture;
 pub mod prerequisites;
 pub mod qemu;
+pub mod secure_boot;
 pub mod serial_check;
 pub mod soak;
 pub mod workspace;

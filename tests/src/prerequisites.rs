@@ -229,6 +229,61 @@ fn wasm_target_command(toolchain: &str) -> Command {
     add
 }
 
+/// OVMF's Secure Boot build (it needs SMM, so QEMU's q35 machine) and a
+/// variable store with Microsoft's keys enrolled and Secure Boot on, both
+/// in Debian's `ovmf` with [`OVMF_CODE`].
+pub const OVMF_SECURE_BOOT_CODE: &str = "/usr/share/OVMF/OVMF_CODE_4M.secboot.fd";
+pub const OVMF_MICROSOFT_VARS: &str = "/usr/share/OVMF/OVMF_VARS_4M.ms.fd";
+
+/// Makes sure OVMF's Secure Boot build and its variable store with
+/// Microsoft's keys are there, installing Debian's `ovmf` as
+/// [`ensure_qemu`] installs QEMU.
+pub fn ensure_secure_boot_ovmf() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || {
+        let present = || [OVMF_SECURE_BOOT_CODE, OVMF_MICROSOFT_VARS].iter().all(|file| Path::new(file).is_file());
+        ensure_debian_packages("OVMF's Secure Boot build (with Microsoft's keys)", &[OVMF_PACKAGE], present)
+    })
+}
+
+/// The release of virt-firmware (PyPI) whose `virt-fw-vars` writes the
+/// Secure Boot tests' MOK lists into OVMF variable stores.
+pub const VIRT_FIRMWARE_VERSION: &str = "26.10";
+
+/// Makes sure `virt-fw-vars` is there and returns its path: virt-firmware
+/// [`VIRT_FIRMWARE_VERSION`] installed from PyPI with pip into a Python
+/// virtual environment under `target/` (Python's `venv` module, Debian's
+/// `python3-venv`, installed as [`ensure_qemu`] installs QEMU).
+pub fn ensure_virt_fw_vars() -> Result<PathBuf> {
+    static DONE: OnceLock<Result<PathBuf, String>> = OnceLock::new();
+    once_per_process(&DONE, || {
+        let venv = crate::workspace::target_dir().join("virt-firmware");
+        let program = venv.join("bin").join("virt-fw-vars");
+        let installed = venv.join(format!("virt-firmware-{VIRT_FIRMWARE_VERSION}"));
+        if program.is_file() && installed.is_file() {
+            return Ok(program);
+        }
+        let has_venv =
+            || Command::new("python3").args(["-m", "venv", "--help"]).output().is_ok_and(|o| o.status.success());
+        ensure_debian_packages("Python's venv module (for virt-firmware)", &["python3-venv"], has_venv)?;
+        eprintln!(
+            "harness: installing virt-firmware {VIRT_FIRMWARE_VERSION} from PyPI into {} (its virt-fw-vars \
+             writes the Secure Boot tests' MOK lists)",
+            venv.display()
+        );
+        run_streaming(Command::new("python3").args(["-m", "venv"]).arg(&venv))?;
+        run_streaming(&mut virt_firmware_install_command(&venv))?;
+        std::fs::write(&installed, "").with_context(|| format!("failed to write {}", installed.display()))?;
+        Ok(program)
+    })
+}
+
+fn virt_firmware_install_command(venv: &Path) -> Command {
+    let mut install = Command::new(venv.join("bin").join("pip"));
+    install.args(["install", "--quiet", &format!("virt-firmware=={VIRT_FIRMWARE_VERSION}")]);
+    install
+}
+
 /// The first `program` on the `PATH`.
 pub fn find_in_path(program: &str) -> Option<PathBuf> {
     let path = std::env::var_os("PATH")?;
@@ -253,6 +308,14 @@ mod tests {
         assert_eq!(
             command_line(&wasm_target_command("stable-x86_64-unknown-linux-gnu")),
             "rustup target add --toolchain stable-x86_64-unknown-linux-gnu wasm32-unknown-unknown"
+        );
+    }
+
+    #[test]
+    fn virt_firmware_is_installed_at_its_pinned_version_into_the_venv() {
+        assert_eq!(
+            command_line(&virt_firmware_install_command(Path::new("/t/virt-firmware"))),
+            "/t/virt-firmware/bin/pip install --quiet virt-firmware==26.10"
         );
     }
 

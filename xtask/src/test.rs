@@ -8,7 +8,8 @@ use boot_image::process::run_streaming;
 use boot_image::toolchain::ensure_toolchain;
 use boot_image::{build_image, IMAGE_ENV};
 use harness::prerequisites::{
-    ensure_bochs, ensure_cairo, ensure_chromium, ensure_ovmf, ensure_qemu, ensure_wasm_target,
+    ensure_bochs, ensure_cairo, ensure_chromium, ensure_ovmf, ensure_qemu, ensure_secure_boot_ovmf,
+    ensure_virt_fw_vars, ensure_wasm_target,
 };
 
 use crate::opt::TestOpt;
@@ -18,6 +19,10 @@ pub fn test(opt: &TestOpt) -> Result<()> {
     ensure_qemu()?;
     // The adapter matrix boots OVMF too, and one test boots Bochs.
     ensure_ovmf()?;
+    // The Secure Boot tests boot OVMF's Secure Boot build and write MOK
+    // lists into its variable store with virt-fw-vars.
+    ensure_secure_boot_ovmf()?;
+    ensure_virt_fw_vars()?;
     ensure_bochs()?;
     // The explorer page's tests: its engine is built for wasm32 and run in
     // headless Chromium.

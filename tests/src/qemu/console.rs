@@ -204,6 +204,19 @@ impl Console {
         }
     }
 
+    /// Waits (at most `timeout`) for `text` on the line outside any frame
+    /// and returns what came up to its end.
+    pub fn wait_for_text(&mut self, text: &str, timeout: Duration) -> Result<String> {
+        self.frames.skip_to_first(&[text], timeout).map(|(_, seen)| seen)
+    }
+
+    /// Waits (at most `timeout`) for the first of `texts` on the line
+    /// outside any frame (see [`FrameReader::skip_to_first`]): which, and
+    /// what came up to its end.
+    pub fn wait_for_first_text(&mut self, texts: &[&str], timeout: Duration) -> Result<(usize, String)> {
+        self.frames.skip_to_first(texts, timeout)
+    }
+
     /// The LOG frames received so far, in order.
     pub fn logs(&self) -> &[String] {
         &self.logs

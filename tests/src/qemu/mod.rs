@@ -17,7 +17,10 @@ use anyhow::{anyhow, Context, Result};
 use protocol::{Firmware, PciId, Ready};
 
 use crate::picture::Image;
-use crate::prerequisites::{ensure_ovmf, ensure_qemu, OVMF_CODE, OVMF_VARS, QEMU};
+use crate::prerequisites::{
+    ensure_ovmf, ensure_qemu, ensure_secure_boot_ovmf, OVMF_CODE, OVMF_MICROSOFT_VARS, OVMF_SECURE_BOOT_CODE,
+    OVMF_VARS, QEMU,
+};
 use crate::process::command_line;
 use crate::workspace;
 use boot_image::build_image;
@@ -192,6 +195,13 @@ pub struct QemuOptions {
     pub adapter: Adapter,
     pub clock: Clock,
     pub serial: SerialLine,
+    /// With `Firmware::Uefi`: OVMF's Secure Boot build on the q35 machine
+    /// (it needs SMM), its variable store Microsoft's keys with Secure Boot
+    /// on unless the run is given another ([`Qemu::spawn_with_variables`]).
+    pub secure_boot: bool,
+    /// A guest reboot restarts the machine (MokManager reboots after
+    /// enrolling a key) instead of ending QEMU.
+    pub allow_reboot: bool,
 }
 
 /// Where a run keeps its QMP socket and, under UEFI, its copy of the
@@ -208,10 +218,26 @@ fn uefi_variables(run_dir: &Path) -> PathBuf {
 /// (and the UEFI variable store) in `run_dir`.
 pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec<OsString> {
     let mut args: Vec<OsString> = Vec::new();
-    // The i440FX PC. Its own firmware is SeaBIOS: a BIOS that boots the
-    // image's BIOS side, like a PC's BIOS or CSM.
-    flag(&mut args, "-machine", "pc");
-    if options.firmware == Firmware::Uefi {
+    if options.firmware == Firmware::Uefi && options.secure_boot {
+        // Q35 with SMM: OVMF's Secure Boot build keeps its variables
+        // behind SMM, where the guest's OS cannot write them directly...
+        flag(&mut args, "-machine", "q35,smm=on");
+        // ...its flash writable only from SMM...
+        flag(&mut args, "-global", "driver=cfi.pflash01,property=secure,value=on");
+        // ...and no S3 resume, which that build does not support.
+        flag(&mut args, "-global", "ICH9-LPC.disable_s3=1");
+        flag(
+            &mut args,
+            "-drive",
+            with_path("if=pflash,format=raw,unit=0,readonly=on,file=", Path::new(OVMF_SECURE_BOOT_CODE), ""),
+        );
+        flag(&mut args, "-drive", with_path("if=pflash,format=raw,unit=1,file=", &uefi_variables(run_dir), ""));
+    } else {
+        // The i440FX PC. Its own firmware is SeaBIOS: a BIOS that boots the
+        // image's BIOS side, like a PC's BIOS or CSM.
+        flag(&mut args, "-machine", "pc");
+    }
+    if options.firmware == Firmware::Uefi && !options.secure_boot {
         // OVMF instead, as a UEFI PC's flash: its code read-only, and its
         // variable store (boot entries it writes as it boots) a copy of
         // the package's empty one, private to this run.
@@ -259,8 +285,10 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
     flag(&mut args, "-qmp", with_path("unix:", &qmp_socket(run_dir), ",server=on,wait=off"));
     // `EXIT n` and fault reports leave QEMU with exit status (n << 1) | 1.
     flag(&mut args, "-device", "isa-debug-exit,iobase=0xf4,iosize=0x04");
-    // A triple fault exits QEMU instead of rebooting the guest forever.
-    args.push("-no-reboot".into());
+    if !options.allow_reboot {
+        // A triple fault exits QEMU instead of rebooting the guest forever.
+        args.push("-no-reboot".into());
+    }
     // `snapshot=on` sends writes to a temporary overlay: the image file stays
     // untouched and parallel runs can share it without QEMU's write lock.
     match options.medium {
@@ -320,12 +348,27 @@ impl Qemu {
     /// Starts QEMU on `image`, printing its command line. Does not wait for
     /// the kernel.
     pub fn spawn(image: &Path, options: QemuOptions) -> Result<Self> {
+        let variables = if options.secure_boot {
+            ensure_secure_boot_ovmf()?;
+            OVMF_MICROSOFT_VARS
+        } else {
+            OVMF_VARS
+        };
+        Self::spawn_with_variables(image, options, Path::new(variables))
+    }
+
+    /// [`Qemu::spawn`] under UEFI with a copy of `variables` as the
+    /// firmware's variable store (the Secure Boot tests' MOK lists).
+    pub fn spawn_with_variables(image: &Path, options: QemuOptions, variables: &Path) -> Result<Self> {
         ensure_qemu()?;
         let run_dir = workspace::fresh_run_dir("qemu")?;
         if options.firmware == Firmware::Uefi {
             ensure_ovmf()?;
-            std::fs::copy(OVMF_VARS, uefi_variables(&run_dir))
-                .with_context(|| format!("failed to copy {OVMF_VARS} into {}", run_dir.display()))?;
+            if options.secure_boot {
+                ensure_secure_boot_ovmf()?;
+            }
+            std::fs::copy(variables, uefi_variables(&run_dir))
+                .with_context(|| format!("failed to copy {} into {}", variables.display(), run_dir.display()))?;
         }
         let mut command = Command::new(QEMU);
         command.args(qemu_arguments(image, &run_dir, options));
@@ -477,6 +520,26 @@ mod tests {
         assert!(has_pair(&args, "-drive", &code), "{args:?}");
         assert!(has_pair(&args, "-drive", "if=pflash,format=raw,unit=1,file=/run/OVMF_VARS_4M.fd"), "{args:?}");
         assert!(has_pair(&args, "-drive", "if=ide,index=0,format=raw,snapshot=on,file=/img/polylab.img"));
+    }
+
+    #[test]
+    fn secure_boot_is_ovmfs_secure_build_on_q35_with_smm_and_its_flash_secured() {
+        let args = arguments(QemuOptions { firmware: Firmware::Uefi, secure_boot: true, ..QemuOptions::default() });
+        let code = format!("if=pflash,format=raw,unit=0,readonly=on,file={OVMF_SECURE_BOOT_CODE}");
+        assert!(has_pair(&args, "-drive", &code), "{args:?}");
+        assert!(has_pair(&args, "-drive", "if=pflash,format=raw,unit=1,file=/run/OVMF_VARS_4M.fd"), "{args:?}");
+        assert!(has_pair(&args, "-machine", "q35,smm=on"), "{args:?}");
+        assert!(has_pair(&args, "-global", "driver=cfi.pflash01,property=secure,value=on"), "{args:?}");
+        assert!(has_pair(&args, "-global", "ICH9-LPC.disable_s3=1"), "{args:?}");
+        assert_eq!(args.iter().filter(|a| *a == "-machine").count(), 1, "{args:?}");
+        assert_eq!(args.iter().filter(|a| a.starts_with("if=pflash")).count(), 2, "{args:?}");
+        assert!(args.contains(&"-no-reboot".to_string()));
+    }
+
+    #[test]
+    fn a_reboot_restarts_the_machine_only_when_allowed() {
+        let args = arguments(QemuOptions { allow_reboot: true, ..QemuOptions::default() });
+        assert!(!args.contains(&"-no-reboot".to_string()), "{args:?}");
     }
 
     #[test]
