@@ -1,7 +1,8 @@
 //! Installing what the runs need when it is missing: QEMU (and its window
 //! and OVMF, the UEFI firmware, when a run needs them), Chromium and
 //! chromedriver, the wasm32 target, the Cairo headers the lab's Cairo peer
-//! builds against, and cargo-fuzz with a C++ compiler for libFuzzer (the
+//! builds against, the C libraries of its Allegro, SDL2_gfx and GD peers,
+//! and cargo-fuzz with a C++ compiler for libFuzzer (the
 //! pinned nightly the image builds with is `boot_image::toolchain`'s). Machines here set `RUSTUP_AUTO_INSTALL=0`,
 //! so nothing installs itself. Debian packages come with their
 //! dependencies but without their recommendations: exactly the packages
@@ -44,6 +45,14 @@ const BOCHS_PACKAGES: [&str; 4] = ["bochs", "bochs-term", "bochsbios", "vgabios"
 /// libcairo) builds with: the headers and `.pc` file, and pkg-config, which
 /// finds them.
 const CAIRO_PACKAGES: [&str; 2] = ["libcairo2-dev", "pkg-config"];
+
+/// The Debian packages the lab's C peers build and link with: Allegro 4
+/// (`polygon()`), SDL2 with its gfx add-on (`filledPolygonRGBA`), GD
+/// (`gdImageFilledPolygon`), each with its headers and `.pc` file, and
+/// pkg-config, which finds them.
+const PEER_PACKAGES: [&str; 5] = ["liballegro4-dev", "libsdl2-dev", "libsdl2-gfx-dev", "libgd-dev", "pkg-config"];
+/// Their pkg-config names, all of which must be found.
+const PEER_PKG_CONFIG: [&str; 4] = ["allegro", "sdl2", "SDL2_gfx", "gdlib"];
 
 /// Makes sure `qemu-system-x86_64` is on the `PATH`: installs Debian's
 /// `qemu-system-x86` with apt-get when running as root, otherwise fails
@@ -114,6 +123,19 @@ pub fn ensure_cairo() -> Result<()> {
     once_per_process(&DONE, || {
         let found = || Command::new("pkg-config").args(["--exists", "cairo"]).status().is_ok_and(|s| s.success());
         ensure_debian_packages("libcairo (for the lab's Cairo peer)", &CAIRO_PACKAGES, found)
+    })
+}
+
+/// Makes sure the C libraries of the lab's Allegro, SDL2_gfx and GD peers
+/// are there for `pkg-config --exists`, as the lab needs to build:
+/// installs their Debian `-dev` packages as [`ensure_cairo`] installs
+/// Cairo's.
+pub fn ensure_peer_libraries() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || {
+        let found =
+            || Command::new("pkg-config").arg("--exists").args(PEER_PKG_CONFIG).status().is_ok_and(|s| s.success());
+        ensure_debian_packages("Allegro 4, SDL2_gfx and GD (for the lab's C peers)", &PEER_PACKAGES, found)
     })
 }
 

@@ -8,7 +8,7 @@ use boot_image::process::run_streaming;
 use boot_image::toolchain::ensure_toolchain;
 use boot_image::{build_image, IMAGE_ENV};
 use harness::prerequisites::{
-    ensure_bochs, ensure_cairo, ensure_chromium, ensure_ovmf, ensure_qemu, ensure_wasm_target,
+    ensure_bochs, ensure_cairo, ensure_chromium, ensure_ovmf, ensure_peer_libraries, ensure_qemu, ensure_wasm_target,
 };
 
 use crate::opt::TestOpt;
@@ -23,8 +23,10 @@ pub fn test(opt: &TestOpt) -> Result<()> {
     // headless Chromium.
     ensure_wasm_target()?;
     ensure_chromium()?;
-    // The lab, a workspace member, builds its Cairo peer against libcairo.
+    // The lab, a workspace member, builds its peers against libcairo,
+    // Allegro 4, SDL2 with SDL2_gfx, and GD.
     ensure_cairo()?;
+    ensure_peer_libraries()?;
     let image = build_image()?;
     run_streaming(test_command(&opt.cargo_args).env(IMAGE_ENV, image))
 }

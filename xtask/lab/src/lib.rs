@@ -23,6 +23,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 pub mod area;
 pub mod charts;
+pub mod closed;
 pub mod contender;
 pub mod convention;
 pub mod corpus;
