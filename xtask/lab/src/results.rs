@@ -312,10 +312,9 @@ impl Results {
     /// Rows with a refusal or failure are left out: they drew less work,
     /// and their point would flatter them.
     pub fn speed_accuracy_points(&self, zero_floor: f64) -> Vec<(&Row, (f64, f64))> {
-        let everyday = |group: Group| matches!(group, Group::Scene | Group::Random | Group::Tiling);
         self.rows
             .iter()
-            .filter(|r| everyday(r.group) && r.refusals == Some(0) && r.failures == Some(0))
+            .filter(|r| r.group.is_everyday() && r.refusals == Some(0) && r.failures == Some(0))
             .filter_map(|r| Some((r, (r.time_vs_memset?, (r.error_rate()? * 100.0).max(zero_floor)))))
             .collect()
     }
