@@ -164,28 +164,29 @@ fn by_hand(packages: &[String], as_root: bool, options: &[&str]) -> String {
 }
 
 /// Why the harness will not install `packages`: apt would remove
-/// `removed`; and the commands that would resolve it.
+/// `removed` (`NAME VERSION` each); and the commands that would resolve it.
 fn refusal(what: &str, packages: &[String], removed: &[String], distribution: &Distribution, as_root: bool) -> String {
-    let backports = match distribution {
+    let names: Vec<&str> = removed.iter().map(|package| package.split(' ').next().unwrap_or_default()).collect();
+    let release = match distribution {
         Distribution::Debian { codename: Some(codename) } if removed.iter().any(|p| p.contains("~bpo")) => {
-            Some(format!("{codename}-backports"))
+            format!("{codename}-backports")
         }
-        _ => None,
+        _ => "RELEASE".to_string(),
     };
-    let matching = match &backports {
-        Some(release) => format!(
-            "install them from the release yours come from ({release}):\n    {}",
-            by_hand(packages, as_root, &["-t", release])
-        ),
-        None => "install them from the release yours come from (`apt-cache policy NAME` says which; then \
-                 `apt-get install -t RELEASE ...`)"
-            .to_string(),
+    let which = if release == "RELEASE" {
+        format!(" (`apt-cache policy {}` names it)", names.join(" "))
+    } else {
+        String::new()
     };
     format!(
-        "{what} is not installed, and installing {} would remove {} (so says `apt-get install --simulate`); \
-         the harness never removes a package. Either {matching}\nor let apt remove them, knowingly:\n    {}",
+        "{what} is not installed, and installing {} would remove {} (so says `apt-get install --simulate`); the \
+         harness never removes a package. Either install from the release {} came from{which}, so that the \
+         versions fit:\n    {}\nor let apt remove {}, knowingly (it asks first):\n    {}",
         packages.join(" "),
         removed.join(", "),
+        names.join(" and "),
+        by_hand(packages, as_root, &["-t", &release]),
+        names.join(" and "),
         by_hand(packages, as_root, &[])
     )
 }
@@ -269,6 +270,13 @@ mod tests {
         assert!(message.contains("would remove qemu-utils 1:8.1.2+ds-1~bpo12+1"), "{message}");
         let backports = "sudo apt-get install --no-install-recommends -t bookworm-backports qemu-system-x86";
         assert!(message.contains(backports), "{message}");
-        assert!(message.contains("let apt remove them"), "{message}");
+        assert!(message.contains("let apt remove qemu-utils, knowingly"), "{message}");
+        let elsewhere = refusal("QEMU", &names(&["qemu-system-x86"]), &removed, &Distribution::Ubuntu, true);
+        assert!(elsewhere.contains("(`apt-cache policy qemu-utils` names it)"), "{elsewhere}");
+        assert!(
+            elsewhere
+                .contains("\n    apt-get update && apt-get install --no-install-recommends -t RELEASE qemu-system-x86"),
+            "{elsewhere}"
+        );
     }
 }
