@@ -114,8 +114,8 @@ impl Bochs {
     }
 
     /// Bochs's process id (its process group's too).
-    pub fn pid(&mut self) -> u32 {
-        self.process.child().id()
+    pub fn pid(&self) -> u32 {
+        self.process.pid()
     }
 }
 

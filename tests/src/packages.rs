@@ -20,6 +20,10 @@ const APT_LOCK_TIMEOUT_SECONDS: u32 = 600;
 /// and `chromium-chromedriver` packages install the snap.
 const UBUNTU_SNAPS: [&str; 2] = ["chromium", "chromium-driver"];
 
+/// The Debian packages Ubuntu has in its universe component, which a
+/// machine may not have enabled.
+const UBUNTU_UNIVERSE: [&str; 4] = ["bochs", "bochs-term", "bochsbios", "vgabios"];
+
 /// The host's distribution family, from `/etc/os-release`'s `ID` and
 /// `ID_LIKE` (Linux Mint and Pop!_OS are Ubuntu's, Raspberry Pi OS is
 /// Debian's).
@@ -106,18 +110,17 @@ pub fn ensure_debian_packages(what: &str, packages: &[&str], present: impl Fn() 
     }
     eprintln!("harness: {what} is missing; installing the packages {} with apt-get", packages.join(" "));
     run_streaming(&mut apt_get(["update"]))?;
+    let in_universe =
+        distribution == Distribution::Ubuntu && packages.iter().any(|p| UBUNTU_UNIVERSE.contains(&p.as_str()));
+    let hint = if in_universe { " (on Ubuntu they are in universe: `sudo add-apt-repository universe`)" } else { "" };
     let simulation = output_of(&mut apt_install(&packages, Some("--simulate")))
-        .with_context(|| format!("apt-get cannot install {}", packages.join(" ")))?;
+        .with_context(|| format!("apt-get cannot install {}{hint}", packages.join(" ")))?;
     let removed = removals(&simulation);
     if !removed.is_empty() {
         bail!(refusal(what, &packages, &removed, &distribution, as_root));
     }
-    run_streaming(&mut apt_install(&packages, Some("--no-remove"))).with_context(|| match distribution {
-        Distribution::Ubuntu => "on Ubuntu, Bochs and its BIOSes are in the universe component \
-                                 (`sudo add-apt-repository universe`)"
-            .to_string(),
-        _ => format!("failed to install {what}"),
-    })?;
+    run_streaming(&mut apt_install(&packages, Some("--no-remove")))
+        .with_context(|| format!("failed to install {what}{hint}"))?;
     if !present() {
         bail!("{} installed, but {what} is still not found", packages.join(" "));
     }

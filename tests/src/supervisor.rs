@@ -137,6 +137,14 @@ impl Supervised {
         self.child.as_mut().expect("the program was started")
     }
 
+    /// The program's process id, which is its process group's too.
+    ///
+    /// # Panics
+    /// Before [`spawn`](Self::spawn).
+    pub fn pid(&self) -> u32 {
+        self.child.as_ref().expect("the program was started").id()
+    }
+
     fn order(&mut self, order: &str) -> Result<()> {
         let orders = self.orders.as_mut().expect("orders stay open until drop");
         orders.write_all(order.as_bytes()).and_then(|()| orders.flush()).context("the run's watchdog is gone")

@@ -29,8 +29,8 @@ const CLEANUP_TIMEOUT: Duration = Duration::from_secs(20);
 #[test]
 #[ignore = "the harness that a_harness_killed_mid_boot_leaves_no_child_and_no_folder starts and kills"]
 fn harness_to_be_killed() -> Result<()> {
-    let mut qemu = Qemu::spawn(&build_image()?, QemuOptions::default())?;
-    let mut browser = Browser::start()?;
+    let qemu = Qemu::spawn(&build_image()?, QemuOptions::default())?;
+    let browser = Browser::start()?;
     // libtest's own line for the test may precede these on the same line.
     println!("\nchild-group {}", qemu.pid());
     println!("child-group {}", browser.driver_pid());
@@ -46,7 +46,14 @@ fn a_harness_killed_mid_boot_leaves_no_child_and_no_folder() -> Result<()> {
     let temporary = tempfile::tempdir()?;
     let mut command = Command::new(std::env::current_exe()?);
     command.args(["--ignored", "--exact", HARNESS_TO_KILL, "--nocapture", "--test-threads=1"]);
-    command.env("TMPDIR", temporary.path()).stdout(Stdio::piped());
+    // Its standard error goes to a log, for the error should it fail.
+    let log = temporary.path().join("harness.log");
+    command.env("TMPDIR", temporary.path()).stdout(Stdio::piped()).stderr(std::fs::File::create(&log)?);
+    let said = || {
+        let text = std::fs::read_to_string(&log).unwrap_or_default();
+        let lines: Vec<&str> = text.lines().collect();
+        format!("the harness's last words:\n{}", lines[lines.len().saturating_sub(20)..].join("\n"))
+    };
     let mut run = Supervised::without_folder()?;
     let harness = run.spawn(&mut command)?;
     let lines = BufReader::new(harness.stdout.take().context("stdout is piped")?).lines();
@@ -54,7 +61,9 @@ fn a_harness_killed_mid_boot_leaves_no_child_and_no_folder() -> Result<()> {
     std::thread::spawn(move || lines.map_while(Result::ok).for_each(|line| drop(sender.send(line))));
     let mut groups = Vec::new();
     loop {
-        let line = receiver.recv_timeout(START_TIMEOUT).context("the harness to kill never said it was running")?;
+        let line = receiver
+            .recv_timeout(START_TIMEOUT)
+            .with_context(|| format!("the harness to kill never said it was running; {}", said()))?;
         match line.strip_prefix("child-group ") {
             Some(group) => groups.push(group.parse::<u32>()?),
             None if line == "children-running" => break,

@@ -78,8 +78,8 @@ impl Browser {
 
     /// chromedriver's process id (its process group's, which Chromium
     /// joins, too).
-    pub fn driver_pid(&mut self) -> u32 {
-        self.driver.child().id()
+    pub fn driver_pid(&self) -> u32 {
+        self.driver.pid()
     }
 
     pub fn session(&self) -> &Session {

@@ -335,8 +335,8 @@ impl Qemu {
     }
 
     /// QEMU's process id (its process group's too).
-    pub fn pid(&mut self) -> u32 {
-        self.process.child().id()
+    pub fn pid(&self) -> u32 {
+        self.process.pid()
     }
 
     /// `error` with what QEMU printed on its standard error, if anything.
