@@ -18,11 +18,13 @@
 pub mod bochs;
 pub mod browser;
 pub mod checks;
+pub mod packages;
 pub mod picture;
 pub mod prerequisites;
 pub mod qemu;
 pub mod secure_boot;
 pub mod soak;
+pub mod supervisor;
 pub mod workspace;
 
 /// The image build and the process helpers live with the boot stages

@@ -9,20 +9,20 @@ pub mod serial;
 
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, ExitStatus, Stdio};
+use std::process::{Command, ExitStatus, Stdio};
 use std::sync::mpsc::Receiver;
 use std::time::{Duration, Instant};
 
-use anyhow::{anyhow, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use protocol::{Firmware, PciId, Ready};
 
 use crate::picture::Image;
 use crate::prerequisites::{
-    ensure_ovmf, ensure_qemu, ensure_secure_boot_ovmf, OVMF_CODE, OVMF_MICROSOFT_VARS, OVMF_SECURE_BOOT_CODE,
-    OVMF_VARS, QEMU,
+    ensure_ovmf, ensure_qemu, ensure_secure_boot_ovmf, ovmf_code, ovmf_microsoft_vars, ovmf_secure_boot_code,
+    ovmf_vars, QEMU,
 };
 use crate::process::command_line;
-use crate::workspace;
+use crate::supervisor::Supervised;
 use boot_image::build_image;
 use console::Console;
 use qmp::Qmp;
@@ -216,7 +216,7 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
         flag(
             &mut args,
             "-drive",
-            with_path("if=pflash,format=raw,unit=0,readonly=on,file=", Path::new(OVMF_SECURE_BOOT_CODE), ""),
+            with_path("if=pflash,format=raw,unit=0,readonly=on,file=", &ovmf_secure_boot_code(), ""),
         );
         flag(&mut args, "-drive", with_path("if=pflash,format=raw,unit=1,file=", &uefi_variables(run_dir), ""));
     } else {
@@ -228,7 +228,7 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
         // OVMF instead, as a UEFI PC's flash: its code read-only, and its
         // variable store (boot entries it writes as it boots) a copy of
         // the package's empty one, private to this run.
-        flag(&mut args, "-drive", with_path("if=pflash,format=raw,unit=0,readonly=on,file=", Path::new(OVMF_CODE), ""));
+        flag(&mut args, "-drive", with_path("if=pflash,format=raw,unit=0,readonly=on,file=", &ovmf_code(), ""));
         flag(&mut args, "-drive", with_path("if=pflash,format=raw,unit=1,file=", &uefi_variables(run_dir), ""));
     }
     // Always emulate: KVM here is nested and pathologically slow, and TCG
@@ -303,14 +303,14 @@ fn with_path(prefix: &str, path: &Path, suffix: &str) -> OsString {
     arg
 }
 
-/// A running QEMU. Dropping it kills the process.
+/// A running QEMU. Dropping it kills the process and removes its run
+/// folder (its watchdog does both if the harness dies first).
 pub struct Qemu {
-    child: Child,
+    process: Supervised,
     /// The protocol session on COM1.
     pub console: Console,
     /// What the kernel's READY frame said, once booted.
     pub ready: Ready,
-    run_dir: PathBuf,
     qmp: Option<Qmp>,
     stderr: Receiver<Vec<u8>>,
     stderr_seen: Vec<u8>,
@@ -333,46 +333,52 @@ impl Qemu {
     pub fn spawn(image: &Path, options: QemuOptions) -> Result<Self> {
         let variables = if options.secure_boot {
             ensure_secure_boot_ovmf()?;
-            OVMF_MICROSOFT_VARS
+            ovmf_microsoft_vars()
         } else {
-            OVMF_VARS
+            ovmf_vars()
         };
-        Self::spawn_with_variables(image, options, Path::new(variables))
+        Self::spawn_with_variables(image, options, &variables)
     }
 
     /// [`Qemu::spawn`] under UEFI with a copy of `variables` as the
     /// firmware's variable store (the Secure Boot tests' MOK lists).
     pub fn spawn_with_variables(image: &Path, options: QemuOptions, variables: &Path) -> Result<Self> {
         ensure_qemu()?;
-        let run_dir = workspace::fresh_run_dir("qemu")?;
         if options.firmware == Firmware::Uefi {
             ensure_ovmf()?;
             if options.secure_boot {
                 ensure_secure_boot_ovmf()?;
             }
+        }
+        let mut process = Supervised::with_folder("qemu")?;
+        let run_dir = process.folder().to_path_buf();
+        if options.firmware == Firmware::Uefi {
             std::fs::copy(variables, uefi_variables(&run_dir))
                 .with_context(|| format!("failed to copy {} into {}", variables.display(), run_dir.display()))?;
         }
         let mut command = Command::new(QEMU);
         command.args(qemu_arguments(image, &run_dir, options));
         command.stdin(Stdio::piped()).stdout(Stdio::piped()).stderr(Stdio::piped());
-        let line = command_line(&command);
-        eprintln!("harness: running {line}");
-        let mut child = command.spawn().with_context(|| format!("failed to start `{line}`"))?;
+        eprintln!("harness: running {}", command_line(&command));
+        let child = process.spawn(&mut command)?;
         let (Some(input), Some(output), Some(stderr)) = (child.stdin.take(), child.stdout.take(), child.stderr.take())
         else {
             unreachable!("all three streams are piped");
         };
         let console = Console::new(input, FrameReader::new(forward_bytes(output)));
         Ok(Self {
-            child,
+            process,
             console,
             ready: Ready::default(),
-            run_dir,
             qmp: None,
             stderr: forward_bytes(stderr),
             stderr_seen: Vec::new(),
         })
+    }
+
+    /// QEMU's process id (its process group's too).
+    pub fn pid(&self) -> u32 {
+        self.process.pid()
     }
 
     /// `error` with what QEMU printed on its standard error, if anything.
@@ -388,32 +394,50 @@ impl Qemu {
         error.context(format!("QEMU's standard error says: {stderr}"))
     }
 
-    /// The QMP session, connected on first use.
+    /// The QMP session, connected on first use. Gives up as soon as QEMU
+    /// has exited, with what it printed on its standard error.
     pub fn qmp(&mut self) -> Result<&mut Qmp> {
         if self.qmp.is_none() {
-            self.qmp = Some(Qmp::connect(&qmp_socket(&self.run_dir))?);
+            let socket = qmp_socket(self.process.folder());
+            let child = self.process.child();
+            let running = || match child.try_wait().context("failed to poll QEMU")? {
+                Some(status) => bail!("QEMU exited ({status}) before its QMP socket answered"),
+                None => Ok(()),
+            };
+            match Qmp::connect(&socket, running) {
+                Ok(qmp) => self.qmp = Some(qmp),
+                Err(error) => return Err(self.explain(error)),
+            }
         }
         Ok(self.qmp.as_mut().expect("connected above"))
     }
 
+    /// Runs `work` on the QMP session; a failure carries what QEMU printed
+    /// on its standard error (why it went away, if it did).
+    fn with_qmp<T>(&mut self, work: impl FnOnce(&mut Qmp) -> Result<T>) -> Result<T> {
+        let done = work(self.qmp()?);
+        done.map_err(|error| self.explain(error))
+    }
+
     /// QEMU's screendump of the display now.
     pub fn screendump(&mut self) -> Result<Image> {
-        let scratch = self.run_dir.join("screen.ppm");
-        self.qmp()?.screendump(&scratch)
+        let scratch = self.process.folder().join("screen.ppm");
+        self.with_qmp(|qmp| qmp.screendump(&scratch))
     }
 
     /// Presses and releases the key QEMU names `qcode` on the PS/2 keyboard,
     /// through QMP: nothing goes over the serial line, so the kernel's demo
     /// keeps playing.
     pub fn send_key(&mut self, qcode: &str) -> Result<()> {
-        self.qmp()?.send_key(qcode)
+        self.with_qmp(|qmp| qmp.send_key(qcode))
     }
 
     /// Asks QEMU to quit through QMP and waits (at most [`QUIT_TIMEOUT`])
     /// for it to go.
     pub fn quit(mut self) -> Result<ExitStatus> {
         self.qmp()?;
-        self.qmp.take().expect("connected above").quit()?;
+        let quit = self.qmp.take().expect("connected above").quit();
+        quit.map_err(|error| self.explain(error))?;
         self.wait_exit(QUIT_TIMEOUT)
     }
 
@@ -422,7 +446,7 @@ impl Qemu {
     pub fn wait_exit(&mut self, timeout: Duration) -> Result<ExitStatus> {
         let deadline = Instant::now() + timeout;
         loop {
-            if let Some(status) = self.child.try_wait().context("failed to poll QEMU")? {
+            if let Some(status) = self.process.child().try_wait().context("failed to poll QEMU")? {
                 return Ok(status);
             }
             if Instant::now() >= deadline {
@@ -437,20 +461,11 @@ impl Qemu {
     /// for interactive runs: a person is the timeout. Fails (with QEMU's
     /// complaint) unless QEMU exits successfully, as closing the window does.
     pub fn wait_until_closed(&mut self) -> Result<()> {
-        let status = self.child.wait().context("failed to wait for QEMU")?;
+        let status = self.process.child().wait().context("failed to wait for QEMU")?;
         if !status.success() {
             return Err(self.explain(anyhow!("QEMU exited with {status}")));
         }
         Ok(())
-    }
-}
-
-impl Drop for Qemu {
-    fn drop(&mut self) {
-        // Killing an exited child fails harmlessly; waiting reaps it.
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-        let _ = std::fs::remove_dir_all(&self.run_dir);
     }
 }
 
@@ -492,7 +507,7 @@ mod tests {
     #[test]
     fn uefi_boots_ovmf_from_read_only_code_and_a_private_variable_store() {
         let args = arguments(QemuOptions { firmware: Firmware::Uefi, ..QemuOptions::default() });
-        let code = format!("if=pflash,format=raw,unit=0,readonly=on,file={OVMF_CODE}");
+        let code = format!("if=pflash,format=raw,unit=0,readonly=on,file={}", ovmf_code().display());
         assert!(has_pair(&args, "-drive", &code), "{args:?}");
         assert!(has_pair(&args, "-drive", "if=pflash,format=raw,unit=1,file=/run/OVMF_VARS_4M.fd"), "{args:?}");
         assert!(has_pair(&args, "-drive", "if=ide,index=0,format=raw,snapshot=on,file=/img/polylab.img"));
@@ -501,7 +516,7 @@ mod tests {
     #[test]
     fn secure_boot_is_ovmfs_secure_build_on_q35_with_smm_and_its_flash_secured() {
         let args = arguments(QemuOptions { firmware: Firmware::Uefi, secure_boot: true, ..QemuOptions::default() });
-        let code = format!("if=pflash,format=raw,unit=0,readonly=on,file={OVMF_SECURE_BOOT_CODE}");
+        let code = format!("if=pflash,format=raw,unit=0,readonly=on,file={}", ovmf_secure_boot_code().display());
         assert!(has_pair(&args, "-drive", &code), "{args:?}");
         assert!(has_pair(&args, "-drive", "if=pflash,format=raw,unit=1,file=/run/OVMF_VARS_4M.fd"), "{args:?}");
         assert!(has_pair(&args, "-machine", "q35,smm=on"), "{args:?}");
