@@ -17,7 +17,10 @@ mod replies;
 
 pub use commands::{Command, CommandError, FaultKind};
 pub use frames::{FrameHeader, FrameKind};
-pub use replies::{Firmware, HeapState, LineLosses, PciId, Pong, Presentation, Ready, ShowReply, Video, PONG};
+pub use replies::{
+    Firmware, HeapState, LineErrors, LineLosses, Machine, PciAddress, PciId, Pong, Presentation, Ready, ShowReply,
+    Video, PONG,
+};
 
 /// Longest command line the kernel accepts, terminator excluded.
 pub const MAX_LINE: usize = 4096;

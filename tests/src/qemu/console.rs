@@ -213,7 +213,8 @@ impl Console {
         self.reply_within(REPLY_TIMEOUT)
     }
 
-    fn reply_within(&mut self, timeout: Duration) -> Result<Reply> {
+    /// The next reply, within `timeout`; LOG frames on the way are kept.
+    pub fn reply_within(&mut self, timeout: Duration) -> Result<Reply> {
         loop {
             let frame = self.frames.next_frame(timeout)?;
             if frame.kind == FrameKind::Log {
@@ -360,7 +361,7 @@ mod tests {
             (Firmware::Uefi, "1234:1111".to_string(), Video::Vga13h { mismatches: 1 })
         );
         let pong = console.pong().unwrap();
-        assert_eq!(pong.losses, LineLosses { overruns: 3, dropped: 1 });
+        assert_eq!(pong.losses, LineLosses { overruns: 3, dropped: 1, errors: None });
         assert_eq!(pong.heap, HeapState { used: 96, free_largest: 4096 });
         let listing = console.list().unwrap();
         let expected = Listing {

@@ -8,6 +8,7 @@ pub mod qmp;
 pub mod serial;
 
 use std::ffi::OsString;
+use std::net::{TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, ExitStatus, Stdio};
 use std::sync::mpsc::Receiver;
@@ -22,7 +23,7 @@ use crate::process::command_line;
 use crate::workspace;
 use boot_image::build_image;
 use console::Console;
-use qmp::Qmp;
+use qmp::{Qmp, QMP_TIMEOUT};
 use serial::{forward_bytes, FrameReader};
 
 /// Longest wait for QEMU to exit after QMP `quit`.
@@ -141,6 +142,21 @@ impl Adapter {
         }
     }
 
+    /// QEMU's device for the card on the PCI bus, which `-device` can put
+    /// at a slot of one's choosing; `None` for ramfb and no card.
+    fn pci_device(self) -> Option<&'static str> {
+        match self {
+            Adapter::Std => Some("VGA"),
+            Adapter::Cirrus => Some("cirrus-vga"),
+            Adapter::Vmware => Some("vmware-svga"),
+            Adapter::QxlVga => Some("qxl-vga"),
+            Adapter::VirtioVga => Some("virtio-vga"),
+            Adapter::AtiVga => Some("ati-vga"),
+            Adapter::BochsDisplay => Some("bochs-display"),
+            Adapter::Ramfb | Adapter::None => None,
+        }
+    }
+
     /// The PCI IDs QEMU gives the card (as `lspci -n` shows them in a
     /// guest), which the kernel reports in READY; `None` for no card and
     /// for ramfb, which is not on the PCI bus.
@@ -172,6 +188,40 @@ pub enum Clock {
     InstructionCount,
 }
 
+/// Where COM1, the protocol line, reaches the harness.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SerialLine {
+    /// QEMU's standard input and output.
+    #[default]
+    Stdio,
+    /// A telnet server on TCP port `port` of 127.0.0.1 (0: [`Qemu::spawn`]
+    /// picks a free one): the one QEMU backend that carries a break (IAC
+    /// BRK, bytes 255 243, which QEMU turns into a break on the UART's
+    /// receiving end). A data byte 255 must be sent twice.
+    Telnet { port: u16 },
+}
+
+/// What QEMU's CPU tells the guest about itself.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Cpu {
+    /// QEMU's default CPU, which says a hypervisor runs it (CPUID leaf 1,
+    /// ECX bit 31) and names it (`TCGTCGTCGTCG`).
+    #[default]
+    Default,
+    /// The same CPU with CPUID's hypervisor bit clear: from the CPU, a
+    /// guest cannot tell it runs under QEMU.
+    WithoutHypervisorBit,
+}
+
+/// Whether QEMU has its exit device (`isa-debug-exit`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ExitDevice {
+    #[default]
+    Present,
+    /// None: a kernel's write to its port goes nowhere, as on a PC.
+    Absent,
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct QemuOptions {
     pub firmware: Firmware,
@@ -179,7 +229,22 @@ pub struct QemuOptions {
     pub display: Display,
     pub adapter: Adapter,
     pub clock: Clock,
+    pub serial: SerialLine,
+    /// COM1's IRQ line if not its standard 4: the UART then interrupts on
+    /// a line the kernel does not listen to.
+    pub com1_irq: Option<u8>,
+    pub cpu: Cpu,
+    pub exit_device: ExitDevice,
+    /// A display controller with no VGA (bochs-display, class 03/80, the
+    /// std VGA's PCI IDs) in slot 2, ahead of the card in bus order, and
+    /// the card (a PCI one) in slot 5, where screendumps are taken of it.
+    pub display_ahead: bool,
 }
+
+/// The slot `QemuOptions::display_ahead` puts the card in, and the QEMU
+/// id screendumps name it by.
+const CARD_BEHIND_SLOT: &str = "05.0";
+const CARD_BEHIND_ID: &str = "card";
 
 /// Where a run keeps its QMP socket and, under UEFI, its copy of the
 /// firmware's variable store.
@@ -220,10 +285,26 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
     // VGA BIOS puts them in text mode; under OVMF its graphics driver sets
     // their native mode, which the kernel undoes on the cards it knows.
     let [card_flag, card] = options.adapter.qemu_flags();
-    flag(&mut args, card_flag, card);
-    if card_flag == "-device" {
-        // No built-in VGA beside the card given as a device.
-        flag(&mut args, "-vga", "none");
+    match options.adapter.pci_device().filter(|_| options.display_ahead) {
+        Some(device) => {
+            // A display controller without VGA first in bus order, the
+            // card behind it: the kernel must find the VGA by the legacy
+            // VGA decoding, not by bus order.
+            flag(&mut args, "-vga", "none");
+            flag(&mut args, "-device", "bochs-display,addr=02.0");
+            flag(&mut args, "-device", format!("{device},addr={CARD_BEHIND_SLOT},id={CARD_BEHIND_ID}"));
+        }
+        None => {
+            flag(&mut args, card_flag, card);
+            if card_flag == "-device" {
+                // No built-in VGA beside the card given as a device.
+                flag(&mut args, "-vga", "none");
+            }
+        }
+    }
+    if options.cpu == Cpu::WithoutHypervisorBit {
+        // QEMU's default CPU model, its hypervisor bit cleared.
+        flag(&mut args, "-cpu", "qemu64,-hypervisor");
     }
     // No network card: nothing boots from the network, and no option ROM
     // of one slows the firmware down.
@@ -236,12 +317,26 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
     }
     // No human monitor: QMP is the control channel and stdio is COM1.
     flag(&mut args, "-monitor", "none");
-    // COM1 on QEMU's stdin and stdout, both pipes to us: the protocol line.
-    flag(&mut args, "-serial", "stdio");
+    match options.serial {
+        // COM1 on QEMU's stdin and stdout, both pipes to us: the protocol line.
+        SerialLine::Stdio => flag(&mut args, "-serial", "stdio"),
+        SerialLine::Telnet { port } => {
+            // COM1 on a telnet server; `wait=on`: the guest starts once
+            // the harness has connected, so no frame is lost.
+            let server = format!("socket,id=com1,host=127.0.0.1,port={port},server=on,wait=on,telnet=on");
+            flag(&mut args, "-chardev", server);
+            flag(&mut args, "-serial", "chardev:com1");
+        }
+    }
+    if let Some(irq) = options.com1_irq {
+        flag(&mut args, "-global", format!("isa-serial.irq={irq}"));
+    }
     // Screendump and quit; `wait=off` lets the guest run with no client yet.
     flag(&mut args, "-qmp", with_path("unix:", &qmp_socket(run_dir), ",server=on,wait=off"));
-    // `EXIT n` and fault reports leave QEMU with exit status (n << 1) | 1.
-    flag(&mut args, "-device", "isa-debug-exit,iobase=0xf4,iosize=0x04");
+    if options.exit_device == ExitDevice::Present {
+        // `EXIT n` and fault reports leave QEMU with exit status (n << 1) | 1.
+        flag(&mut args, "-device", "isa-debug-exit,iobase=0xf4,iosize=0x04");
+    }
     // A triple fault exits QEMU instead of rebooting the guest forever.
     args.push("-no-reboot".into());
     // `snapshot=on` sends writes to a temporary overlay: the image file stays
@@ -260,6 +355,25 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
         }
     }
     args
+}
+
+/// A TCP port of 127.0.0.1 free a moment ago.
+fn free_port() -> Result<u16> {
+    let listener = TcpListener::bind("127.0.0.1:0").context("failed to find a free TCP port")?;
+    Ok(listener.local_addr()?.port())
+}
+
+/// A connection to QEMU's server on 127.0.0.1:`port`, retried until QEMU
+/// listens there, within `timeout`.
+fn connect_within(port: u16, timeout: Duration) -> Result<TcpStream> {
+    let deadline = Instant::now() + timeout;
+    loop {
+        match TcpStream::connect(("127.0.0.1", port)) {
+            Ok(stream) => return Ok(stream),
+            Err(_) if Instant::now() < deadline => std::thread::sleep(Duration::from_millis(20)),
+            Err(error) => return Err(error).with_context(|| format!("failed to connect to COM1 on port {port}")),
+        }
+    }
 }
 
 fn flag(args: &mut Vec<OsString>, flag: &str, value: impl Into<OsString>) {
@@ -286,6 +400,9 @@ pub struct Qemu {
     qmp: Option<Qmp>,
     stderr: Receiver<Vec<u8>>,
     stderr_seen: Vec<u8>,
+    /// The QEMU id of the display screendumps are taken of; `None`: the
+    /// first one.
+    screen: Option<&'static str>,
 }
 
 impl Qemu {
@@ -304,6 +421,12 @@ impl Qemu {
     /// the kernel.
     pub fn spawn(image: &Path, options: QemuOptions) -> Result<Self> {
         ensure_qemu()?;
+        let options = match options.serial {
+            SerialLine::Telnet { port: 0 } => {
+                QemuOptions { serial: SerialLine::Telnet { port: free_port()? }, ..options }
+            }
+            _ => options,
+        };
         let run_dir = workspace::fresh_run_dir("qemu")?;
         if options.firmware == Firmware::Uefi {
             ensure_ovmf()?;
@@ -321,7 +444,7 @@ impl Qemu {
             unreachable!("all three streams are piped");
         };
         let console = Console::new(input, FrameReader::new(forward_bytes(output)));
-        Ok(Self {
+        let mut qemu = Self {
             child,
             console,
             ready: Ready::default(),
@@ -329,7 +452,16 @@ impl Qemu {
             qmp: None,
             stderr: forward_bytes(stderr),
             stderr_seen: Vec::new(),
-        })
+            screen: options.adapter.pci_device().filter(|_| options.display_ahead).map(|_| CARD_BEHIND_ID),
+        };
+        if let SerialLine::Telnet { port } = options.serial {
+            let stream = match connect_within(port, QMP_TIMEOUT) {
+                Ok(stream) => stream,
+                Err(error) => return Err(qemu.explain(error)),
+            };
+            qemu.console = Console::new(stream.try_clone()?, FrameReader::new(forward_bytes(stream)));
+        }
+        Ok(qemu)
     }
 
     /// `error` with what QEMU printed on its standard error, if anything.
@@ -353,10 +485,18 @@ impl Qemu {
         Ok(self.qmp.as_mut().expect("connected above"))
     }
 
-    /// QEMU's screendump of the display now.
+    /// QEMU's screendump of the display now (of the card, with
+    /// `QemuOptions::display_ahead`).
     pub fn screendump(&mut self) -> Result<Image> {
         let scratch = self.run_dir.join("screen.ppm");
-        self.qmp()?.screendump(&scratch)
+        let screen = self.screen;
+        self.qmp()?.screendump(&scratch, screen)
+    }
+
+    /// Raises a non-maskable interrupt on the CPU, as a chipset does to
+    /// report a hardware error (QMP `inject-nmi`).
+    pub fn inject_nmi(&mut self) -> Result<()> {
+        self.qmp()?.inject_nmi()
     }
 
     /// Presses and releases the key QEMU names `qcode` on the PS/2 keyboard,
@@ -372,6 +512,11 @@ impl Qemu {
         self.qmp()?;
         self.qmp.take().expect("connected above").quit()?;
         self.wait_exit(QUIT_TIMEOUT)
+    }
+
+    /// Whether QEMU is still running.
+    pub fn is_running(&mut self) -> Result<bool> {
+        Ok(self.child.try_wait().context("failed to poll QEMU")?.is_none())
     }
 
     /// Waits at most `timeout` for QEMU to exit by itself (after `EXIT`, a
