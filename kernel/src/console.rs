@@ -2,7 +2,7 @@
 //! one command line in, one frame out. Whatever arrives, the console
 //! answers and keeps serving: a bad line gets an `ERR` frame naming the
 //! problem, an over-long one is thrown away up to its newline, a line
-//! left unfinished for [`PARTIAL_LINE_IDLE_MICROS`] is dropped and the
+//! left unfinished for `PARTIAL_LINE_IDLE_SECONDS` is dropped and the
 //! show plays again (a stray byte on the line does not end the show for
 //! good), and no byte sequence can make it panic or wait forever. `EXIT`
 //! and `FAULT` are answered only on QEMU (`machine.rs`).
@@ -12,7 +12,7 @@ use alloc::string::{String, ToString};
 use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt::Write;
-use protocol::{Command, CommandError, Firmware, FrameKind, Machine, Pong, Ready, MAX_LINE};
+use protocol::{Command, CommandError, Firmware, FrameKind, Machine, Pong, Ready, MAX_LINE, PARTIAL_LINE_IDLE_SECONDS};
 use raster::MethodId;
 use scenes::show::{Stage, ENTRIES_IN_ORDER};
 use scenes::{builtin, file, Op, Scene};
@@ -22,12 +22,6 @@ use crate::machine::Identity;
 use crate::pci::DisplayController;
 use crate::video::Screen;
 use crate::{bench, demo, exit, fault, heap, machine, player, serial};
-
-/// How long a line may sit unfinished, no byte arriving, before it is
-/// dropped and the show plays again: far longer than any pause inside a
-/// line a program sends (a whole line of `MAX_LINE` bytes takes 0.36 s at
-/// 115200 baud), and long enough for a person typing at a terminal.
-pub const PARTIAL_LINE_IDLE_MICROS: u64 = 10_000_000;
 
 /// Tells the host the kernel is up: a `LOG` frame saying which machine it
 /// found and by what signs, one if COM1's interrupt did not arrive (the
@@ -96,18 +90,18 @@ struct Console<'a> {
 
 impl Console<'_> {
     /// When the line being received is given up if no byte comes: never
-    /// between lines, [`PARTIAL_LINE_IDLE_MICROS`] from now inside one.
+    /// between lines, [`PARTIAL_LINE_IDLE_SECONDS`] from now inside one.
     fn idle_deadline(&self) -> Option<Deadline> {
-        (!self.line.is_empty() || self.overlong).then(|| Deadline::after_micros(PARTIAL_LINE_IDLE_MICROS))
+        let idle = PARTIAL_LINE_IDLE_SECONDS * 1_000_000;
+        (!self.line.is_empty() || self.overlong).then(|| Deadline::after_micros(idle))
     }
 
     /// Drops the unfinished line, saying so in a `LOG` frame.
     fn drop_partial_line(&mut self) {
         let what = if self.overlong { "an overlong line" } else { "an unfinished line" };
         let text = format!(
-            "dropped {what} ({} bytes kept) idle for {} s; the show plays again",
+            "dropped {what} ({} bytes kept) idle for {PARTIAL_LINE_IDLE_SECONDS} s; the show plays again",
             self.line.len(),
-            PARTIAL_LINE_IDLE_MICROS / 1_000_000
         );
         serial::send_frame(FrameKind::Log, text.as_bytes());
         self.line.clear();
