@@ -664,6 +664,42 @@ mod tests {
     }
 
     #[test]
+    fn a_telnet_com1_waits_for_the_harness_and_carries_breaks() {
+        let args = arguments(QemuOptions { serial: SerialLine::Telnet { port: 4555 }, ..QemuOptions::default() });
+        let server = "socket,id=com1,host=127.0.0.1,port=4555,server=on,wait=on,telnet=on";
+        assert!(has_pair(&args, "-chardev", server), "{args:?}");
+        assert!(has_pair(&args, "-serial", "chardev:com1"), "{args:?}");
+        assert!(!has_pair(&args, "-serial", "stdio"), "{args:?}");
+    }
+
+    #[test]
+    fn com1_irq_cpu_and_exit_device_options_change_only_their_flags() {
+        let default = arguments(QemuOptions::default());
+        assert!(!default.iter().any(|a| a == "-cpu" || a == "-global"), "{default:?}");
+        let moved = arguments(QemuOptions { com1_irq: Some(3), ..QemuOptions::default() });
+        assert!(has_pair(&moved, "-global", "isa-serial.irq=3"), "{moved:?}");
+        let disguised = arguments(QemuOptions { cpu: Cpu::WithoutHypervisorBit, ..QemuOptions::default() });
+        assert!(has_pair(&disguised, "-cpu", "qemu64,-hypervisor"), "{disguised:?}");
+        let bare = arguments(QemuOptions { exit_device: ExitDevice::Absent, ..QemuOptions::default() });
+        assert!(!bare.iter().any(|a| a.contains("isa-debug-exit")), "{bare:?}");
+        // One flag and its value more, or less; nothing else moves.
+        assert_eq!(
+            [moved.len(), disguised.len(), bare.len()],
+            [default.len() + 2, default.len() + 2, default.len() - 2]
+        );
+    }
+
+    #[test]
+    fn a_display_ahead_puts_bochs_display_in_slot_2_and_the_card_in_slot_5() {
+        let args = arguments(QemuOptions { adapter: Adapter::Cirrus, display_ahead: true, ..QemuOptions::default() });
+        assert!(has_pair(&args, "-vga", "none"), "{args:?}");
+        let devices: Vec<&String> = args.windows(2).filter(|w| w[0] == "-device").map(|w| &w[1]).collect();
+        assert_eq!(devices[..2], ["bochs-display,addr=02.0", "cirrus-vga,addr=05.0,id=card"], "{args:?}");
+        let ramfb = arguments(QemuOptions { adapter: Adapter::Ramfb, display_ahead: true, ..QemuOptions::default() });
+        assert!(has_pair(&ramfb, "-device", "ramfb") && !ramfb.iter().any(|a| a.contains("bochs-display")));
+    }
+
+    #[test]
     fn a_window_drops_only_the_display_flag() {
         let headless = arguments(QemuOptions::default());
         let window = arguments(QemuOptions { display: Display::Window, ..QemuOptions::default() });
