@@ -47,16 +47,6 @@ fn fatal_is_reported_and_fails(qemu: &mut Qemu, cause: &str, named: &str) -> Res
     Ok(())
 }
 
-#[test]
-fn divide_error_is_reported_and_exits_with_status_35() -> Result<()> {
-    fault_is_reported_and_fails(FaultKind::DivideError, "divide error")
-}
-
-#[test]
-fn invalid_opcode_is_reported_and_exits_with_status_35() -> Result<()> {
-    fault_is_reported_and_fails(FaultKind::InvalidOpcode, "invalid opcode")
-}
-
 /// A chipset raises an NMI to report a hardware error: while the kernel
 /// runs, that is fatal, and named.
 #[test]
@@ -128,4 +118,14 @@ fn double_fault_is_reported_and_exits_with_status_35() -> Result<()> {
 #[test]
 fn panic_is_reported_and_exits_with_status_35() -> Result<()> {
     fault_is_reported_and_fails(FaultKind::Panic, "panic")
+}
+
+#[test]
+fn divide_error_is_reported_and_exits_with_status_35() -> Result<()> {
+    fault_is_reported_and_fails(FaultKind::DivideError, "divide error")
+}
+
+#[test]
+fn invalid_opcode_is_reported_and_exits_with_status_35() -> Result<()> {
+    fault_is_reported_and_fails(FaultKind::InvalidOpcode, "invalid opcode")
 }
