@@ -284,17 +284,28 @@ pub fn send_frame(kind: FrameKind, payload: &[u8]) {
     }
 }
 
-/// Sends a `FATAL` frame from a fault or panic handler. Interrupts are off
-/// and there is one CPU, so if a frame is being sent, its sender is the
-/// code this fault interrupted, which never runs again: the frame goes out
-/// without waiting for it (it may then land inside a half-sent one; the
-/// host resynchronises on the next header). If the fault struck inside the
-/// driver itself (its lock is held), nothing can be sent; the exit status
-/// still says the run failed.
+/// Sends a `FATAL` frame from a fault, NMI or panic handler. Interrupts
+/// are off and there is one CPU, so if a frame is being sent, or COM1's
+/// driver is in use (the kernel polls it all the time, so an NMI often
+/// lands there), the one using it is the code this fault interrupted,
+/// which never runs again: the frame goes out without waiting for it (it
+/// may then land inside a half-sent one; the host resynchronises on the
+/// next header). Should the driver itself fault while sending, the
+/// second fatal error exits without a report (`fatal.rs`); the exit
+/// status still says the run failed.
 pub fn send_fatal(payload: &[u8]) {
-    if PRESENT.load(Ordering::Acquire) && !COM1.is_locked() {
-        write_frame(FrameKind::Fatal, payload);
+    if !PRESENT.load(Ordering::Acquire) {
+        return;
     }
+    if COM1.is_locked() {
+        // SAFETY: the lock's holder is the code this handler interrupted
+        // on the one CPU, and `fatal` never returns to it, so from now on
+        // nothing else uses the driver. What the holder left half done
+        // leaves the UART usable: every step of the driver is a single
+        // access to one of its registers.
+        unsafe { COM1.force_unlock() };
+    }
+    write_frame(FrameKind::Fatal, payload);
 }
 
 fn write_frame(kind: FrameKind, payload: &[u8]) {
