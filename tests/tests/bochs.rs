@@ -3,14 +3,18 @@
 //! READY (COM1 found and set up although Bochs's port reads cost a few
 //! nanoseconds of its virtual time), put the card in mode 13h with every
 //! register and DAC entry reading back as written, and draw what the host
-//! asks exactly as the host renders it; and Bochs must listen on no TCP
-//! port while it does (its VNC display, which took 5900-5949 on every
-//! interface with no password, is not used).
+//! asks exactly as the host renders it. Bochs does not say what it is (no
+//! hypervisor bit, no subsystem IDs on its host bridge), so the kernel
+//! takes it for an unknown machine and refuses `EXIT` and `FAULT`, as on
+//! a PC, with nothing touched; and Bochs must listen on no TCP port while
+//! it does (its VNC display, which took 5900-5949 on every interface with
+//! no password, is not used).
 
-use anyhow::{ensure, Context, Result};
+use anyhow::{bail, ensure, Context, Result};
 use harness::bochs::Bochs;
 use harness::checks::{dump_matches_host_render, show_matches_host_render};
-use protocol::{Command, Firmware, PciId, Video};
+use harness::Reply;
+use protocol::{Command, FaultKind, Firmware, Machine, PciId, Video, EXIT_SUCCESS};
 use scenes::builtin;
 
 #[test]
@@ -23,6 +27,16 @@ fn bochs_boots_the_image_and_the_kernel_draws_what_the_host_asks() -> Result<()>
     ensure!(ready.display == cirrus, "Bochs: READY names the display {:?}, not Bochs's Cirrus", ready.display);
     ensure!(ready.video == (Video::Vga13h { mismatches: 0 }), "Bochs: READY names the video path {:?}", ready.video);
     ensure!(ready.losses.none(), "Bochs: READY says the serial line lost bytes: {}", ready.losses);
+    for log in bochs.console.logs() {
+        eprintln!("harness: bochs: LOG {log}");
+    }
+    ensure!(ready.machine == Some(Machine::Unknown), "Bochs: READY names the machine {:?}", ready.machine);
+    for command in [Command::Exit(EXIT_SUCCESS), Command::Fault(FaultKind::DivideError)] {
+        match bochs.console.request(&command)? {
+            Reply::Err(text) if text.contains("not identified as QEMU") => {}
+            other => bail!("Bochs: `{command}` answered {other:?}, expected ERR"),
+        }
+    }
     bochs.console.ok(&Command::VgaCheck)?;
     for page in [builtin::ABRASH38_1, builtin::ABRASH40_2] {
         dump_matches_host_render(&mut bochs.console, page.name, page.method)?;

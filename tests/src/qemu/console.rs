@@ -229,7 +229,7 @@ impl Console {
     /// The next reply within `timeout`: one deadline for the whole wait,
     /// which LOG frames on the way do not extend (a kernel that keeps
     /// logging and never answers still times out).
-    fn reply_within(&mut self, timeout: Duration) -> Result<Reply> {
+    pub fn reply_within(&mut self, timeout: Duration) -> Result<Reply> {
         let deadline = Instant::now() + timeout;
         let logs_before = self.logs.len();
         let late = |logs: usize| {
@@ -391,7 +391,7 @@ mod tests {
             (Firmware::Uefi, "1234:1111".to_string(), Video::Vga13h { mismatches: 1 })
         );
         let pong = console.pong().unwrap();
-        assert_eq!(pong.losses, LineLosses { overruns: 3, dropped: 1 });
+        assert_eq!(pong.losses, LineLosses { overruns: 3, dropped: 1, errors: None });
         assert_eq!(pong.heap, HeapState { used: 96, free_largest: 4096 });
         let listing = console.list().unwrap();
         let expected = Listing {

@@ -94,11 +94,16 @@ impl Qmp {
     }
 
     /// What the emulated display shows now, as QEMU renders it: for mode
-    /// 13h a 640x400 picture. QEMU writes a PPM to `scratch`, which is read
-    /// back and parsed.
-    pub fn screendump(&mut self, scratch: &Path) -> Result<Image> {
+    /// 13h a 640x400 picture. `device`: the QEMU id of the display, `None`
+    /// for the first. QEMU writes a PPM to `scratch`, which is read back
+    /// and parsed.
+    pub fn screendump(&mut self, scratch: &Path, device: Option<&str>) -> Result<Image> {
         let filename = scratch.to_str().context("screendump path is not UTF-8")?;
-        self.execute("screendump", json!({ "filename": filename }))?;
+        let arguments = match device {
+            Some(device) => json!({ "filename": filename, "device": device }),
+            None => json!({ "filename": filename }),
+        };
+        self.execute("screendump", arguments)?;
         let bytes = std::fs::read(scratch).with_context(|| format!("failed to read the screendump {filename}"))?;
         parse_ppm(&bytes).with_context(|| format!("bad screendump {filename}"))
     }
@@ -110,6 +115,12 @@ impl Qmp {
     pub fn send_key(&mut self, qcode: &str) -> Result<()> {
         self.execute("send-key", json!({ "keys": [{ "type": "qcode", "data": qcode }] }))
             .with_context(|| format!("failed to press the key `{qcode}`"))?;
+        Ok(())
+    }
+
+    /// Raises a non-maskable interrupt on every CPU.
+    pub fn inject_nmi(&mut self) -> Result<()> {
+        self.execute("inject-nmi", json!({})).context("failed to inject an NMI")?;
         Ok(())
     }
 
