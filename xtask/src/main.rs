@@ -15,7 +15,7 @@ mod soak;
 mod test;
 
 use anyhow::Result;
-use boot_image::build_image;
+use boot_image::{build_image, build_image_signed_by, own_signing_key};
 use clap::Parser;
 
 use crate::opt::{Action, Cli};
@@ -23,9 +23,13 @@ use crate::opt::{Action, Cli};
 fn main() -> Result<()> {
     match Cli::parse().action {
         Action::Run(opt) => run::run(&opt),
-        Action::Image => {
+        Action::Image(opt) => {
+            let image = match (&opt.key, &opt.cert) {
+                (Some(key), Some(cert)) => build_image_signed_by(&own_signing_key(key, cert)?)?,
+                _ => build_image()?,
+            };
             // The path is the last line, for scripts: `dd if="$(cargo xtask image | tail -1)" ...`.
-            println!("{}", build_image()?.display());
+            println!("{}", image.display());
             Ok(())
         }
         Action::Dump(opt) => dump::dump(&opt),

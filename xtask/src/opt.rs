@@ -24,9 +24,10 @@ pub enum Action {
     /// <entry>.png, each animation as <entry>.gif, a scene file as
     /// <name>.png, every one checked against the host render.
     Run(RunOpt),
-    /// Builds the raw image, one file that boots under a BIOS (or CSM) and
-    /// under UEFI (for QEMU or a USB stick); prints its path last.
-    Image,
+    /// Builds the raw image, one file that boots under a BIOS (or CSM),
+    /// under UEFI and under UEFI Secure Boot (for QEMU or a USB stick), its
+    /// UEFI loader signed with your own key; prints its path last.
+    Image(ImageOpt),
     /// Boots the kernel, draws a built-in scene or a scene file, checks the
     /// kernel's dump against the host render and QEMU's screendump, and
     /// writes DIR/NAME.png (the kernel's dump) and DIR/NAME.screen.png
@@ -150,6 +151,17 @@ pub struct RecordOpt {
     /// Skip checking each dump against the host render and the show's palette.
     #[arg(long)]
     pub no_verify: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct ImageOpt {
+    /// Sign with this private key (PEM) instead of the one made for you
+    /// in ~/.config/polylab/secure-boot (or set POLYLAB_SECURE_BOOT_KEY).
+    #[arg(long, requires = "cert")]
+    pub key: Option<PathBuf>,
+    /// The key's certificate, PEM or DER (or set POLYLAB_SECURE_BOOT_CERT).
+    #[arg(long, requires = "key")]
+    pub cert: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]

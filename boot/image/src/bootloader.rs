@@ -1,50 +1,60 @@
 //! The boot stages the image is built with: the registry's `bootloader`
-//! with its BIOS stage 2 patched, so that the display card is still in the
-//! BIOS's text mode when the kernel programs mode 13h. (The UEFI loader is
-//! the registry's, unchanged: under UEFI the kernel undoes the firmware's
-//! mode itself, card by card, see kernel/src/card.rs.)
+//! with its BIOS stage 2 and its UEFI loader patched.
 //!
-//! Why: `bootloader` 0.11's BIOS stage 2 asks the card's VBE BIOS for a
-//! linear-framebuffer mode and switches to it before the kernel runs (and
-//! panics when the card has no VBE). Undoing that takes card-specific
+//! Why stage 2: `bootloader` 0.11's BIOS stage 2 asks the card's VBE BIOS
+//! for a linear-framebuffer mode and switches to it before the kernel runs
+//! (and panics when the card has no VBE). Undoing that takes card-specific
 //! steps: on QEMU's Cirrus card, for one, the standard VGA registers read
 //! back as programmed while the screen stays garbage, because an extended
 //! sequencer register keeps the VBE mode. A card that never left text mode
-//! needs no undoing, on any VGA-compatible adapter.
+//! needs no undoing, on any VGA-compatible adapter. (Under UEFI the kernel
+//! undoes the firmware's mode itself, card by card, see kernel/src/card.rs.)
+//!
+//! Why the UEFI loader: under Secure Boot shim starts it only if it carries
+//! an `.sbat` section, and once started it would boot any kernel beside it
+//! on the stick; the patched loader has the section and checks the
+//! SHA-256 of the kernel and of `boot.json` against digests the image
+//! build writes into it before signing it ([`crate::secure_boot`],
+//! boot/image/loader/verify.rs).
 //!
 //! How: nothing of the bootloader lives in this repository. At build time
-//! [`prepare`] has cargo fetch `bootloader` and `bootloader-x86_64-bios-stage-2`
-//! of [`VERSION`] from the registry, copies `bootloader` to a folder under
-//! the nightly target directory, puts the stage-2 crate at `bios/stage-2`
-//! inside it (where `bootloader`'s build script builds stage 2 from when
-//! that folder exists; the other stages still come from the registry),
-//! and applies [`STAGE_2_EDITS`], each of which must match exactly once or
-//! the build stops saying which. The image writer (`boot`) is then built against
-//! that copy through a cargo `[patch]` given on the command line
-//! ([`PatchedBootloader::cargo_args`]), with a lock file of its own under
-//! `target/`, so the tracked `Cargo.lock` and the working tree stay as they
-//! are.
+//! [`prepare`] has cargo fetch `bootloader`, `bootloader-x86_64-bios-stage-2`
+//! and `bootloader-x86_64-uefi` of [`VERSION`] from the registry, checks
+//! their archives against the SHA-256 pinned in [`crate::sources`],
+//! unpacks `bootloader` into a folder under the nightly target directory
+//! with the stage-2 crate at `bios/stage-2` and the loader at `uefi`
+//! inside it (where `bootloader`'s build script builds them from when
+//! those folders exist; the other stages still come from the registry),
+//! and applies [`STAGE_2_EDITS`] and [`LOADER_EDITS`], each of which must
+//! match exactly once or the build stops saying which. The image writer
+//! (`boot`) is then built against that copy through a cargo `[patch]`
+//! given on the command line ([`PatchedBootloader::cargo_args`]), with a
+//! lock file of its own under `target/`, so the tracked `Cargo.lock` and
+//! the working tree stay as they are.
+//!
+//! Built once per change of its inputs: the copy is made again only when
+//! the stamp beside it (the pinned digests, every edit and every added
+//! file) changes, and `bootloader`'s build script, which rebuilds the
+//! stages, reruns only when a folder it watches changes. It watches
+//! `bios/stage-2` and `bios/common`, `uefi` and `common`: the copy has
+//! empty `bios/common` and `common` folders (a missing one counts as
+//! changed on every build), and the stages' own build folders lie outside
+//! the watched ones ([`PatchedBootloader::stages_target_dir`]).
 
 use std::path::{Path, PathBuf};
+use std::process::Command;
 
 use anyhow::{ensure, Context, Result};
 
-use crate::cargo::pinned;
-use crate::process::{output_of, run_streaming};
+use crate::sources::{self, PinnedCrate, BOOTLOADER, STAGE_2, UEFI_LOADER};
 use crate::workspace;
 
-/// The `bootloader` release the edits are written against. `boot/Cargo.toml`
-/// asks for exactly this version (a unit test holds it to that), so a new
-/// release is taken only together with edits checked against its source.
-pub const VERSION: &str = "0.11.17";
+pub use crate::sources::VERSION;
 
-/// The registry crate whose source is `bootloader`'s BIOS stage 2.
-const STAGE_2_CRATE: &str = "bootloader-x86_64-bios-stage-2";
-
-/// One change to a file of the stage-2 crate: `find` must occur exactly
+/// One change to a file of a patched crate: `find` must occur exactly
 /// once and becomes `replace`.
 pub struct Edit {
-    /// The file, relative to the stage-2 crate.
+    /// The file, relative to the crate.
     pub file: &'static str,
     /// What the edit does and why, for the error when `find` is missing.
     pub purpose: &'static str,
@@ -114,15 +124,80 @@ pub const STAGE_2_EDITS: &[Edit] = &[
     },
 ];
 
+/// Everything the image's UEFI loader changes from the registry's, and
+/// why; the code it calls is [`LOADER_FILES`].
+pub const LOADER_EDITS: &[Edit] = &[
+    Edit {
+        file: "Cargo.toml",
+        purpose: "make the copy a workspace of its own, as stage 2's",
+        find: "\n[[bin]]\n",
+        replace: "\n[workspace]\n\n[[bin]]\n",
+    },
+    Edit {
+        file: "src/main.rs",
+        purpose: "add the modules that check the kernel and boot.json and carry the .sbat section",
+        find: "\nmod memory_descriptor;\n",
+        replace: "\nmod memory_descriptor;\nmod polylab_sha256;\nmod polylab_verify;\n",
+    },
+    Edit {
+        file: "src/main.rs",
+        purpose: "check the kernel's SHA-256 before anything reads it, whether it came from the disk or over TFTP",
+        find: "    let kernel_slice = load_file_from_boot_method(&KERNEL_FILE, boot_mode)?;\n",
+        replace: "    let kernel_slice = load_file_from_boot_method(&KERNEL_FILE, boot_mode)?;\n    \
+                  polylab_verify::check_kernel(kernel_slice);\n",
+    },
+    Edit {
+        file: "src/main.rs",
+        purpose: "check boot.json's SHA-256 before it is parsed (a missing one is refused too)",
+        find: "fn load_config_file(boot_mode: BootMode) -> Option<&'static mut [u8]> {
+    load_file_from_boot_method(&CONFIG_FILE, boot_mode)
+}
+",
+        replace: "fn load_config_file(boot_mode: BootMode) -> Option<&'static mut [u8]> {
+    let config = load_file_from_boot_method(&CONFIG_FILE, boot_mode);
+    polylab_verify::check_config(config.as_deref());
+    config
+}
+",
+    },
+];
+
+/// Files added to the UEFI loader's source: (path in the crate, text).
+pub const LOADER_FILES: &[(&str, &str)] = &[
+    ("src/polylab_sha256.rs", include_str!("../loader/sha256.rs")),
+    ("src/polylab_verify.rs", include_str!("../loader/verify.rs")),
+];
+
+/// One crate put into the copy of `bootloader`, patched.
+pub struct Patch {
+    pub source: PinnedCrate,
+    /// Where in the copy: the folder `bootloader`'s build script builds
+    /// that stage from when it exists.
+    pub folder: &'static str,
+    pub edits: &'static [Edit],
+    pub added_files: &'static [(&'static str, &'static str)],
+}
+
+/// Both patched crates.
+pub const PATCHES: [Patch; 2] = [
+    Patch { source: STAGE_2, folder: "bios/stage-2", edits: STAGE_2_EDITS, added_files: &[] },
+    Patch { source: UEFI_LOADER, folder: "uefi", edits: LOADER_EDITS, added_files: LOADER_FILES },
+];
+
+/// Folders `bootloader`'s build script watches (`cargo:rerun-if-changed`)
+/// that the copy has no crate in: they exist, empty, so that cargo does not
+/// take their absence for a change on every build.
+const WATCHED_EMPTY_FOLDERS: [&str; 2] = ["bios/common", "common"];
+
 /// `text` with every edit of `edits` for `file` applied, in order; fails
 /// naming the first edit whose `find` does not occur exactly once.
-pub fn apply_edits(file: &str, text: &str, edits: &[Edit]) -> Result<String> {
+pub fn apply_edits(crate_name: &str, file: &str, text: &str, edits: &[Edit]) -> Result<String> {
     let mut text = text.to_string();
     for edit in edits.iter().filter(|edit| edit.file == file) {
         let found = text.matches(edit.find).count();
         ensure!(
             found == 1,
-            "cannot patch {STAGE_2_CRATE} {VERSION}'s {file}: the text to change occurs {found} times, not once \
+            "cannot patch {crate_name} {VERSION}'s {file}: the text to change occurs {found} times, not once \
              (the edit is to {}); its first line: `{}`",
             edit.purpose,
             edit.find.trim_start_matches('\n').lines().next().unwrap_or_default().trim()
@@ -135,7 +210,8 @@ pub fn apply_edits(file: &str, text: &str, edits: &[Edit]) -> Result<String> {
 /// Where the patched copy lives and the lock file its builds use.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct PatchedBootloader {
-    /// The copy of `bootloader` with the patched stage 2 at `bios/stage-2`.
+    /// The copy of `bootloader` with the patched stage 2 at `bios/stage-2`
+    /// and the patched UEFI loader at `uefi`.
     pub dir: PathBuf,
     /// The lock file of builds against the copy: cargo rewrites the
     /// `bootloader` entry of whatever lock file a `[patch]` build uses.
@@ -149,15 +225,30 @@ impl PatchedBootloader {
         Self { dir: root.join(format!("bootloader-{VERSION}")), lockfile: root.join("lock").join("Cargo.lock") }
     }
 
-    /// Arguments to a `cargo build` of the image writer: `bootloader`
-    /// from the copy, and the lock file under `target/`.
-    pub fn cargo_args(&self) -> Result<Vec<String>> {
-        Ok(vec![
+    /// Makes `command`, a `cargo build` of the image writer, build
+    /// against the copy: `bootloader` patched to it, the lock file under
+    /// `target/`, and the stages' builds in [`Self::stages_target_dir`].
+    pub fn configure(&self, command: &mut Command) -> Result<()> {
+        command.args([
             "--config".to_string(),
             format!("patch.crates-io.bootloader.path={}", toml_string(&self.dir)?),
             "--config".to_string(),
             format!("resolver.lockfile-path={}", toml_string(&self.lockfile)?),
-        ])
+        ]);
+        // bootloader's build script builds each stage with `cargo install`,
+        // which reads this variable (the UEFI loader's names a folder of its
+        // own, `target/uefi_target` in the copy). Stage 2 is a workspace of
+        // its own in the copy, so without it its build folder would be
+        // `bios/stage-2/target`, inside the folder the script watches, and
+        // every build would change it.
+        command.env("CARGO_TARGET_DIR", self.stages_target_dir());
+        Ok(())
+    }
+
+    /// Where the stages build: beside the copy, outside every folder
+    /// `bootloader`'s build script watches.
+    pub fn stages_target_dir(&self) -> PathBuf {
+        self.dir.with_file_name("stages-target")
     }
 
     /// A fingerprint of the patch, kept beside the copy: a copy made by
@@ -208,13 +299,13 @@ fn toml_string(path: &Path) -> Result<String> {
     Ok(quoted)
 }
 
-/// The patched copy, made unless one made by the same edits is there, and
-/// the lock file for a build against it, fresh from the workspace's.
+/// The patched copy, made unless one made from the same sources by the
+/// same edits is there, and the lock file for a build against it, fresh
+/// from the workspace's.
 pub fn prepare() -> Result<PatchedBootloader> {
     let patched = PatchedBootloader::in_target_dir();
     let fingerprint = fingerprint();
-    let current = std::fs::read_to_string(patched.stamp()).is_ok_and(|stamp| stamp == fingerprint);
-    if !current || !patched.dir.is_dir() {
+    if !is_current(&patched, &fingerprint) {
         make_copy(&patched)?;
         std::fs::write(patched.stamp(), &fingerprint)
             .with_context(|| format!("failed to write {}", patched.stamp().display()))?;
@@ -227,23 +318,50 @@ pub fn prepare() -> Result<PatchedBootloader> {
     Ok(patched)
 }
 
-/// The version and every edit, as text.
-fn fingerprint() -> String {
-    let mut text = format!("{STAGE_2_CRATE} {VERSION}\n");
-    for edit in STAGE_2_EDITS {
-        text.push_str(&format!("{}\n{}\n{}\n", edit.file, edit.find, edit.replace));
+/// Whether the copy is there and its stamp says it was made with
+/// `fingerprint`.
+pub fn is_current(patched: &PatchedBootloader, fingerprint: &str) -> bool {
+    patched.dir.is_dir() && std::fs::read_to_string(patched.stamp()).is_ok_and(|stamp| stamp == fingerprint)
+}
+
+/// What the copy is made of, as text: the version, the SHA-256 of every
+/// fetched archive (checked against it before anything is unpacked),
+/// every edit and every added file.
+pub fn fingerprint() -> String {
+    let mut text = format!("bootloader {VERSION}\n");
+    for source in sources::PINNED {
+        text.push_str(&format!("{} sha256:{}\n", source.name, source.sha256));
+    }
+    for patch in &PATCHES {
+        text.push_str(&format!("{} at {}\n", patch.source.name, patch.folder));
+        for edit in patch.edits {
+            text.push_str(&format!("edit {}\n{}\n{}\n", edit.file, edit.find, edit.replace));
+        }
+        for (file, contents) in patch.added_files {
+            text.push_str(&format!("add {file} sha256:{}\n", sources::sha256_hex(contents.as_bytes())));
+        }
+    }
+    for folder in WATCHED_EMPTY_FOLDERS {
+        text.push_str(&format!("empty {folder}\n"));
     }
     text
 }
 
-/// Fetches both crates, copies them into a fresh folder beside
-/// `patched.dir`, applies the edits and moves the result into place, so
-/// an interrupted run never leaves a half-patched copy.
+/// Fetches the pinned archives, checks them, unpacks them into a fresh
+/// folder beside `patched.dir`, applies the patches and moves the result
+/// into place, so an interrupted run never leaves a half-patched copy.
 fn make_copy(patched: &PatchedBootloader) -> Result<()> {
-    let (bootloader, stage_2) = fetch_sources(patched.dir.parent().expect("the copy is in a folder"))?;
+    let work_dir = patched.dir.parent().expect("the copy is in a folder");
+    let archives = sources::fetch(work_dir)?;
+    // Every archive is checked before any is unpacked.
+    let checked: Vec<Vec<u8>> = sources::PINNED
+        .iter()
+        .zip(&archives)
+        .map(|(pinned, archive)| sources::read_checked(archive, pinned))
+        .collect::<Result<_>>()?;
     eprintln!(
         "image: patching bootloader {VERSION}'s BIOS stage 2 (no VBE mode set, so the card stays in text mode) \
-         in {}",
+         and UEFI loader (an .sbat section, and a check of the kernel's and boot.json's SHA-256) in {}",
         patched.dir.display()
     );
     let scratch = patched.dir.with_extension("partial");
@@ -252,89 +370,42 @@ fn make_copy(patched: &PatchedBootloader) -> Result<()> {
             std::fs::remove_dir_all(dir).with_context(|| format!("failed to remove {}", dir.display()))?;
         }
     }
-    copy_dir(&bootloader, &scratch)?;
-    let stage_2_copy = scratch.join("bios").join("stage-2");
-    copy_dir(&stage_2, &stage_2_copy)?;
-    let mut files: Vec<&str> = STAGE_2_EDITS.iter().map(|edit| edit.file).collect();
-    files.dedup();
-    for file in files {
-        let path = stage_2_copy.join(file);
-        let text = std::fs::read_to_string(&path).with_context(|| format!("failed to read {}", path.display()))?;
-        let patched_text = apply_edits(file, &text, STAGE_2_EDITS)?;
-        std::fs::write(&path, patched_text).with_context(|| format!("failed to write {}", path.display()))?;
+    for (pinned, bytes) in sources::PINNED.iter().zip(&checked) {
+        let to = match PATCHES.iter().find(|patch| patch.source == *pinned) {
+            Some(patch) => scratch.join(patch.folder),
+            None if *pinned == BOOTLOADER => scratch.clone(),
+            None => unreachable!("every pinned crate is bootloader or patched"),
+        };
+        if let Some(parent) = to.parent() {
+            std::fs::create_dir_all(parent).with_context(|| format!("failed to create {}", parent.display()))?;
+        }
+        sources::unpack(bytes, pinned, &to)?;
+    }
+    for patch in &PATCHES {
+        apply_patch(patch, &scratch.join(patch.folder))?;
+    }
+    for folder in WATCHED_EMPTY_FOLDERS {
+        let folder = scratch.join(folder);
+        std::fs::create_dir_all(&folder).with_context(|| format!("failed to create {}", folder.display()))?;
     }
     std::fs::rename(&scratch, &patched.dir)
         .with_context(|| format!("failed to move {} to {}", scratch.display(), patched.dir.display()))
 }
 
-/// The registry sources of `bootloader` and its stage-2 crate, both
-/// [`VERSION`], fetched by cargo through a manifest written into
-/// `work_dir` that depends on both (a manifest of its own, with a copy of
-/// the workspace's lock file so that their dependencies resolve as ours do).
-fn fetch_sources(work_dir: &Path) -> Result<(PathBuf, PathBuf)> {
-    let fetch_dir = work_dir.join("fetch");
-    std::fs::create_dir_all(&fetch_dir).with_context(|| format!("failed to create {}", fetch_dir.display()))?;
-    let manifest = fetch_dir.join("Cargo.toml");
-    std::fs::write(&manifest, fetch_manifest()).with_context(|| format!("failed to write {}", manifest.display()))?;
-    std::fs::copy(workspace::root().join("Cargo.lock"), fetch_dir.join("Cargo.lock"))
-        .context("failed to copy Cargo.lock for fetching the bootloader's sources")?;
-    // Fetching unpacks both crates into cargo's registry sources, the
-    // bin-only stage-2 crate too (a build would ignore it; fetch does not).
-    run_streaming(pinned("cargo").arg("fetch").arg("--manifest-path").arg(&manifest))
-        .context("failed to fetch the bootloader's sources")?;
-    let metadata = output_of(
-        pinned("cargo").args(["metadata", "--format-version", "1", "--offline", "--manifest-path"]).arg(&manifest),
-    )?;
-    let bootloader = registry_source(&metadata, "bootloader")?;
-    // Cargo unpacks every crate of a registry side by side, as NAME-VERSION.
-    let stage_2 = bootloader.with_file_name(format!("{STAGE_2_CRATE}-{VERSION}"));
-    ensure!(
-        stage_2.join("src").join("main.rs").is_file(),
-        "cargo fetched {STAGE_2_CRATE} {VERSION}, but it is not beside bootloader at {}",
-        stage_2.display()
-    );
-    Ok((bootloader, stage_2))
-}
-
-/// The manifest [`fetch_sources`] fetches with.
-fn fetch_manifest() -> String {
-    format!(
-        "# Written by the image build (boot/image/src/bootloader.rs) to fetch the sources it patches.\n\
-         [package]\nname = \"bootloader-sources\"\nversion = \"0.0.0\"\nedition = \"2021\"\npublish = false\n\n\
-         [lib]\npath = \"lib.rs\"\n\n\
-         [dependencies]\n\
-         bootloader = {{ version = \"={VERSION}\", default-features = false, features = [\"bios\", \"uefi\"] }}\n\
-         {STAGE_2_CRATE} = \"={VERSION}\"\n\n\
-         [workspace]\n"
-    )
-}
-
-/// The folder of package `name` [`VERSION`] in `cargo metadata` output.
-fn registry_source(metadata: &str, name: &str) -> Result<PathBuf> {
-    let metadata: serde_json::Value = serde_json::from_str(metadata).context("cargo metadata printed no JSON")?;
-    let packages = metadata["packages"].as_array().context("cargo metadata lists no packages")?;
-    let package = packages
-        .iter()
-        .find(|package| package["name"] == name && package["version"] == VERSION)
-        .with_context(|| format!("cargo metadata does not list {name} {VERSION}"))?;
-    let manifest = package["manifest_path"].as_str().with_context(|| format!("{name} has no manifest_path"))?;
-    Ok(Path::new(manifest).parent().with_context(|| format!("{manifest} has no folder"))?.to_path_buf())
-}
-
-/// Copies the folder `from` to `to` (created), files and subfolders.
-fn copy_dir(from: &Path, to: &Path) -> Result<()> {
-    std::fs::create_dir_all(to).with_context(|| format!("failed to create {}", to.display()))?;
-    for entry in std::fs::read_dir(from).with_context(|| format!("failed to list {}", from.display()))? {
-        let entry = entry.with_context(|| format!("failed to list {}", from.display()))?;
-        let (source, target) = (entry.path(), to.join(entry.file_name()));
-        if entry.file_type()?.is_dir() {
-            copy_dir(&source, &target)?;
-        } else {
-            // Read and write rather than `fs::copy`: registry files may be
-            // read-only, and the edited ones are rewritten.
-            let bytes = std::fs::read(&source).with_context(|| format!("failed to read {}", source.display()))?;
-            std::fs::write(&target, bytes).with_context(|| format!("failed to write {}", target.display()))?;
-        }
+/// Applies `patch`'s edits to the crate in `dir` and adds its files.
+fn apply_patch(patch: &Patch, dir: &Path) -> Result<()> {
+    let mut files: Vec<&str> = patch.edits.iter().map(|edit| edit.file).collect();
+    files.dedup();
+    for file in files {
+        let path = dir.join(file);
+        let text = std::fs::read_to_string(&path).with_context(|| format!("failed to read {}", path.display()))?;
+        let patched_text = apply_edits(patch.source.name, file, &text, patch.edits)?;
+        std::fs::write(&path, patched_text).with_context(|| format!("failed to write {}", path.display()))?;
+    }
+    for (file, contents) in patch.added_files {
+        let path = dir.join(file);
+        ensure!(!path.exists(), "{} {VERSION} already has a {file}, which the patch adds", patch.source.name);
+        std::fs::write(&path, contents).with_context(|| format!("failed to write {}", path.display()))?;
     }
     Ok(())
 }
@@ -348,7 +419,7 @@ mod tests {
         let manifest = include_str!("../../Cargo.toml");
         assert!(
             manifest.contains(&format!("bootloader = {{ version = \"={VERSION}\"")),
-            "boot/Cargo.toml must pin bootloader ={VERSION}, the version the stage-2 edits are written for"
+            "boot/Cargo.toml must pin bootloader ={VERSION}, the version the edits are written for"
         );
     }
 
@@ -361,18 +432,18 @@ mod tests {
             find: "    vesa_mode.enable().unwrap();\n",
             replace: "",
         }];
-        assert_eq!(apply_edits("src/main.rs", source, &edits).unwrap(), "fn main() {\n    a();\n    b();\n}\n");
-        assert_eq!(apply_edits("Cargo.toml", source, &edits).unwrap(), source, "edits of other files");
-        let error = apply_edits("src/main.rs", "fn main() {}\n", &edits).unwrap_err().to_string();
+        assert_eq!(apply_edits("x", "src/main.rs", source, &edits).unwrap(), "fn main() {\n    a();\n    b();\n}\n");
+        assert_eq!(apply_edits("x", "Cargo.toml", source, &edits).unwrap(), source, "edits of other files");
+        let error = apply_edits("x", "src/main.rs", "fn main() {}\n", &edits).unwrap_err().to_string();
         assert_eq!(
             error,
             format!(
-                "cannot patch {STAGE_2_CRATE} {VERSION}'s src/main.rs: the text to change occurs 0 times, not once \
+                "cannot patch x {VERSION}'s src/main.rs: the text to change occurs 0 times, not once \
                  (the edit is to drop the mode set); its first line: `vesa_mode.enable().unwrap();`"
             )
         );
         let twice = format!("{source}{source}");
-        assert!(apply_edits("src/main.rs", &twice, &edits).unwrap_err().to_string().contains("occurs 2 times"));
+        assert!(apply_edits("x", "src/main.rs", &twice, &edits).unwrap_err().to_string().contains("occurs 2 times"));
     }
 
     #[test]
@@ -385,13 +456,53 @@ mod tests {
     }
 
     #[test]
-    fn the_build_takes_the_copy_and_a_lock_file_under_target() {
+    fn the_loader_edits_call_both_checks_and_add_their_modules() {
+        let added: String = LOADER_EDITS.iter().map(|edit| edit.replace).collect();
+        assert!(added.contains("polylab_verify::check_kernel(kernel_slice);"), "{added}");
+        assert!(added.contains("polylab_verify::check_config(config.as_deref());"), "{added}");
+        for (file, _) in LOADER_FILES {
+            let module = file.trim_start_matches("src/").trim_end_matches(".rs");
+            assert!(added.contains(&format!("mod {module};")), "{file} is added but not declared");
+        }
+    }
+
+    #[test]
+    fn the_stamp_names_every_fetched_archives_digest_and_every_change() {
+        let stamp = fingerprint();
+        for pinned in sources::PINNED {
+            assert!(stamp.contains(&format!("{} sha256:{}", pinned.name, pinned.sha256)), "{stamp}");
+        }
+        for edit in STAGE_2_EDITS.iter().chain(LOADER_EDITS) {
+            assert!(stamp.contains(edit.find) && stamp.contains(edit.replace), "{}", edit.purpose);
+        }
+        let verify = sources::sha256_hex(include_str!("../loader/verify.rs").as_bytes());
+        assert!(stamp.contains(&format!("add src/polylab_verify.rs sha256:{verify}")), "{stamp}");
+    }
+
+    #[test]
+    fn a_copy_with_another_stamp_or_none_is_made_again() {
+        let dir = tempfile::tempdir().unwrap();
+        let patched =
+            PatchedBootloader { dir: dir.path().join("bootloader-0.11.17"), lockfile: dir.path().join("lock") };
+        assert!(!is_current(&patched, "a"), "no copy");
+        std::fs::create_dir(&patched.dir).unwrap();
+        assert!(!is_current(&patched, "a"), "no stamp");
+        std::fs::write(patched.stamp(), "b").unwrap();
+        assert!(!is_current(&patched, "a"), "another stamp");
+        std::fs::write(patched.stamp(), "a").unwrap();
+        assert!(is_current(&patched, "a"));
+    }
+
+    #[test]
+    fn the_build_takes_the_copy_a_lock_file_and_a_stages_folder_under_target() {
         let patched = PatchedBootloader {
             dir: PathBuf::from("/w/target/nightly/patched-bootloader/bootloader-0.11.17"),
             lockfile: PathBuf::from("/w/target/nightly/patched-bootloader/lock/Cargo.lock"),
         };
+        let mut command = Command::new("cargo");
+        patched.configure(&mut command).unwrap();
         assert_eq!(
-            patched.cargo_args().unwrap(),
+            command.get_args().collect::<Vec<_>>(),
             [
                 "--config",
                 "patch.crates-io.bootloader.path=\"/w/target/nightly/patched-bootloader/bootloader-0.11.17\"",
@@ -399,6 +510,11 @@ mod tests {
                 "resolver.lockfile-path=\"/w/target/nightly/patched-bootloader/lock/Cargo.lock\"",
             ]
         );
+        let stages = Path::new("/w/target/nightly/patched-bootloader/stages-target");
+        assert_eq!(command.get_envs().collect::<Vec<_>>(), [("CARGO_TARGET_DIR".as_ref(), Some(stages.as_os_str()))]);
+        for patch in &PATCHES {
+            assert!(!stages.starts_with(patched.dir.join(patch.folder)), "{} is watched", patch.folder);
+        }
         assert_eq!(toml_string(Path::new("/a \"b\"\\c")).unwrap(), r#""/a \"b\"\\c""#);
     }
 

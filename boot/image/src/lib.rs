@@ -1,9 +1,10 @@
 //! The bootable image's build, for the xtask (`cargo xtask image`) and the
 //! test harness alike: the kernel built with the pinned nightly, and
 //! `boot` (the image writer, `boot/src/main.rs`) built against the copy of
-//! `bootloader` whose BIOS stage 2 leaves the card in text mode
-//! ([`bootloader`]), then run to write one raw image that boots under a
-//! BIOS (or a UEFI firmware's CSM) and under UEFI.
+//! `bootloader` whose BIOS stage 2 leaves the card in text mode and whose
+//! UEFI loader checks the kernel ([`bootloader`]), then run to write one
+//! raw image that boots under a BIOS (or a UEFI firmware's CSM), under
+//! UEFI, and under UEFI Secure Boot through shim ([`secure_boot`]).
 //!
 //! ```no_run
 //! # fn main() -> anyhow::Result<()> {
@@ -17,18 +18,24 @@ pub mod bootloader;
 pub mod cargo;
 pub mod once;
 pub mod process;
+pub mod secure_boot;
+pub mod sources;
 pub mod toolchain;
 pub mod workspace;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
 use anyhow::{ensure, Context, Result};
 
+use crate::bootloader::PatchedBootloader;
 use crate::cargo::NightlyBuild;
 use crate::once::once_per_process;
 use crate::process::run_streaming;
+use crate::secure_boot::debian::{self, Unpacked};
+use crate::secure_boot::key::{self, SigningKey};
+use crate::secure_boot::{loader, CERTIFICATE_PATH, LOADER_PATH, MOK_MANAGER_PATH, SHIM_PATH};
 use crate::toolchain::ensure_toolchain;
 
 /// Names a prebuilt image to use instead of building one (`cargo xtask
@@ -37,7 +44,8 @@ use crate::toolchain::ensure_toolchain;
 /// in their package's directory.
 pub const IMAGE_ENV: &str = "POLYLAB_IMAGE";
 
-/// The raw image, built once per process (or taken from [`IMAGE_ENV`]).
+/// The raw image, built once per process (or taken from [`IMAGE_ENV`]),
+/// its loader signed with the user's key ([`SigningKey::users`]).
 /// Installs the pinned nightly first when it is missing.
 pub fn build_image() -> Result<PathBuf> {
     static IMAGE: OnceLock<Result<PathBuf, String>> = OnceLock::new();
@@ -48,22 +56,98 @@ pub fn build_image() -> Result<PathBuf> {
             eprintln!("image: using {} from {IMAGE_ENV}", image.display());
             return Ok(image);
         }
-        ensure_toolchain()?;
-        let patched = bootloader::prepare()?;
-        eprintln!("image: building the kernel and the image writer (the first build takes minutes)");
-        let kernel = NightlyBuild::KERNEL;
-        run_streaming(&mut kernel.command()).with_context(|| format!("failed to build `{}`", kernel.package))?;
-        let writer = NightlyBuild::IMAGE_WRITER;
-        run_streaming(writer.command().args(patched.cargo_args()?))
-            .with_context(|| format!("failed to build `{}` against {}", writer.package, patched.dir.display()))?;
-        patched.ensure_used()?;
-        let image = image_path();
-        let mut write_image = Command::new(NightlyBuild::IMAGE_WRITER.artifact());
-        write_image.arg(NightlyBuild::KERNEL.artifact()).arg(&image);
-        run_streaming(&mut write_image).context("failed to write the disk image")?;
-        eprintln!("image: built {}", image.display());
-        Ok(image)
+        build_image_signed_by(&SigningKey::users(&own_key_dir())?)
     })
+}
+
+/// The raw image with its loader signed by `key`.
+pub fn build_image_signed_by(key: &SigningKey) -> Result<PathBuf> {
+    for mut build in stage_builds()? {
+        run_streaming(&mut build).context("failed to build the kernel or the image writer")?;
+    }
+    PatchedBootloader::in_target_dir().ensure_used()?;
+    let image = image_path();
+    write_image(key, &image)?;
+    eprintln!("image: built {}", image.display());
+    Ok(image)
+}
+
+/// The builds of the kernel and of the image writer (against the patched
+/// bootloader, made first if need be), in order. Both are no-ops when
+/// nothing changed: tests/tests/image_build.rs runs them twice.
+pub fn stage_builds() -> Result<Vec<Command>> {
+    ensure_toolchain()?;
+    let patched = bootloader::prepare()?;
+    eprintln!("image: building the kernel and the image writer (the first build takes minutes)");
+    let mut writer = NightlyBuild::IMAGE_WRITER.command();
+    patched.configure(&mut writer)?;
+    Ok(vec![NightlyBuild::KERNEL.command(), writer])
+}
+
+/// A key of one's own (`cargo xtask image --key --cert`): `key` (PEM)
+/// and `cert` (PEM or DER).
+pub fn own_signing_key(key: &Path, cert: &Path) -> Result<SigningKey> {
+    SigningKey::own(key, cert, &own_key_dir())
+}
+
+/// Where a certificate of one's own given in DER is converted to PEM.
+fn own_key_dir() -> PathBuf {
+    secure_boot_dir().join("own-key")
+}
+
+/// Where the Secure Boot pieces are fetched and made.
+fn secure_boot_dir() -> PathBuf {
+    workspace::nightly_target_dir().join("secure-boot")
+}
+
+/// Debian's packages the image takes shim, MokManager and sbsign from.
+pub fn debian_packages() -> Unpacked {
+    Unpacked::in_dir(secure_boot_dir().join("debian"))
+}
+
+/// Writes `image`: the loader out of the writer, the digests in, signed
+/// with `key`, then the image with shim, MokManager, the signed loader and
+/// the certificate on its FAT.
+fn write_image(key: &SigningKey, image: &Path) -> Result<()> {
+    let debian = debian_packages();
+    let (shim, mok_manager, sbsign) =
+        (debian.get(debian::SHIM)?, debian.get(debian::MOK_MANAGER)?, debian.get(debian::SBSIGN)?);
+    let work = secure_boot_dir().join("build");
+    std::fs::create_dir_all(&work).with_context(|| format!("failed to create {}", work.display()))?;
+    let writer = NightlyBuild::IMAGE_WRITER.artifact();
+    run_streaming(Command::new(&writer).arg("loader").arg(&work)).context("failed to write the UEFI loader")?;
+    let kernel = NightlyBuild::KERNEL.artifact();
+    let boot_json = work.join("boot.json");
+    let read = |path: &Path| std::fs::read(path).with_context(|| format!("failed to read {}", path.display()));
+    let mut loader_bytes = read(&work.join("loader.efi"))?;
+    loader::check_sbat(&loader_bytes)?;
+    loader::write_digests(&mut loader_bytes, &read(&kernel)?, &read(&boot_json)?)?;
+    let (unsigned, signed) = (work.join("grubx64-unsigned.efi"), work.join("grubx64.efi"));
+    std::fs::write(&unsigned, &loader_bytes).with_context(|| format!("failed to write {}", unsigned.display()))?;
+    loader::sign(&sbsign, key, &unsigned, &signed)?;
+    let der = key.certificate_der()?;
+    let certificate = work.join(CERTIFICATE_PATH);
+    std::fs::write(&certificate, &der).with_context(|| format!("failed to write {}", certificate.display()))?;
+    let mut write = Command::new(&writer);
+    write.arg("image").arg(&kernel).arg(&boot_json).arg(image);
+    for (fat_path, file) in
+        [(SHIM_PATH, &shim), (LOADER_PATH, &signed), (MOK_MANAGER_PATH, &mok_manager), (CERTIFICATE_PATH, &certificate)]
+    {
+        let mut arg = std::ffi::OsString::from(format!("{fat_path}="));
+        arg.push(file);
+        write.arg(arg);
+    }
+    run_streaming(&mut write).context("failed to write the disk image")?;
+    eprintln!(
+        "image: UEFI Secure Boot: shim from Debian's shim-signed {}, MokManager from shim-helpers-amd64-signed {}; \
+         the loader signed with your key, certificate {} (SHA-256 fingerprint {}), on the image as {CERTIFICATE_PATH}: \
+         enroll it once with MokManager (docs/boot.md)",
+        debian.version(debian::SHIM.package)?,
+        debian.version(debian::MOK_MANAGER.package)?,
+        key.cert.display(),
+        key::fingerprint(&der)
+    );
+    Ok(())
 }
 
 /// Where [`build_image`] writes the image.

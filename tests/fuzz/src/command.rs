@@ -7,7 +7,10 @@
 //! screen; every accepted reply text or frame header formats back to
 //! itself parsed again.
 
-use protocol::{Command, FaultKind, FrameHeader, FrameKind, Pong, Ready, ShowReply, BENCH_MAX_REPEATS};
+use protocol::{
+    Command, FaultKind, FrameHeader, FrameKind, LineErrors, LineLosses, Machine, PciAddress, PciId, Pong, Ready,
+    ShowReply, BENCH_MAX_REPEATS,
+};
 use raster::{CoverageSink, MethodId, SCREEN};
 use scenes::file;
 
@@ -88,10 +91,23 @@ pub fn seeds() -> Vec<(String, Vec<u8>)> {
         refused: 0,
         strays: 0,
     };
+    // As a kernel of today writes them, every field there, and as an older
+    // one did (the defaults leave the later fields out).
+    let errors = Some(LineErrors { framing: 1, parity: 0, breaks: 2 });
+    let losses = LineLosses { overruns: 0, dropped: 3, errors };
+    let ready = Ready {
+        machine: Some(Machine::Qemu),
+        display: Some(PciId { vendor: 0x1234, device: 0x1111 }),
+        display_at: Some(PciAddress { bus: 0, device: 2, function: 0 }),
+        losses,
+        ..Ready::default()
+    };
     let replies = [
         show.to_string(),
         Pong::default().to_string(),
         Ready::default().to_string(),
+        Pong { losses, ..Pong::default() }.to_string(),
+        ready.to_string(),
         FrameHeader::for_payload(FrameKind::Ok, b"pong").to_string(),
     ];
     seeds.extend(replies.into_iter().enumerate().map(|(i, text)| (format!("reply-{i}"), text.into_bytes())));
@@ -118,6 +134,13 @@ pub fn dictionary() -> Vec<String> {
             "heap_used=",
             "heap_free_largest=",
             "display=",
+            "display_at=",
+            "machine=",
+            "qemu",
+            "unknown",
+            "framing=",
+            "parity=",
+            "breaks=",
             "none",
             "vga_mismatches=",
             "color=",

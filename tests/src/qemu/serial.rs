@@ -88,6 +88,42 @@ impl FrameReader {
         }
     }
 
+    /// Waits until one of `texts` arrives, as text rather than in a frame
+    /// (a firmware's, shim's or a boot manager's console, which OVMF copies
+    /// to COM1), and returns which (the first to end in the stream) and
+    /// everything received up to its end, which is consumed. Fails when the
+    /// stream closes and after `timeout`, showing the last bytes received.
+    pub fn skip_to_first(&mut self, texts: &[&str], timeout: Duration) -> Result<(usize, String)> {
+        let deadline = Instant::now() + timeout;
+        loop {
+            let found = texts
+                .iter()
+                .enumerate()
+                .filter(|(_, text)| !text.is_empty())
+                .filter_map(|(i, text)| {
+                    let at = self.pending.windows(text.len()).position(|window| window == text.as_bytes())?;
+                    Some((at + text.len(), i))
+                })
+                .min();
+            if let Some((end, i)) = found {
+                let seen: Vec<u8> = self.pending.drain(..end).collect();
+                return Ok((i, String::from_utf8_lossy(&seen).into_owned()));
+            }
+            let wanted = texts.iter().map(|text| format!("`{text}`")).collect::<Vec<_>>().join(" or ");
+            if self.closed {
+                bail!("the serial stream ended (QEMU exited?) before {wanted}; {}", self.last_bytes());
+            }
+            let remaining = deadline.saturating_duration_since(Instant::now());
+            match self.source.recv_timeout(remaining) {
+                Ok(chunk) => self.receive(&chunk),
+                Err(RecvTimeoutError::Timeout) => {
+                    bail!("no {wanted} within {:.1} s; {}", timeout.as_secs_f64(), self.last_bytes())
+                }
+                Err(RecvTimeoutError::Disconnected) => self.closed = true,
+            }
+        }
+    }
+
     fn receive(&mut self, chunk: &[u8]) {
         self.pending.extend_from_slice(chunk);
         let keep = chunk.len().min(TAIL_LEN);
@@ -264,6 +300,18 @@ mod tests {
         let error = reader.next_frame(Duration::from_secs(10)).unwrap_err().to_string();
         assert!(error.starts_with("the serial stream ended"), "{error}");
         assert!(started.elapsed() < Duration::from_secs(1));
+    }
+
+    #[test]
+    fn text_is_found_across_chunks_and_what_came_before_is_returned() {
+        let (mut reader, _sender) =
+            open_reader(&[b"\x1b[01;01HVerification fai", b"led: (0x1A) Security Violation\r\n@RE"]);
+        let seen = reader.skip_to_first(&["@READY", "Verification failed"], SHORT).unwrap();
+        assert_eq!(seen, (1, "\x1b[01;01HVerification failed".to_string()));
+        let violation = reader.skip_to_first(&["Violation", "Security"], SHORT).unwrap();
+        assert_eq!(violation, (1, ": (0x1A) Security".to_string()), "the first to end wins");
+        let error = reader.skip_to_first(&["READY", "MokManager"], SHORT).unwrap_err().to_string();
+        assert!(error.starts_with("no `READY` or `MokManager` within "), "{error}");
     }
 
     #[test]

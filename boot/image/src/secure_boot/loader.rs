@@ -1,0 +1,128 @@
+//! The signed UEFI loader: the patched loader (boot/image/loader/verify.rs)
+//! with the kernel's and `boot.json`'s SHA-256 written into its
+//! placeholder, then signed with the user's key by `sbsign`, so the
+//! signature covers the digests.
+
+use std::path::Path;
+use std::process::Command;
+
+use anyhow::{ensure, Context, Result};
+use object::read::pe::PeFile64;
+use object::{Object, ObjectSection};
+use sha2::{Digest, Sha256};
+
+use super::key::SigningKey;
+use crate::process::output_of;
+
+/// The bytes that start the digest placeholder in the loader (its
+/// `MARKER`); the kernel's SHA-256 follows, then `boot.json`'s.
+pub const DIGESTS_MARKER: &[u8; 16] = b"polylab-digests:";
+
+/// The first line of every `.sbat` section (shim's SBAT.md).
+pub const SBAT_HEADER: &str = "sbat,1,SBAT Version,sbat,1,https://github.com/rhboot/shim/blob/main/SBAT.md\n";
+
+/// Fails unless `loader` is a PE32+ image whose `.sbat` section starts
+/// with [`SBAT_HEADER`] and has our component's line: shim 16 refuses an
+/// image without one, and one whose section lies at address 0.
+pub fn check_sbat(loader: &[u8]) -> Result<()> {
+    let pe = PeFile64::parse(loader).context("the UEFI loader is not a PE32+ image")?;
+    let section = pe.section_by_name(".sbat").context("the UEFI loader has no .sbat section")?;
+    let data = section.data().context("the UEFI loader's .sbat section cannot be read")?;
+    let text = String::from_utf8_lossy(data);
+    ensure!(section.address() != pe.relative_address_base(), "the UEFI loader's .sbat section lies at address 0");
+    ensure!(
+        text.starts_with(SBAT_HEADER) && text.contains("\npolylab-loader,"),
+        "the UEFI loader's .sbat section does not hold shim's header and our line: {text:?}"
+    );
+    Ok(())
+}
+
+/// Writes the SHA-256 of `kernel` and of `boot_json` after the marker,
+/// which must occur exactly once in `loader`.
+pub fn write_digests(loader: &mut [u8], kernel: &[u8], boot_json: &[u8]) -> Result<()> {
+    let found: Vec<usize> = loader
+        .windows(DIGESTS_MARKER.len())
+        .enumerate()
+        .filter(|(_, window)| window == DIGESTS_MARKER)
+        .map(|(at, _)| at)
+        .collect();
+    let [at] = found[..] else {
+        anyhow::bail!(
+            "the UEFI loader holds the digest placeholder's marker {} times, not once: it was not built \
+             from boot/image/loader/verify.rs",
+            found.len()
+        );
+    };
+    let start = at + DIGESTS_MARKER.len();
+    ensure!(loader.len() >= start + 64, "the UEFI loader ends inside its digest placeholder");
+    ensure!(loader[start..start + 64] == [0; 64], "the UEFI loader's digest placeholder is written already");
+    loader[start..start + 32].copy_from_slice(&Sha256::digest(kernel));
+    loader[start + 32..start + 64].copy_from_slice(&Sha256::digest(boot_json));
+    Ok(())
+}
+
+/// Signs `unsigned` into `signed` with `key`, by `sbsign`.
+pub fn sign(sbsign: &Path, key: &SigningKey, unsigned: &Path, signed: &Path) -> Result<()> {
+    let mut command = Command::new(sbsign);
+    command.arg("--key").arg(&key.key).arg("--cert").arg(&key.cert).arg("--output").arg(signed).arg(unsigned);
+    output_of(&mut command).map(drop).context("failed to sign the UEFI loader")
+}
+
+/// The loader's own SHA-256, tested here against `sha2`.
+#[cfg(test)]
+#[path = "../../loader/sha256.rs"]
+mod loader_sha256;
+
+#[cfg(test)]
+mod tests {
+    use super::loader_sha256;
+    use super::*;
+
+    fn hex(bytes: &[u8]) -> String {
+        bytes.iter().map(|byte| format!("{byte:02x}")).collect()
+    }
+
+    #[test]
+    fn the_loaders_sha256_is_sha2s_on_every_length_around_the_blocks() {
+        let bytes: Vec<u8> = (0..300u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8).collect();
+        for len in 0..bytes.len() {
+            assert_eq!(loader_sha256::sha256(&bytes[..len]), Sha256::digest(&bytes[..len]).as_slice(), "{len} bytes");
+        }
+        assert_eq!(
+            hex(&loader_sha256::sha256(&vec![b'a'; 1_000_000])),
+            "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0",
+            "FIPS 180-2, appendix B.3"
+        );
+        assert_eq!(
+            hex(&loader_sha256::sha256(b"abc")),
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad",
+            "FIPS 180-2, appendix B.1"
+        );
+    }
+
+    #[test]
+    fn the_marker_and_the_sbat_header_are_the_loaders() {
+        let verify = include_str!("../../loader/verify.rs");
+        let marker = std::str::from_utf8(DIGESTS_MARKER).unwrap();
+        assert!(verify.contains(&format!("const MARKER: &[u8; 16] = b\"{marker}\";")));
+        assert!(verify.contains(&format!("const SBAT_CSV: &str = \"{}", SBAT_HEADER.trim_end())));
+    }
+
+    #[test]
+    fn digests_go_after_the_one_marker() {
+        let mut loader = b"MZ....".to_vec();
+        loader.extend_from_slice(DIGESTS_MARKER);
+        loader.extend_from_slice(&[0; 64]);
+        loader.extend_from_slice(b"rest");
+        write_digests(&mut loader, b"kernel", b"{}").unwrap();
+        let start = 6 + DIGESTS_MARKER.len();
+        assert_eq!(&loader[start..start + 32], Sha256::digest(b"kernel").as_slice());
+        assert_eq!(&loader[start + 32..start + 64], Sha256::digest(b"{}").as_slice());
+        assert!(loader.ends_with(b"rest"));
+        let error = write_digests(&mut loader, b"kernel", b"{}").unwrap_err().to_string();
+        assert!(error.contains("written already"), "{error}");
+        loader.extend_from_slice(DIGESTS_MARKER);
+        let error = write_digests(&mut loader, b"kernel", b"{}").unwrap_err().to_string();
+        assert!(error.contains("2 times, not once"), "{error}");
+    }
+}
