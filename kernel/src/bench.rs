@@ -14,15 +14,16 @@ use protocol::BENCH_UNIT_LINE;
 use raster::methods;
 use scenes::Scene;
 
-use crate::clock;
 use crate::video::Screen;
+use crate::{clock, serial};
 
 /// The `BENCH` payload for `scene`: [`BENCH_UNIT_LINE`], then per method
 /// in `raster::MethodId::ALL` order `NAME CYCLES REFUSED [REFUSAL]`: the
 /// median of `repeats` whole-scene draws, how many of the scene's polygons
 /// the method declined, and the first one's reason (`Refusal::name`).
 /// Bounded: `methods::ALL.len() * repeats` draws, `repeats` being at most
-/// `protocol::BENCH_MAX_REPEATS`. The screen keeps the last draw.
+/// `protocol::BENCH_MAX_REPEATS`. The screen keeps the last draw. COM1 is
+/// polled between draws.
 pub fn run(screen: &mut Screen, scene: &Scene, repeats: u8) -> String {
     let mut text = String::new();
     // Writing to a `String` cannot fail.
@@ -32,6 +33,8 @@ pub fn run(screen: &mut Screen, scene: &Scene, repeats: u8) -> String {
         samples.clear();
         let mut refused = (0, None);
         for _ in 0..repeats.max(1) {
+            // Between draws, outside the timing: a BENCH takes seconds.
+            serial::poll();
             let (drawn, cycles) = timed(|| screen.draw(scene, *method));
             samples.push(cycles);
             refused = (drawn.report.refused, drawn.report.first_refusal);

@@ -30,7 +30,7 @@ pub enum Card {
 
 /// Cards with the Bochs VBE interface, by PCI vendor and device: QEMU's
 /// std VGA (1234:1111; also bochs-display's IDs, which
-/// `DisplayController::is_vga_compatible` tells apart), qxl-vga
+/// `DisplayController::is_the_vga` tells apart), qxl-vga
 /// (1b36:0100), virtio-vga (1af4:1050), VirtualBox's VGA (80ee:beef).
 const BOCHS_VBE_IDS: [(u16, u16); 4] = [(0x1234, 0x1111), (0x1b36, 0x0100), (0x1af4, 0x1050), (0x80ee, 0xbeef)];
 const CIRRUS_GD5446: (u16, u16) = (0x1013, 0x00b8);
@@ -56,11 +56,13 @@ const CIRRUS_EXTENDED_MODE: (u8, u8) = (0x07, 0);
 /// CRTC values cannot reach. 0: rows and start as the VGA registers say.
 const CIRRUS_EXTENDED_DISPLAY: (u8, u8) = (0x1B, 0);
 
-/// Which of the known cards `controller` is, if any. Only VGA-compatible
-/// controllers count; for the Bochs VBE cards the interface must also
-/// answer with its ID.
+/// Which of the known cards `controller` is, if any. Only the VGA counts
+/// (the VGA-compatible controller that decodes the legacy VGA ranges,
+/// `DisplayController::is_the_vga`); for the Bochs VBE cards the interface
+/// must also answer with its ID. Call only once the VGA has answered at
+/// its standard ports: the Bochs interface's probe writes port 0x1CE.
 pub fn identify(controller: &DisplayController) -> Option<Card> {
-    if !controller.is_vga_compatible() {
+    if !controller.is_the_vga() {
         return None;
     }
     let id = (controller.id.vendor, controller.id.device);
@@ -89,7 +91,7 @@ impl Card {
                 // VMware's and VirtualBox's firmware set their mode through
                 // the SVGA registers; OVMF sets QEMU's model's mode through
                 // the Bochs interface, and leaves the SVGA mode off.
-                vmware_svga::disable(controller.bus, controller.device, controller.function);
+                vmware_svga::disable(controller.address);
                 if has_dispi() {
                     disable_dispi();
                 }

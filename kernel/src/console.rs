@@ -1,46 +1,63 @@
 //! The protocol server on COM1 (the `protocol` crate is the spec):
 //! one command line in, one frame out. Whatever arrives, the console
 //! answers and keeps serving: a bad line gets an `ERR` frame naming the
-//! problem, an over-long one is thrown away up to its newline, and no byte
-//! sequence can make it panic or wait forever.
+//! problem, an over-long one is thrown away up to its newline, a line
+//! left unfinished for `PARTIAL_LINE_IDLE_SECONDS` is dropped and the
+//! show plays again (a stray byte on the line does not end the show for
+//! good), and no byte sequence can make it panic or wait forever. `EXIT`
+//! and `FAULT` are answered only on QEMU (`machine.rs`).
 
 use alloc::format;
 use alloc::string::{String, ToString};
 use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt::Write;
-use protocol::{Command, CommandError, Firmware, FrameKind, PciId, Pong, Ready, MAX_LINE};
+use protocol::{Command, CommandError, Firmware, FrameKind, Machine, Pong, Ready, MAX_LINE, PARTIAL_LINE_IDLE_SECONDS};
 use raster::MethodId;
 use scenes::show::{Stage, ENTRIES_IN_ORDER};
 use scenes::{builtin, file, Op, Scene};
 
-use crate::exit::exit_qemu;
+use crate::clock::Deadline;
+use crate::machine::Identity;
 use crate::pci::DisplayController;
 use crate::video::Screen;
-use crate::{bench, clock, demo, fault, heap, player, serial};
+use crate::{bench, clock, demo, exit, fault, heap, machine, player, serial};
 
-/// The firmware and the display controller `announce` named, for the
-/// `READY` command to name again.
-static BOOTED: spin::Once<(Firmware, Option<PciId>)> = spin::Once::new();
+/// What `announce` found at boot (the firmware, the machine, the display
+/// controller and where it sits), for the `READY` command to say again.
+static BOOTED: spin::Once<Ready> = spin::Once::new();
 
-/// Tells the host the kernel is up: on the VGA path a `LOG` frame per
+/// Tells the host the kernel is up: a `LOG` frame saying which machine it
+/// found and by what signs, one if COM1's interrupt did not arrive (the
+/// kernel then receives by polling alone), on the VGA path one per
 /// register or DAC entry that did not read back as written, then `READY`
-/// naming the firmware, the display controller and the video path (with
-/// the count of those mismatches, or where the frame is presented), and
-/// the bytes the serial line lost so far.
-pub fn announce(screen: &Screen, firmware: Firmware, display: Option<DisplayController>) {
+/// naming the firmware, the machine, the display controller and where it
+/// sits, the video path (with the count of those mismatches, or where the
+/// frame is presented), and the bytes the serial line lost so far.
+pub fn announce(screen: &Screen, firmware: Firmware, identity: &Identity, display: Option<DisplayController>) {
+    serial::send_frame(FrameKind::Log, identity.evidence().as_bytes());
+    if !serial::interrupt_arrives() {
+        let text = "COM1: its interrupt (IRQ 4) did not arrive; receiving by polling alone";
+        serial::send_frame(FrameKind::Log, text.as_bytes());
+    }
     for mismatch in screen.mismatches() {
         serial::send_frame(FrameKind::Log, mismatch.to_string().as_bytes());
     }
-    BOOTED.call_once(|| (firmware, display.map(|display| display.id)));
+    BOOTED.call_once(|| Ready {
+        firmware,
+        machine: Some(identity.machine),
+        display: display.map(|display| display.id),
+        display_at: display.map(|display| display.address),
+        ..Ready::default()
+    });
     serial::send_frame(FrameKind::Ready, ready(screen).to_string().as_bytes());
 }
 
-/// What `READY` says now: the firmware and display `announce` found, the
-/// video path, and the line's losses so far.
+/// What `READY` says now: what `announce` found at boot, the video path,
+/// and the line's losses so far.
 fn ready(screen: &Screen) -> Ready {
-    let (firmware, display) = BOOTED.get().copied().unwrap_or_default();
-    Ready { firmware, display, video: screen.video(), losses: serial::losses() }
+    let booted = BOOTED.get().copied().unwrap_or_default();
+    Ready { video: screen.video(), losses: serial::losses(), ..booted }
 }
 
 /// Serves the host forever, starting with `first_byte` (the byte that
@@ -54,7 +71,13 @@ pub fn serve(screen: &mut Screen, stage: &mut Stage, first_byte: u8) -> ! {
         // then the first of its next command.
         byte = match console.demo.take() {
             Some(start) => demo::run(console.screen, console.stage, start),
-            None => serial::read_byte(),
+            None => match serial::read_byte(console.idle_deadline()) {
+                Some(byte) => byte,
+                None => {
+                    console.drop_partial_line();
+                    demo::run(console.screen, console.stage, demo::Start::default())
+                }
+            },
         };
     }
 }
@@ -76,6 +99,25 @@ struct Console<'a> {
 }
 
 impl Console<'_> {
+    /// When the line being received is given up if no byte comes: never
+    /// between lines, [`PARTIAL_LINE_IDLE_SECONDS`] from now inside one.
+    fn idle_deadline(&self) -> Option<Deadline> {
+        let idle = PARTIAL_LINE_IDLE_SECONDS * 1_000_000;
+        (!self.line.is_empty() || self.overlong).then(|| Deadline::after_micros(idle))
+    }
+
+    /// Drops the unfinished line, saying so in a `LOG` frame.
+    fn drop_partial_line(&mut self) {
+        let what = if self.overlong { "an overlong line" } else { "an unfinished line" };
+        let text = format!(
+            "dropped {what} ({} bytes kept) idle for {PARTIAL_LINE_IDLE_SECONDS} s; the show plays again",
+            self.line.len(),
+        );
+        serial::send_frame(FrameKind::Log, text.as_bytes());
+        self.line.clear();
+        self.overlong = false;
+    }
+
     fn accept(&mut self, byte: u8) {
         match byte {
             b'\n' if self.overlong => {
@@ -161,9 +203,25 @@ impl Console<'_> {
             Command::VgaCheck => self.screen.check().and_then(ok),
             Command::Ready => Ok((FrameKind::Ready, ready(self.screen).to_string().into_bytes())),
             Command::Clock => ok(clock::rate()),
-            Command::Exit(code) => exit_qemu(code),
-            Command::Fault(kind) => fault::provoke(kind),
+            Command::Exit(code) => {
+                on_qemu("EXIT")?;
+                exit::stop(code)
+            }
+            Command::Fault(kind) => {
+                on_qemu("FAULT")?;
+                fault::provoke(kind)
+            }
         }
+    }
+}
+
+/// `Ok` on a machine identified as QEMU; else why `command` is refused.
+/// The test hooks touch nothing elsewhere: QEMU's exit port is a port
+/// nobody identified on a PC, and a fault on request has no place there.
+fn on_qemu(command: &str) -> Result<(), String> {
+    match machine::current() {
+        Machine::Qemu => Ok(()),
+        Machine::Unknown => Err(format!("{command} refused: the machine is not identified as QEMU (machine=unknown)")),
     }
 }
 

@@ -1,18 +1,41 @@
-//! Leaving QEMU with a status the host can assert on.
+//! Stopping for good: on request (`EXIT`) and after a fatal error.
 //!
-//! QEMU's `isa-debug-exit` device (`docs/hardware.md#isa-debug-exit`) ends the
-//! process with status `(value << 1) | 1`, so no value written here can
-//! look like QEMU's own success (0). On a PC without the device the write
-//! does nothing and the CPU halts for good.
+//! On QEMU the stop leaves QEMU with a status the host can assert on: its
+//! `isa-debug-exit` device (`docs/hardware.md#isa-debug-exit`) ends the
+//! process with status `(value << 1) | 1`, so no value written there can
+//! look like QEMU's own success (0). The kernel writes that port only on a
+//! machine it has identified as QEMU (`machine.rs`): on a PC it is a port
+//! nobody identified. Elsewhere, and on a QEMU without the device, the CPU
+//! halts for good. A non-maskable interrupt, the one thing that ends a
+//! halt with interrupts off (a chipset reporting a parity error, say),
+//! is then taken and the CPU halts again (`interrupts.rs`): the run ended
+//! cleanly before it.
 
+use core::sync::atomic::{AtomicBool, Ordering};
+
+use protocol::Machine;
+
+use crate::machine;
 use crate::port::DEBUG_EXIT;
 
-/// Exits QEMU with `code`, or halts forever where there is no QEMU.
-pub fn exit_qemu(code: u8) -> ! {
+/// Set once the kernel has stopped for good.
+static STOPPED: AtomicBool = AtomicBool::new(false);
+
+/// Stops: exits QEMU with `code` on a machine identified as QEMU, and
+/// halts.
+pub fn stop(code: u8) -> ! {
     x86_64::instructions::interrupts::disable();
-    DEBUG_EXIT.write(u32::from(code));
+    STOPPED.store(true, Ordering::SeqCst);
+    if machine::current() == Machine::Qemu {
+        DEBUG_EXIT.write(u32::from(code));
+    }
     loop {
         // Interrupts are off, so only an NMI ends a `hlt`; halt again.
         x86_64::instructions::hlt();
     }
+}
+
+/// Whether the kernel has stopped for good ([`stop`]).
+pub fn stopped() -> bool {
+    STOPPED.load(Ordering::SeqCst)
 }

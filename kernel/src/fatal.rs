@@ -1,13 +1,13 @@
 //! The end of the road for panics and CPU exceptions: one `FATAL` frame
 //! saying what happened, then QEMU exits with [`protocol::EXIT_FAILURE`]
-//! (a real PC halts), so a kernel bug is reported, never silent
+//! (a real PC halts, `exit.rs`), so a kernel bug is reported, never silent
 //! (`docs/hardware.md#kernel-and-host`).
 
 use core::fmt::{self, Write};
 use core::panic::PanicInfo;
 use core::sync::atomic::{AtomicBool, Ordering};
 
-use crate::exit::exit_qemu;
+use crate::exit;
 use crate::serial;
 
 /// Longest `FATAL` text; the rest is cut. A stack buffer, not the heap:
@@ -28,7 +28,7 @@ pub fn fatal(what: fmt::Arguments<'_>) -> ! {
         let _ = message.write_fmt(what);
         serial::send_fatal(&message.bytes[..message.len]);
     }
-    exit_qemu(protocol::EXIT_FAILURE)
+    exit::stop(protocol::EXIT_FAILURE)
 }
 
 #[panic_handler]

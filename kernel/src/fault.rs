@@ -1,6 +1,7 @@
 //! The test-only `FAULT` command: provokes each kind of fault for real, so
 //! the harness can prove that the handlers in `interrupts.rs` and the
-//! panic handler report it and exit QEMU with the failure code.
+//! panic handler report it, by its name, and exit QEMU with the failure
+//! code. Answered only on QEMU (`console.rs`).
 
 use core::arch::asm;
 use core::hint::black_box;
@@ -23,6 +24,13 @@ const FRAME_WORDS: usize = 64;
 /// run ends here, reported all the same.
 pub fn provoke(kind: FaultKind) -> ! {
     match kind {
+        FaultKind::DivideError => {
+            black_box(divide_by_zero());
+        }
+        // SAFETY: `ud2`, the opcode made to be undefined, touches
+        // nothing; the invalid opcode handler never returns, so the asm
+        // block never completes.
+        FaultKind::InvalidOpcode => unsafe { asm!("ud2", options(nomem, nostack, noreturn)) },
         FaultKind::Breakpoint => x86_64::instructions::interrupts::int3(),
         FaultKind::PageFault => {
             black_box(read_unmapped());
@@ -33,6 +41,25 @@ pub fn provoke(kind: FaultKind) -> ! {
         FaultKind::Panic => panic!("FAULT panic: the host asked for it"),
     }
     fatal(format_args!("FAULT {}: the fault handler returned", kind.name()))
+}
+
+/// Divides by zero with `div`: a divide error. (In asm: Rust's `/` checks
+/// for zero itself and panics instead.)
+fn divide_by_zero() -> u32 {
+    let quotient: u32;
+    // SAFETY: the division touches only registers; it faults, and the
+    // divide error handler never returns, so the asm block never
+    // completes.
+    unsafe {
+        asm!(
+            "div {divisor:e}",
+            divisor = in(reg) 0u32,
+            inout("eax") 1u32 => quotient,
+            inout("edx") 0u32 => _,
+            options(nomem, nostack),
+        );
+    }
+    quotient
 }
 
 /// Reads [`UNMAPPED_ADDRESS`]: a page fault with CR2 set to it.

@@ -15,6 +15,7 @@ use raster::SCREEN;
 use scenes::palette::{c6_to_8, ENTRIES};
 use volatile::{VolatilePtr, VolatileRef};
 
+use crate::serial;
 use crate::vga::Palette;
 
 /// Frame width and height in pixels.
@@ -86,7 +87,8 @@ impl Presenter {
     }
 
     /// Puts `frame` (320x200 palette indices, row after row) on the screen
-    /// in the colours of `palette`.
+    /// in the colours of `palette`. Up to 4 MB of writes to a firmware's
+    /// framebuffer, so COM1 is polled after each row (`serial::poll`).
     pub fn show(&mut self, frame: VolatilePtr<'_, [u8]>, palette: &Palette) {
         let colors = self.encode(palette);
         let scale = self.presentation.scale as usize;
@@ -105,6 +107,7 @@ impl Presenter {
                 let start = row * self.row_bytes + left;
                 self.pixels.index(start..start + self.row.len()).copy_from_slice(&self.row);
             }
+            serial::poll();
         }
     }
 

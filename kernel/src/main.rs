@@ -7,8 +7,8 @@
 //! show), and serves the host's commands over COM1 as soon as one arrives.
 //!
 //! Hardware access lives in small modules with `// SAFETY:` notes
-//! (`port`, `video`, `heap`, `gdt`, `interrupts`, `fault`, and `clock`'s
-//! one RDTSC); everything above them is safe code.
+//! (`port`, `video`, `paging`, `heap`, `gdt`, `interrupts`, `fault`, and
+//! `clock`'s one RDTSC); everything above them is safe code.
 #![no_std]
 #![no_main]
 #![feature(abi_x86_interrupt)]
@@ -30,6 +30,8 @@ mod gdt;
 mod heap;
 mod interrupts;
 mod keyboard;
+mod machine;
+mod paging;
 mod pci;
 mod pit;
 mod player;
@@ -52,6 +54,9 @@ static CONFIG: BootloaderConfig = {
 entry_point!(kernel_main, config = &CONFIG);
 
 fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
+    // First, so that a fatal error from here on knows whether it may
+    // leave QEMU through its exit port.
+    let identity = machine::identify();
     clock::init();
     serial::init();
     gdt::init();
@@ -60,9 +65,9 @@ fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
     let firmware = firmware::of(boot_info);
     let display = pci::display_controller();
     let mut screen = video::Screen::open(boot_info, firmware, display);
-    serial::enable_receive_interrupt();
+    serial::enable_interrupt();
     interrupts::enable();
-    console::announce(&screen, firmware, display);
+    console::announce(&screen, firmware, &identity, display);
     // The show's memory, allocated once for the demo and `SHOW`.
     let mut stage = scenes::show::Stage::new();
     let first_byte = demo::run(&mut screen, &mut stage, demo::Start::default());

@@ -19,7 +19,7 @@ use raster::MethodId;
 use scenes::show::{draw_labels, Entry, Stage, FRAMES_PER_SECOND, PALETTE};
 
 use crate::video::Screen;
-use crate::{bench, clock, heap};
+use crate::{bench, clock, heap, serial};
 
 /// Puts frame `frame` of `entry`, drawn with `method` and labelled with
 /// the rdtsc cycles the draw took, on the screen in the show's palette,
@@ -88,15 +88,17 @@ impl Pacer {
         Self { frame_cycles: clock::cycles_per_second() / u64::from(FRAMES_PER_SECOND), next: clock::cycles() }
     }
 
-    /// Waits until the next frame is due. A frame more than a frame time
-    /// late is shown at once and the count starts again from it: a slow
-    /// frame slows the show down rather than making it rush afterwards.
+    /// Waits until the next frame is due, polling COM1 meanwhile
+    /// (`serial::poll`). A frame more than a frame time late is shown at
+    /// once and the count starts again from it: a slow frame slows the
+    /// show down rather than making it rush afterwards.
     pub fn wait(&mut self) {
         let now = clock::cycles();
         if now > self.next + self.frame_cycles {
             self.next = now;
         }
         while clock::cycles() < self.next {
+            serial::poll();
             spin_loop();
         }
         self.next += self.frame_cycles;

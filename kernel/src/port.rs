@@ -5,9 +5,11 @@
 //! the compiler's back (a DMA controller, a disk, a PCI device's address
 //! decoders). [`IoPort`] can only be made here, for the registers listed
 //! below: VGA, the Bochs VBE interface, the PIT, the PS/2 controller, the
-//! interrupt controllers, PCI configuration reads and QEMU's debug-exit
-//! device; [`com1`] hands COM1's eight registers to the `uart_16550`
-//! driver, and [`vmware_svga`] writes one register of that card. None of
+//! interrupt controllers, PCI configuration reads, the POST code port (for
+//! [`io_delay`]) and QEMU's debug-exit device (written only once the
+//! kernel has identified QEMU, `machine.rs`); [`com1`] hands COM1's eight
+//! registers to the `uart_16550` driver, and [`vmware_svga`] writes one
+//! register of that card. None of
 //! them moves memory, so reading or writing them from safe code cannot
 //! break memory safety; the worst they do is change the picture, the timer
 //! or the serial line, raise an interrupt (whose vector the IDT handles,
@@ -113,6 +115,8 @@ pub mod bochs_vbe {
 /// whose registers sit behind an index and a value port at the I/O base
 /// its BAR 0 names.
 pub mod vmware_svga {
+    use protocol::PciAddress;
+
     use super::{pci, IoPort};
 
     const VENDOR_DEVICE: u32 = 0x0405_15AD;
@@ -128,11 +132,12 @@ pub mod vmware_svga {
     /// and ignores the VGA core; 0 hands the screen back to the VGA.
     const REG_ENABLE: u32 = 1;
 
-    /// Turns the SVGA mode of the card at `bus`:`device`.`function` off
+    /// Turns the SVGA mode of the card at `address` off
     /// (SVGA_REG_ENABLE = 0), if that function is a VMware SVGA II whose
     /// BAR 0 is an I/O range; returns whether it was. Anything else is
     /// left alone.
-    pub fn disable(bus: u8, device: u8, function: u8) -> bool {
+    pub fn disable(address: PciAddress) -> bool {
+        let PciAddress { bus, device, function } = address;
         if pci::read_config(bus, device, function, 0) != VENDOR_DEVICE {
             return false;
         }
@@ -204,5 +209,20 @@ pub mod ps2 {
 }
 
 /// QEMU's `isa-debug-exit` device (`-device isa-debug-exit,iobase=0xf4,
-/// iosize=0x04`); on a PC without it the write goes nowhere.
+/// iosize=0x04`). On a PC the port is in the old x87 coprocessor's range
+/// and nobody knows what answers there, so the kernel writes it only on a
+/// machine it has identified as QEMU (`exit.rs`, `machine.rs`); QEMU
+/// without the device ignores the write.
 pub const DEBUG_EXIT: IoPort<u32> = IoPort::new(0xF4);
+
+/// The POST code port: a BIOS writes its progress codes here for a
+/// diagnostic card to show, and nothing reads it. A write to it takes one
+/// ISA bus cycle, about a microsecond, whatever the CPU's speed.
+const POST_CODE: IoPort<u8> = IoPort::new(0x80);
+
+/// An I/O recovery delay: one write to the POST code port, as Linux's
+/// `outb_p` and the `pic8259` crate do between accesses that old chips
+/// (the 8259s, ISA-era VGA cards) need time to recover from.
+pub fn io_delay() {
+    POST_CODE.write(0);
+}

@@ -24,7 +24,8 @@ use core::fmt::{self, Write};
 use scenes::palette::ENTRIES;
 
 use crate::clock::Deadline;
-use crate::port::{vga, IoPort};
+use crate::port::{io_delay, vga, IoPort};
+use crate::serial;
 
 /// Bytes in the DAC: 256 entries of red, green, blue.
 pub const DAC_LEN: usize = ENTRIES * 3;
@@ -66,6 +67,9 @@ const CRTC_PROTECT_BIT: u8 = 0x80;
 /// attribute registers are open to the CPU and the screen is blank; it must
 /// be set again at the end or the screen stays blank.
 const ATTRIBUTE_VIDEO_ON: u8 = 0x20;
+/// Attribute registers 0x00 to 0x0F are the palette registers, which the
+/// CPU may read only while the palette address source bit is clear.
+const ATTRIBUTE_PALETTE_END: u8 = 0x10;
 /// Input status 1 bit 3: the CRT is in vertical retrace.
 const VERTICAL_RETRACE: u8 = 0x08;
 /// Longest [`wait_for_retrace`]: two frames of mode 13h's 70 Hz. A card
@@ -107,18 +111,47 @@ impl IndexedRegisters {
 }
 
 /// Writes one attribute register. The flip-flop is reset first, so the
-/// write to 0x3C0 is taken as the index and the next as the data.
+/// write to 0x3C0 is taken as the index and the next as the data. Every
+/// access waits an I/O delay: the attribute controller of some ISA-era
+/// cards loses writes that follow each other too closely (X.Org's VGA
+/// code waits the same way between attribute accesses).
 fn write_attribute(index: u8, value: u8) {
     vga::INPUT_STATUS_1.read();
+    io_delay();
     vga::ATTRIBUTE_WRITE.write(index);
+    io_delay();
     vga::ATTRIBUTE_WRITE.write(value);
+    io_delay();
 }
 
-/// Reads one attribute register, keeping the video on while doing it.
+/// Reads one attribute register. A palette register (0x00 to 0x0F) is
+/// read with the palette address source bit clear, as the VGA references
+/// require (some cards return garbage, or block the read, with it set):
+/// the screen goes blank for the few microseconds of the read and is
+/// turned on again after it. The other registers are read with it set,
+/// the screen left on. Each access waits an I/O delay, as writes do.
 fn read_attribute(index: u8) -> u8 {
+    let palette = index < ATTRIBUTE_PALETTE_END;
     vga::INPUT_STATUS_1.read();
-    vga::ATTRIBUTE_WRITE.write(index | ATTRIBUTE_VIDEO_ON);
-    vga::ATTRIBUTE_READ.read()
+    io_delay();
+    vga::ATTRIBUTE_WRITE.write(if palette { index } else { index | ATTRIBUTE_VIDEO_ON });
+    io_delay();
+    let value = vga::ATTRIBUTE_READ.read();
+    io_delay();
+    if palette {
+        video_on();
+    }
+    value
+}
+
+/// Gives the palette back to the display (palette address source set):
+/// the screen shows again. The flip-flop is reset first, so the write is
+/// taken as an index.
+fn video_on() {
+    vga::INPUT_STATUS_1.read();
+    io_delay();
+    vga::ATTRIBUTE_WRITE.write(ATTRIBUTE_VIDEO_ON);
+    io_delay();
 }
 
 /// Puts the card in mode 13h. The DAC is the screen's to load
@@ -165,17 +198,20 @@ fn set_mode(mode: &Mode) {
     for (index, &value) in (0..).zip(mode.attribute) {
         write_attribute(index, value);
     }
-    vga::INPUT_STATUS_1.read();
-    vga::ATTRIBUTE_WRITE.write(ATTRIBUTE_VIDEO_ON);
+    video_on();
 }
 
 /// Loads the DAC: 6-bit red, green, blue per entry from entry 0 on. A
 /// register-level mode set leaves the DAC as the text mode had it, so mode
-/// 13h's palette is loaded by hand.
+/// 13h's palette is loaded by hand. Each write waits an I/O delay: the
+/// RAMDACs of ISA-era cards need time between accesses (X.Org's VGA code
+/// waits between DAC accesses too); 769 delays, under a millisecond.
 pub fn load_dac(palette: &Palette) {
     vga::DAC_WRITE_INDEX.write(0);
+    io_delay();
     for &level in palette.as_flattened() {
         vga::DAC_DATA.write(level);
+        io_delay();
     }
 }
 
@@ -227,8 +263,12 @@ impl fmt::Display for Mismatch {
 /// picture without tearing: while the retrace bit is set (one already
 /// under way), then until it is set. Gives up after
 /// [`RETRACE_TIMEOUT_MICROS`] by the clock, so it ends on any machine.
+/// COM1 is polled meanwhile (`serial::poll`).
 pub fn wait_for_retrace() {
-    let in_retrace = || vga::INPUT_STATUS_1.read() & VERTICAL_RETRACE != 0;
+    let in_retrace = || {
+        serial::poll();
+        vga::INPUT_STATUS_1.read() & VERTICAL_RETRACE != 0
+    };
     let give_up = Deadline::after_micros(RETRACE_TIMEOUT_MICROS);
     while in_retrace() && !give_up.passed() {}
     while !in_retrace() && !give_up.passed() {}

@@ -32,13 +32,10 @@ use scenes::palette::VGA_DEFAULT;
 use scenes::{DrawReport, Scene};
 use volatile::{VolatilePtr, VolatileRef};
 
-use crate::card;
 use crate::framebuffer::Presenter;
 use crate::pci::DisplayController;
 use crate::vga::{self, Palette};
-
-/// Physical address of the mode-13h window.
-const FRAMEBUFFER_PHYSICAL: u64 = 0xA0000;
+use crate::{card, paging};
 
 // The sink's bounds check against `SCREEN` is what keeps spans inside the
 // 64,000 bytes.
@@ -84,12 +81,18 @@ impl Screen {
     pub fn open(boot_info: &'static mut BootInfo, firmware: Firmware, display: Option<DisplayController>) -> Self {
         let vga_usable = match firmware {
             Firmware::Bios => vga::responds(),
-            // Not a port of an unknown card is touched, the VGA's included.
-            Firmware::Uefi => match display.and_then(|display| Some((card::identify(&display)?, display))) {
-                Some((card, display)) if vga::responds() => {
-                    card.undo_firmware_mode(&display);
-                    true
-                }
+            // Not a port of a card that is not the VGA, or is unknown, is
+            // touched, the VGA's included; a card's own registers (the
+            // Bochs interface's probe among them) only once the VGA has
+            // answered at its standard ports.
+            Firmware::Uefi => match display.filter(DisplayController::is_the_vga) {
+                Some(display) if vga::responds() => match card::identify(&display) {
+                    Some(card) => {
+                        card.undo_firmware_mode(&display);
+                        true
+                    }
+                    None => false,
+                },
                 Some(_) | None => false,
             },
         };
@@ -132,12 +135,18 @@ impl Screen {
 
     /// The `VGACHECK` answer for the path in use: on the VGA path every
     /// mode-13h register and DAC entry read back (`Err` listing what
-    /// differs); on the others there are no VGA registers in use to check.
+    /// differs), and how the window is mapped (page size and memory type,
+    /// read back from the page tables and the PAT); on the others there
+    /// are no VGA registers in use to check.
     pub fn check(&self) -> Result<String, String> {
         match &self.output {
             Output::Vga => {
                 let mismatches = vga::verify(self.palette);
-                let summary = vga::summary(&mismatches);
+                let mapping = match paging::window_mapping() {
+                    Some(mapping) => format!("{mapping}"),
+                    None => String::from("window not mapped"),
+                };
+                let summary = format!("{}; {mapping}", vga::summary(&mismatches));
                 if mismatches.is_empty() {
                     Ok(summary)
                 } else {
@@ -278,22 +287,20 @@ impl Screen {
     }
 }
 
-/// The mode-13h window 0xA0000..0xAFA00 through the bootloader's map of
-/// all physical memory (`mappings.physical_memory` in main.rs's config).
+/// The mode-13h window 0xA0000..0xAFA00, as `paging` maps it: in 4 KiB
+/// uncacheable pages, where the bootloader's map of all physical memory
+/// (`mappings.physical_memory` in main.rs's config) had it in one large
+/// write-back page.
 fn vga_window(boot_info: &BootInfo) -> VolatilePtr<'static, [u8]> {
-    let start = boot_info
-        .physical_memory_offset
-        .into_option()
-        .and_then(|offset| offset.checked_add(FRAMEBUFFER_PHYSICAL))
-        .and_then(|start| usize::try_from(start).ok())
+    let start = usize::try_from(paging::map_vga_window(boot_info).as_u64())
+        .ok()
         .and_then(|start| NonNull::new(ptr::with_exposed_provenance_mut::<u8>(start)))
-        .expect("the bootloader did not map physical memory, so 0xA0000 is out of reach");
+        .expect("the VGA window's address fits and is not null");
     let pixels = NonNull::slice_from_raw_parts(start, FRAMEBUFFER_LEN);
-    // SAFETY: the bootloader maps all physical memory at the offset, so
-    // these 64,000 bytes are the VGA window 0xA0000..0xAFA00: device
-    // memory, valid for volatile reads and writes for the whole run and
-    // never a Rust object, so nothing else holds a reference into it.
-    // `Screen::open` calls this once.
+    // SAFETY: `paging::map_vga_window` maps these 64,000 bytes to the VGA
+    // window 0xA0000..0xAFA00: device memory, valid for volatile reads
+    // and writes for the whole run and never a Rust object, so nothing
+    // else holds a reference into it. `Screen::open` calls this once.
     unsafe { VolatilePtr::new(pixels) }
 }
 

@@ -7,13 +7,17 @@
 //!
 //! Debian's Bochs has its debugger built in, which stops before the first
 //! instruction: the run starts it with `c` (continue) on its standard
-//! input. Its display is the RFB (VNC) server, told not to wait for a
-//! viewer; nothing connects to it.
+//! input. Its display is the terminal one (`term`, Debian's bochs-term):
+//! with the debugger built in, Bochs opens a new pseudo-terminal for it
+//! that nothing reads, so the screen goes nowhere. Debian's build has no
+//! `nogui` library, and its VNC one (`rfb`) listens on every interface
+//! (ports 5900-5949) with no password: anyone on the network could watch
+//! and type into the machine for as long as a test ran.
 
 use std::fs::File;
 use std::net::{TcpListener, TcpStream};
-use std::path::{Path, PathBuf};
-use std::process::{Child, ChildStdin, Command, Stdio};
+use std::path::Path;
+use std::process::{ChildStdin, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context, Result};
@@ -21,10 +25,12 @@ use boot_image::build_image;
 use boot_image::process::command_line;
 use protocol::Ready;
 
-use crate::prerequisites::{ensure_bochs, BOCHS, BOCHS_BIOS, BOCHS_CIRRUS_VGA_BIOS};
+use crate::prerequisites::{
+    ensure_bochs, system_file, BOCHS, BOCHS_BIOS, BOCHS_BIOS_ENV, BOCHS_CIRRUS_VGA_BIOS, BOCHS_CIRRUS_VGA_BIOS_ENV,
+};
 use crate::qemu::console::Console;
 use crate::qemu::serial::{forward_bytes, FrameReader};
-use crate::workspace;
+use crate::supervisor::Supervised;
 
 /// Longest wait for Bochs to connect COM1 to the harness.
 const CONNECT_TIMEOUT: Duration = Duration::from_secs(30);
@@ -33,12 +39,15 @@ const CONNECT_TIMEOUT: Duration = Duration::from_secs(30);
 /// 127.0.0.1:`port`, each line saying why.
 pub fn bochsrc(image: &Path, port: u16) -> String {
     let image = image.display();
+    let bios = system_file(BOCHS_BIOS_ENV, BOCHS_BIOS);
+    let vga_bios = system_file(BOCHS_CIRRUS_VGA_BIOS_ENV, BOCHS_CIRRUS_VGA_BIOS);
+    let (bios, vga_bios) = (bios.display(), vga_bios.display());
     format!(
         "# Enough for the bootloader and the kernel's heap, as under QEMU.\n\
          megs: 128\n\
          # Bochs's own BIOS and its Cirrus VGA BIOS (Debian's bochsbios and vgabios).\n\
-         romimage: file={BOCHS_BIOS}\n\
-         vgaromimage: file={BOCHS_CIRRUS_VGA_BIOS}\n\
+         romimage: file={bios}\n\
+         vgaromimage: file={vga_bios}\n\
          # The i440FX PCI chipset with Bochs's Cirrus GD5446 in slot 1.\n\
          pci: enabled=1, chipset=i440fx, slot1=cirrus\n\
          vga: extension=cirrus\n\
@@ -49,8 +58,9 @@ pub fn bochsrc(image: &Path, port: u16) -> String {
          boot: disk\n\
          # COM1 connects to the harness, which listens on this port.\n\
          com1: enabled=1, mode=socket-client, dev=127.0.0.1:{port}\n\
-         # No window: the VNC server, not waiting for a viewer.\n\
-         display_library: rfb, options=\"timeout=0\"\n\
+         # No window and no network: the text display, drawn on a pseudo-terminal\n\
+         # of Bochs's own that nothing reads.\n\
+         display_library: term\n\
          # Bochs's own messages go to the run's log; a panic ends the run.\n\
          log: bochs.log\n\
          panic: action=fatal\n\
@@ -60,25 +70,27 @@ pub fn bochsrc(image: &Path, port: u16) -> String {
     )
 }
 
-/// A running Bochs. Dropping it kills the process.
+/// A running Bochs. Dropping it kills the process and removes its run
+/// folder (its watchdog does both if the harness dies first).
 pub struct Bochs {
-    child: Child,
+    process: Supervised,
     /// Kept open: Bochs's debugger reads it, and ends the run at its end.
     _stdin: ChildStdin,
     /// The protocol session on COM1.
     pub console: Console,
     /// What the kernel's READY frame said.
     pub ready: Ready,
-    run_dir: PathBuf,
 }
 
 impl Bochs {
     /// Builds (or reuses) the image, starts Bochs on a copy of it and waits
-    /// for the kernel's READY frame.
+    /// for the kernel's READY frame. On any failure the run's Bochs is
+    /// killed and reaped and its folder removed.
     pub fn boot() -> Result<Self> {
         ensure_bochs()?;
         let image = build_image()?;
-        let run_dir = workspace::fresh_run_dir("bochs")?;
+        let mut process = Supervised::with_folder("bochs")?;
+        let run_dir = process.folder().to_path_buf();
         let disk = run_dir.join("polylab.img");
         std::fs::copy(&image, &disk)
             .with_context(|| format!("failed to copy {} to {}", image.display(), disk.display()))?;
@@ -91,33 +103,19 @@ impl Bochs {
         let mut command = Command::new(BOCHS);
         command.arg("-q").arg("-f").arg(&config).current_dir(&run_dir);
         command.stdin(Stdio::piped()).stdout(output.try_clone()?).stderr(output);
-        let line = command_line(&command);
-        eprintln!("harness: running {line}");
-        let mut child = command.spawn().with_context(|| format!("failed to start `{line}`"))?;
-        let mut stdin = child.stdin.take().expect("stdin is piped");
+        eprintln!("harness: running {}", command_line(&command));
+        let mut stdin = process.spawn(&mut command)?.stdin.take().expect("stdin is piped");
         std::io::Write::write_all(&mut stdin, b"c\n").context("failed to start Bochs's CPU (its debugger's `c`)")?;
-        let com1 = match accept_within(&listener, CONNECT_TIMEOUT) {
-            Ok(stream) => stream,
-            Err(error) => {
-                let _ = child.kill();
-                return Err(error.context(last_words(&run_dir)));
-            }
-        };
+        let com1 = accept_within(&listener, CONNECT_TIMEOUT).map_err(|error| error.context(last_words(&run_dir)))?;
         let console = Console::new(com1.try_clone()?, FrameReader::new(forward_bytes(com1)));
-        let mut bochs = Self { child, _stdin: stdin, console, ready: Ready::default(), run_dir };
-        bochs.ready = match bochs.console.wait_ready() {
-            Ok(ready) => ready,
-            Err(error) => return Err(error.context(last_words(&bochs.run_dir))),
-        };
+        let mut bochs = Self { process, _stdin: stdin, console, ready: Ready::default() };
+        bochs.ready = bochs.console.wait_ready().map_err(|error| error.context(last_words(&run_dir)))?;
         Ok(bochs)
     }
-}
 
-impl Drop for Bochs {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-        let _ = std::fs::remove_dir_all(&self.run_dir);
+    /// Bochs's process id (its process group's too).
+    pub fn pid(&self) -> u32 {
+        self.process.pid()
     }
 }
 
@@ -163,9 +161,10 @@ mod tests {
             "vga: extension=cirrus",
             "ata0-master: type=disk, path=/run/polylab.img, mode=flat",
             "com1: enabled=1, mode=socket-client, dev=127.0.0.1:4321",
-            "display_library: rfb, options=\"timeout=0\"",
+            "display_library: term",
         ] {
             assert!(config.lines().any(|l| l == line), "`{line}` missing from:\n{config}");
         }
+        assert!(!config.contains("rfb"), "a network display in:\n{config}");
     }
 }

@@ -19,12 +19,14 @@ pub mod bochs;
 pub mod browser;
 pub mod checks;
 pub mod line;
+pub mod packages;
 pub mod picture;
 pub mod prerequisites;
 pub mod qemu;
 pub mod secure_boot;
 pub mod serial_check;
 pub mod soak;
+pub mod supervisor;
 pub mod workspace;
 
 /// The image build and the process helpers live with the boot stages
@@ -33,4 +35,4 @@ pub use boot_image::{build_image, cargo, process};
 pub use picture::compare::compare_images;
 pub use picture::{render, Image};
 pub use qemu::console::{BenchRow, Console, Dump, Listing, Reply};
-pub use qemu::{Adapter, Clock, Display, Medium, Qemu, QemuOptions, SerialLine};
+pub use qemu::{Adapter, Clock, Cpu, Display, ExitDevice, Medium, Qemu, QemuOptions, SerialLine};

@@ -1,20 +1,31 @@
 //! Installing what the runs need when it is missing: QEMU (and its window
 //! and OVMF, the UEFI firmware, when a run needs them), Chromium and
 //! chromedriver, the wasm32 target, the Cairo headers the lab's Cairo peer
-//! builds against, and cargo-fuzz with a C++ compiler for libFuzzer (the
+//! builds against, the C libraries of its Allegro, SDL2_gfx and GD peers,
+//! and cargo-fuzz with a C++ compiler for libFuzzer (the
 //! pinned nightly the image builds with is `boot_image::toolchain`'s). Machines here set `RUSTUP_AUTO_INSTALL=0`,
 //! so nothing installs itself. Debian packages come with their
 //! dependencies but without their recommendations: exactly the packages
-//! named here, each for the reason its constant says.
+//! named here, each for the reason its constant says (`packages` installs
+//! them, on Debian, Ubuntu and their derivatives).
+//!
+//! Each is ensured where it is used (QEMU when a QEMU starts, Chromium
+//! when a browser does), so a run installs only what its tests need. The
+//! firmware files and the browser are where Debian puts them unless an
+//! environment variable names others (`POLYLAB_OVMF_CODE`, ...: see each
+//! constant); a file so named must exist, and nothing is installed for it.
 
+use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{ensure, Context, Result};
 
 use boot_image::once::once_per_process;
 use boot_image::process::{output_of, run_streaming};
+
+pub use crate::packages::ensure_debian_packages;
 
 /// The QEMU binary the harness runs, and the Debian package that has it
 /// (with SeaBIOS and the VGA BIOSes, its dependencies).
@@ -25,25 +36,39 @@ const QEMU_PACKAGE: &str = "qemu-system-x86";
 const QEMU_WINDOW_PACKAGE: &str = "qemu-system-gui";
 
 /// OVMF, the UEFI firmware QEMU boots UEFI runs with: its code, mapped
-/// read-only, and its empty variable store, which each run copies.
+/// read-only, and its empty variable store, which each run copies; where
+/// Debian's `ovmf` puts them, and the variables that name others.
 pub const OVMF_CODE: &str = "/usr/share/OVMF/OVMF_CODE_4M.fd";
 pub const OVMF_VARS: &str = "/usr/share/OVMF/OVMF_VARS_4M.fd";
+pub const OVMF_CODE_ENV: &str = "POLYLAB_OVMF_CODE";
+pub const OVMF_VARS_ENV: &str = "POLYLAB_OVMF_VARS";
 const OVMF_PACKAGE: &str = "ovmf";
 
 /// Bochs 2.7, the second emulator (`bochs.rs`), and the Debian packages
-/// it needs: the emulator; its terminal display, the smallest package
-/// that meets its need for a display library (else apt picks the
-/// wxWidgets one); its own BIOS and VGA BIOSes, which it would otherwise
-/// take from SeaBIOS.
+/// it needs: the emulator; its terminal display, which the runs use (it
+/// also meets the package's need for a display library, else apt picks
+/// the wxWidgets one); its own BIOS and VGA BIOSes, which it would
+/// otherwise take from SeaBIOS. The BIOSes are where Debian puts them
+/// unless the variables name others.
 pub const BOCHS: &str = "bochs";
 pub const BOCHS_BIOS: &str = "/usr/share/bochs/BIOS-bochs-latest";
 pub const BOCHS_CIRRUS_VGA_BIOS: &str = "/usr/share/vgabios/vgabios-cirrus.bin";
+pub const BOCHS_BIOS_ENV: &str = "POLYLAB_BOCHS_BIOS";
+pub const BOCHS_CIRRUS_VGA_BIOS_ENV: &str = "POLYLAB_BOCHS_VGA_BIOS";
 const BOCHS_PACKAGES: [&str; 4] = ["bochs", "bochs-term", "bochsbios", "vgabios"];
 
 /// The Debian packages the lab's Cairo peer (`cairo-rs` over the system
 /// libcairo) builds with: the headers and `.pc` file, and pkg-config, which
 /// finds them.
 const CAIRO_PACKAGES: [&str; 2] = ["libcairo2-dev", "pkg-config"];
+
+/// The Debian packages the lab's C peers build and link with: Allegro 4
+/// (`polygon()`), SDL2 with its gfx add-on (`filledPolygonRGBA`), GD
+/// (`gdImageFilledPolygon`), each with its headers and `.pc` file, and
+/// pkg-config, which finds them.
+const PEER_PACKAGES: [&str; 5] = ["liballegro4-dev", "libsdl2-dev", "libsdl2-gfx-dev", "libgd-dev", "pkg-config"];
+/// Their pkg-config names, all of which must be found.
+const PEER_PKG_CONFIG: [&str; 4] = ["allegro", "sdl2", "SDL2_gfx", "gdlib"];
 
 /// Makes sure `qemu-system-x86_64` is on the `PATH`: installs Debian's
 /// `qemu-system-x86` with apt-get when running as root, otherwise fails
@@ -72,8 +97,9 @@ pub fn ensure_qemu_window() -> Result<()> {
 pub fn ensure_bochs() -> Result<()> {
     static DONE: OnceLock<Result<(), String>> = OnceLock::new();
     once_per_process(&DONE, || {
-        let present =
-            || on_path(&[BOCHS]) && [BOCHS_BIOS, BOCHS_CIRRUS_VGA_BIOS].iter().all(|f| Path::new(f).is_file());
+        let files = [(BOCHS_BIOS_ENV, BOCHS_BIOS), (BOCHS_CIRRUS_VGA_BIOS_ENV, BOCHS_CIRRUS_VGA_BIOS)];
+        ensure_named_files_exist(&files)?;
+        let present = || on_path(&[BOCHS]) && files.iter().all(|(env, path)| system_file(env, path).is_file());
         ensure_debian_packages("Bochs (with its BIOS and VGA BIOS)", &BOCHS_PACKAGES, present)
     })
 }
@@ -83,24 +109,85 @@ pub fn ensure_bochs() -> Result<()> {
 pub fn ensure_ovmf() -> Result<()> {
     static DONE: OnceLock<Result<(), String>> = OnceLock::new();
     once_per_process(&DONE, || {
-        let present = || [OVMF_CODE, OVMF_VARS].iter().all(|file| Path::new(file).is_file());
+        let files = [(OVMF_CODE_ENV, OVMF_CODE), (OVMF_VARS_ENV, OVMF_VARS)];
+        ensure_named_files_exist(&files)?;
+        let present = || files.iter().all(|(env, path)| system_file(env, path).is_file());
         ensure_debian_packages("OVMF (the UEFI firmware for QEMU)", &[OVMF_PACKAGE], present)
     })
 }
 
+/// The file the environment variable `env` names, or else `default`
+/// (where a Debian package puts it).
+pub fn system_file(env: &str, default: &str) -> PathBuf {
+    chosen(std::env::var_os(env), default)
+}
+
+fn chosen(named: Option<OsString>, default: &str) -> PathBuf {
+    named.filter(|named| !named.is_empty()).map_or_else(|| PathBuf::from(default), PathBuf::from)
+}
+
+/// Fails unless every file an environment variable of `files` names
+/// exists: a file the user names is never installed over.
+fn ensure_named_files_exist(files: &[(&str, &str)]) -> Result<()> {
+    for (env, default) in files {
+        let path = system_file(env, default);
+        ensure!(path == Path::new(default) || path.is_file(), "{env} names {}, which is not a file", path.display());
+    }
+    Ok(())
+}
+
+/// OVMF's code and variable store for the runs ([`OVMF_CODE_ENV`] and
+/// [`OVMF_VARS_ENV`] name others than Debian's).
+pub fn ovmf_code() -> PathBuf {
+    system_file(OVMF_CODE_ENV, OVMF_CODE)
+}
+
+pub fn ovmf_vars() -> PathBuf {
+    system_file(OVMF_VARS_ENV, OVMF_VARS)
+}
+
 /// The browser the explorer's tests drive, its WebDriver server, and the
-/// Debian packages that have them.
+/// Debian packages that have them; the variables name others (a path, or
+/// a program on the PATH), such as Google Chrome and its chromedriver.
 pub const CHROMIUM: &str = "chromium";
 pub const CHROMEDRIVER: &str = "chromedriver";
+pub const CHROMIUM_ENV: &str = "POLYLAB_CHROMIUM";
+pub const CHROMEDRIVER_ENV: &str = "POLYLAB_CHROMEDRIVER";
 const CHROMIUM_PACKAGES: [&str; 2] = ["chromium", "chromium-driver"];
 
-/// Makes sure `chromium` and `chromedriver` are on the `PATH`, installing
-/// Debian's `chromium` and `chromium-driver` as [`ensure_qemu`] installs QEMU.
+/// Where the browser ([`CHROMIUM_ENV`], else `chromium` on the PATH) and
+/// its driver ([`CHROMEDRIVER_ENV`], else `chromedriver`) are.
+pub fn chromium() -> Option<PathBuf> {
+    program(CHROMIUM_ENV, CHROMIUM)
+}
+
+pub fn chromedriver() -> Option<PathBuf> {
+    program(CHROMEDRIVER_ENV, CHROMEDRIVER)
+}
+
+/// The program `env` names (a path, or a name on the PATH), or else
+/// `default` on the PATH.
+fn program(env: &str, default: &str) -> Option<PathBuf> {
+    let named = chosen(std::env::var_os(env), default);
+    if named.components().count() > 1 {
+        return named.is_file().then_some(named);
+    }
+    find_in_path(named.to_str()?)
+}
+
+/// Makes sure the browser and its driver are there, installing Debian's
+/// `chromium` and `chromium-driver` as [`ensure_qemu`] installs QEMU
+/// unless the variables name others, which must then exist.
 pub fn ensure_chromium() -> Result<()> {
     static DONE: OnceLock<Result<(), String>> = OnceLock::new();
     once_per_process(&DONE, || {
+        for (env, found) in [(CHROMIUM_ENV, chromium()), (CHROMEDRIVER_ENV, chromedriver())] {
+            if let Some(named) = std::env::var_os(env).filter(|named| !named.is_empty()) {
+                ensure!(found.is_some(), "{env} names {}, which is not a program", named.to_string_lossy());
+            }
+        }
         ensure_debian_packages("Chromium (chromium and chromedriver)", &CHROMIUM_PACKAGES, || {
-            on_path(&[CHROMIUM, CHROMEDRIVER])
+            chromium().is_some() && chromedriver().is_some()
         })
     })
 }
@@ -114,6 +201,19 @@ pub fn ensure_cairo() -> Result<()> {
     once_per_process(&DONE, || {
         let found = || Command::new("pkg-config").args(["--exists", "cairo"]).status().is_ok_and(|s| s.success());
         ensure_debian_packages("libcairo (for the lab's Cairo peer)", &CAIRO_PACKAGES, found)
+    })
+}
+
+/// Makes sure the C libraries of the lab's Allegro, SDL2_gfx and GD peers
+/// are there for `pkg-config --exists`, as the lab needs to build:
+/// installs their Debian `-dev` packages as [`ensure_cairo`] installs
+/// Cairo's.
+pub fn ensure_peer_libraries() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || {
+        let found =
+            || Command::new("pkg-config").arg("--exists").args(PEER_PKG_CONFIG).status().is_ok_and(|s| s.success());
+        ensure_debian_packages("Allegro 4, SDL2_gfx and GD (for the lab's C peers)", &PEER_PACKAGES, found)
     })
 }
 
@@ -149,39 +249,6 @@ pub fn ensure_cargo_fuzz() -> Result<()> {
 fn cargo_fuzz_install_command() -> Command {
     let mut install = crate::cargo::host();
     install.args(["install", "cargo-fuzz", "--locked", "--version", CARGO_FUZZ_VERSION]);
-    install
-}
-
-/// Installs `packages` with apt-get unless `present` says `what` is there
-/// already; without root (or apt-get) fails with the command to run.
-fn ensure_debian_packages(what: &str, packages: &[&str], present: impl Fn() -> bool) -> Result<()> {
-    if present() {
-        return Ok(());
-    }
-    let packages = packages.join(" ");
-    let as_root = output_of(Command::new("id").arg("-u")).is_ok_and(|uid| uid.trim() == "0");
-    if !as_root || find_in_path("apt-get").is_none() {
-        bail!(
-            "{what} is not installed; install it with:\n    sudo apt-get update && sudo apt-get install -y \
-             --no-install-recommends {packages}"
-        );
-    }
-    eprintln!("harness: {what} is missing; installing the Debian packages {packages} with apt-get");
-    run_streaming(Command::new("apt-get").arg("update"))?;
-    run_streaming(&mut apt_install(packages.split(' ')))?;
-    if !present() {
-        bail!("{packages} installed, but {what} is still not found");
-    }
-    Ok(())
-}
-
-/// `apt-get install` of `packages` and their dependencies, without the
-/// packages they merely recommend (for QEMU: its GUI, OVMF, its disk
-/// tools and block backends, and what they pull in), which a run needs
-/// only as named above.
-fn apt_install<'a>(packages: impl IntoIterator<Item = &'a str>) -> Command {
-    let mut install = Command::new("apt-get");
-    install.args(["install", "-y", "--no-install-recommends"]).args(packages).env("DEBIAN_FRONTEND", "noninteractive");
     install
 }
 
@@ -231,9 +298,11 @@ fn wasm_target_command(toolchain: &str) -> Command {
 
 /// OVMF's Secure Boot build (it needs SMM, so QEMU's q35 machine) and a
 /// variable store with Microsoft's keys enrolled and Secure Boot on, both
-/// in Debian's `ovmf` with [`OVMF_CODE`].
+/// in Debian's `ovmf` with [`OVMF_CODE`]; the variables name others.
 pub const OVMF_SECURE_BOOT_CODE: &str = "/usr/share/OVMF/OVMF_CODE_4M.secboot.fd";
 pub const OVMF_MICROSOFT_VARS: &str = "/usr/share/OVMF/OVMF_VARS_4M.ms.fd";
+pub const OVMF_SECURE_BOOT_CODE_ENV: &str = "POLYLAB_OVMF_SECURE_BOOT_CODE";
+pub const OVMF_MICROSOFT_VARS_ENV: &str = "POLYLAB_OVMF_MICROSOFT_VARS";
 
 /// Makes sure OVMF's Secure Boot build and its variable store with
 /// Microsoft's keys are there, installing Debian's `ovmf` as
@@ -241,9 +310,23 @@ pub const OVMF_MICROSOFT_VARS: &str = "/usr/share/OVMF/OVMF_VARS_4M.ms.fd";
 pub fn ensure_secure_boot_ovmf() -> Result<()> {
     static DONE: OnceLock<Result<(), String>> = OnceLock::new();
     once_per_process(&DONE, || {
-        let present = || [OVMF_SECURE_BOOT_CODE, OVMF_MICROSOFT_VARS].iter().all(|file| Path::new(file).is_file());
+        let files =
+            [(OVMF_SECURE_BOOT_CODE_ENV, OVMF_SECURE_BOOT_CODE), (OVMF_MICROSOFT_VARS_ENV, OVMF_MICROSOFT_VARS)];
+        ensure_named_files_exist(&files)?;
+        let present = || files.iter().all(|(env, path)| system_file(env, path).is_file());
         ensure_debian_packages("OVMF's Secure Boot build (with Microsoft's keys)", &[OVMF_PACKAGE], present)
     })
+}
+
+/// OVMF's Secure Boot build and its store with Microsoft's keys for the
+/// runs ([`OVMF_SECURE_BOOT_CODE_ENV`] and [`OVMF_MICROSOFT_VARS_ENV`] name
+/// others than Debian's).
+pub fn ovmf_secure_boot_code() -> PathBuf {
+    system_file(OVMF_SECURE_BOOT_CODE_ENV, OVMF_SECURE_BOOT_CODE)
+}
+
+pub fn ovmf_microsoft_vars() -> PathBuf {
+    system_file(OVMF_MICROSOFT_VARS_ENV, OVMF_MICROSOFT_VARS)
 }
 
 /// The release of virt-firmware (PyPI) whose `virt-fw-vars` writes the
@@ -296,11 +379,10 @@ mod tests {
     use crate::process::command_line;
 
     #[test]
-    fn debian_packages_come_without_their_recommendations() {
-        assert_eq!(
-            command_line(&apt_install(["qemu-system-x86", "ovmf"])),
-            "apt-get install -y --no-install-recommends qemu-system-x86 ovmf"
-        );
+    fn a_named_file_or_program_replaces_debians() {
+        assert_eq!(chosen(None, OVMF_CODE), Path::new(OVMF_CODE));
+        assert_eq!(chosen(Some("".into()), OVMF_CODE), Path::new(OVMF_CODE));
+        assert_eq!(chosen(Some("/opt/edk2/code.fd".into()), OVMF_CODE), Path::new("/opt/edk2/code.fd"));
     }
 
     #[test]

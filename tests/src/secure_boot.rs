@@ -10,7 +10,7 @@ use std::process::Command;
 
 use anyhow::{ensure, Context, Result};
 
-use crate::prerequisites::{ensure_secure_boot_ovmf, ensure_virt_fw_vars, OVMF_MICROSOFT_VARS};
+use crate::prerequisites::{ensure_secure_boot_ovmf, ensure_virt_fw_vars, ovmf_microsoft_vars};
 use crate::process::output_of;
 
 /// The GUID shim's variables (`MokList` among them) live under.
@@ -22,13 +22,14 @@ pub const SHIM_LOCK_GUID: &str = "605dab50-e046-4300-abb6-3dd810dd8b23";
 /// new PC has it.
 pub fn variables_with_mok_list(certificates: &[&Path], out: &Path) -> Result<()> {
     ensure_secure_boot_ovmf()?;
+    let microsoft_vars = ovmf_microsoft_vars();
     if certificates.is_empty() {
-        std::fs::copy(OVMF_MICROSOFT_VARS, out)
-            .with_context(|| format!("failed to copy {OVMF_MICROSOFT_VARS} to {}", out.display()))?;
+        std::fs::copy(&microsoft_vars, out)
+            .with_context(|| format!("failed to copy {} to {}", microsoft_vars.display(), out.display()))?;
         return Ok(());
     }
     let mut command = Command::new(ensure_virt_fw_vars()?);
-    command.arg("-i").arg(OVMF_MICROSOFT_VARS).arg("-o").arg(out);
+    command.arg("-i").arg(&microsoft_vars).arg("-o").arg(out);
     for certificate in certificates {
         command.args(["--add-mok", SHIM_LOCK_GUID]).arg(certificate);
     }

@@ -43,10 +43,14 @@ fn kernel_lists_the_scenes_and_methods_the_host_knows() -> Result<()> {
     Ok(())
 }
 
+/// At boot the kernel logs the machine it found, and nothing else: a
+/// register or DAC entry that does not read back would be a `LOG` line.
 #[test]
 fn vga_registers_read_back_as_programmed() -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions::default())?;
-    ensure!(qemu.console.logs().is_empty(), "the kernel logged at boot: {:?}", qemu.console.logs());
+    let logs = qemu.console.logs();
+    let only_the_machine = matches!(logs, [machine] if machine.starts_with("machine: qemu "));
+    ensure!(only_the_machine, "the kernel logged at boot: {logs:?}");
     qemu.console.ok(&Command::VgaCheck)?;
     Ok(())
 }

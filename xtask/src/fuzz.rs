@@ -9,13 +9,16 @@
 //! table gives per target the executions, libFuzzer's coverage figures
 //! (`cov`: code edges reached, `ft`: features, edges with hit counts and
 //! compared values) and the corpus size; any crash fails the command,
-//! naming its input and how to replay it.
+//! naming its input and how to replay it, and so does a fuzzer that ends
+//! without success and saves no input (killed by the OOM killer, say),
+//! with the reason.
 
 use std::fmt::Write as _;
 use std::fs;
 use std::io::{BufRead, BufReader, Write as _};
+use std::os::unix::process::ExitStatusExt;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::{Command, ExitStatus, Stdio};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
@@ -25,6 +28,7 @@ use boot_image::toolchain::ensure_toolchain;
 use harness::cargo::pinned;
 use harness::prerequisites::ensure_cargo_fuzz;
 use harness::process::{command_line, run_streaming};
+use harness::supervisor::Supervised;
 use harness::workspace;
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -64,7 +68,11 @@ impl Places {
     }
 
     fn log(&self, target: &Target) -> PathBuf {
-        self.root.join("logs").join(format!("{}.log", target.name))
+        self.log_of(target.name)
+    }
+
+    fn log_of(&self, target: &str) -> PathBuf {
+        self.root.join("logs").join(format!("{target}.log"))
     }
 }
 
@@ -85,9 +93,9 @@ pub fn fuzz(opt: &FuzzOpt) -> Result<()> {
         runs.push(run(target, opt.seconds, &places)?);
     }
     print!("{}", table(&runs));
-    let crashes: Vec<String> = runs.iter().filter_map(|run| run.crash_report(&places)).collect();
-    if !crashes.is_empty() {
-        bail!("{} of {} targets failed:\n{}", crashes.len(), runs.len(), crashes.join("\n"));
+    let failures: Vec<String> = runs.iter().filter_map(|run| run.failure_report(&places)).collect();
+    if !failures.is_empty() {
+        bail!("{} of {} targets failed:\n{}", failures.len(), runs.len(), failures.join("\n"));
     }
     Ok(())
 }
@@ -132,24 +140,23 @@ fn run(target: &Target, seconds: u32, places: &Places) -> Result<FuzzRun> {
         command.arg(format!("-dict={}", dictionary.display()));
     }
     eprintln!("xtask: fuzzing {} for {seconds} s: {}", target.name, command_line(&command));
-    let lines = watch(&mut command, target.name, seconds, &places.log(target))?;
-    let mut run = FuzzRun::read(target.name, &lines);
+    let (lines, status) = watch(&mut command, target.name, seconds, &places.log(target))?;
+    let mut run = FuzzRun::read(target.name, &lines, status);
     run.seconds = seconds;
-    if run.executions == 0 && run.crash.is_none() {
+    if run.executions == 0 && run.failure.is_none() {
         bail!("libFuzzer ran no input of {}; its output is in {}", target.name, places.log(target).display());
     }
     Ok(run)
 }
 
-/// Runs `command` with its standard error read line by line into `log`,
-/// a progress bar over `seconds` showing libFuzzer's latest figures.
-/// Returns the lines; a failing exit is for the caller to read from them.
-fn watch(command: &mut Command, name: &str, seconds: u32, log: &Path) -> Result<Vec<String>> {
-    let mut child = command
-        .stderr(Stdio::piped())
-        .spawn()
-        .with_context(|| format!("failed to start `{}`", command_line(command)))?;
-    let stderr = child.stderr.take().context("no standard error to read")?;
+/// Runs `command` (under a watchdog: if the xtask dies, cargo-fuzz and
+/// the fuzzer go with it) with its standard error read line by line into
+/// `log`, a progress bar over `seconds` showing libFuzzer's latest
+/// figures. Returns the lines and how the command exited, for the caller
+/// to read.
+fn watch(command: &mut Command, name: &str, seconds: u32, log: &Path) -> Result<(Vec<String>, ExitStatus)> {
+    let mut run = Supervised::without_folder()?;
+    let stderr = run.spawn(command.stderr(Stdio::piped()))?.stderr.take().context("no standard error to read")?;
     let (sender, receiver) = mpsc::channel();
     let reader = std::thread::spawn(move || {
         for line in BufReader::new(stderr).lines().map_while(Result::ok) {
@@ -183,8 +190,8 @@ fn watch(command: &mut Command, name: &str, seconds: u32, log: &Path) -> Result<
     }
     bar.finish_and_clear();
     reader.join().map_err(|_| anyhow::anyhow!("the reader of {name}'s output panicked"))?;
-    child.wait().with_context(|| format!("failed to wait for {name}'s fuzzer"))?;
-    Ok(lines)
+    let status = run.child().wait().with_context(|| format!("failed to wait for {name}'s fuzzer"))?;
+    Ok((lines, status))
 }
 
 /// libFuzzer's figures on one of its status lines (`#N NEW cov: C ft: F
@@ -223,36 +230,72 @@ struct FuzzRun {
     executions: u64,
     /// The last status line's figures.
     figures: Figures,
-    /// The input libFuzzer saved when a check failed, and why.
-    crash: Option<(String, String)>,
+    /// How the run failed, if it did.
+    failure: Option<Failure>,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+enum Failure {
+    /// A check failed (or an input ran out of memory or time): libFuzzer
+    /// saved the input, and why.
+    Crash { input: String, reason: String },
+    /// The fuzzer ended without success and saved no input: how it ended,
+    /// and the last error it (or cargo-fuzz) printed, if any.
+    Exit { status: String, reason: String },
 }
 
 impl FuzzRun {
-    fn read(target: &str, lines: &[String]) -> Self {
+    fn read(target: &str, lines: &[String], status: ExitStatus) -> Self {
         let figures = lines.iter().rev().find_map(|line| Figures::of(line)).unwrap_or_default();
         let stat = |key: &str| lines.iter().find_map(|line| line.strip_prefix(key)?.trim().parse().ok());
         let executions = stat("stat::number_of_executed_units:").unwrap_or(figures.executions);
         let artifact =
             lines.iter().find_map(|line| Some(line.split("Test unit written to ").nth(1)?.trim().to_string()));
-        let reason = lines
-            .iter()
-            .find(|line| line.contains("panicked at") || line.contains("ERROR: libFuzzer"))
-            .cloned()
-            .unwrap_or_default();
-        Self { target: target.to_string(), seconds: 0, executions, figures, crash: artifact.map(|a| (a, reason)) }
+        let first = |marks: &[&str]| lines.iter().find(|line| marks.iter().any(|mark| line.contains(mark))).cloned();
+        let reason = first(&["panicked at", "ERROR: libFuzzer"]);
+        let failure = match artifact {
+            Some(input) => Some(Failure::Crash { input, reason: reason.unwrap_or_default() }),
+            None if !status.success() => Some(Failure::Exit {
+                status: describe(status),
+                // cargo-fuzz says how its fuzzer ended on an `Error:` line.
+                reason: reason.or_else(|| first(&["Error:", "error:"])).unwrap_or_default(),
+            }),
+            None => None,
+        };
+        Self { target: target.to_string(), seconds: 0, executions, figures, failure }
     }
 
-    /// For a run that crashed: the target, why, the input and the command
-    /// that replays it.
-    fn crash_report(&self, places: &Places) -> Option<String> {
-        let (input, reason) = self.crash.as_ref()?;
-        let replay = format!(
-            "cargo +{} fuzz run --fuzz-dir {FUZZ_DIR} --sanitizer none --target-dir {} {} {input}",
-            harness::cargo::PINNED_TOOLCHAIN,
-            places.root.display(),
-            self.target
-        );
-        Some(format!("  {}: {reason}\n    input: {input}\n    replay: {replay}", self.target))
+    /// For a run that failed: the target, why, and for a crash the input
+    /// and the command that replays it.
+    fn failure_report(&self, places: &Places) -> Option<String> {
+        match self.failure.as_ref()? {
+            Failure::Crash { input, reason } => {
+                let replay = format!(
+                    "cargo +{} fuzz run --fuzz-dir {FUZZ_DIR} --sanitizer none --target-dir {} {} {input}",
+                    harness::cargo::PINNED_TOOLCHAIN,
+                    places.root.display(),
+                    self.target
+                );
+                Some(format!("  {}: {reason}\n    input: {input}\n    replay: {replay}", self.target))
+            }
+            Failure::Exit { status, reason } => Some(format!(
+                "  {}: the fuzzer {status} and saved no input{}\n    its output: {}",
+                self.target,
+                if reason.is_empty() { String::new() } else { format!(": {reason}") },
+                places.log_of(&self.target).display()
+            )),
+        }
+    }
+}
+
+/// How a process ended, in words: its exit code, or the signal that
+/// killed it (SIGKILL is what the kernel's OOM killer sends).
+fn describe(status: ExitStatus) -> String {
+    match (status.code(), status.signal()) {
+        (Some(code), _) => format!("exited with status {code}"),
+        (None, Some(9)) => "was killed by SIGKILL (the kernel's OOM killer sends it)".to_string(),
+        (None, Some(signal)) => format!("was killed by signal {signal}"),
+        (None, None) => format!("ended ({status})"),
     }
 }
 
@@ -265,7 +308,11 @@ fn table(runs: &[FuzzRun]) -> String {
     );
     for run in runs {
         let rate = run.executions / u64::from(run.seconds.max(1));
-        let result = if run.crash.is_some() { "CRASH" } else { "ok" };
+        let result = match run.failure {
+            Some(Failure::Crash { .. }) => "CRASH",
+            Some(Failure::Exit { .. }) => "FAILED",
+            None => "ok",
+        };
         let Figures { cov, ft, corpus, .. } = run.figures;
         // Writing to a String cannot fail.
         let _ = writeln!(
@@ -294,12 +341,21 @@ mod tests {
         text.lines().map(String::from).collect()
     }
 
+    /// A process's end as `wait` reports it: an exit code, or a signal.
+    fn exited(code: i32) -> ExitStatus {
+        ExitStatus::from_raw(code << 8)
+    }
+
+    fn killed(signal: i32) -> ExitStatus {
+        ExitStatus::from_raw(signal)
+    }
+
     #[test]
     fn a_clean_run_reads_as_its_last_figures_and_executions() {
-        let run = FuzzRun::read("methods", &lines(LOG));
+        let run = FuzzRun::read("methods", &lines(LOG), exited(0));
         assert_eq!(run.executions, 52311);
         assert_eq!(run.figures, Figures { executions: 52311, cov: 845, ft: 1790, corpus: 118 });
-        assert_eq!(run.crash, None);
+        assert_eq!(run.failure, None);
     }
 
     #[test]
@@ -308,17 +364,46 @@ mod tests {
             thread '<unnamed>' panicked at tests/fuzz/src/methods.rs:33:5:\n\
             ==9== ERROR: libFuzzer: deadly signal\n\
             artifact_prefix='target/fuzz/artifacts/methods/'; Test unit written to target/fuzz/artifacts/methods/crash-ab12\n";
-        let run = FuzzRun::read("methods", &lines(log));
-        let (input, reason) = run.crash.clone().unwrap();
+        let run = FuzzRun::read("methods", &lines(log), exited(1));
+        let Some(Failure::Crash { input, reason }) = run.failure.clone() else { panic!("{:?}", run.failure) };
         assert_eq!(input, "target/fuzz/artifacts/methods/crash-ab12");
         assert!(reason.contains("panicked at tests/fuzz/src/methods.rs"), "{reason}");
-        let report = run.crash_report(&Places { root: PathBuf::from("target/fuzz") }).unwrap();
+        let report = run.failure_report(&Places { root: PathBuf::from("target/fuzz") }).unwrap();
         assert!(report.contains("fuzz run --fuzz-dir tests/fuzz/targets --sanitizer none --target-dir target/fuzz methods target/fuzz/artifacts/methods/crash-ab12"), "{report}");
     }
 
     #[test]
+    fn a_fuzzer_that_fails_without_saving_an_input_fails_the_run_with_the_reason() {
+        // The OOM killer's SIGKILL to the fuzzer: cargo-fuzz reports it and
+        // exits 1; libFuzzer never got to save an input.
+        let log = format!("{LOG}Error: Fuzz target exited with signal: 9 (SIGKILL)\n");
+        let run = FuzzRun::read("explorer", &lines(&log), exited(1));
+        let failure = Failure::Exit {
+            status: "exited with status 1".into(),
+            reason: "Error: Fuzz target exited with signal: 9 (SIGKILL)".into(),
+        };
+        assert_eq!(run.failure, Some(failure));
+        let report = run.failure_report(&Places { root: PathBuf::from("target/fuzz") }).unwrap();
+        assert_eq!(
+            report,
+            "  explorer: the fuzzer exited with status 1 and saved no input: Error: Fuzz target exited with signal: \
+             9 (SIGKILL)\n    its output: target/fuzz/logs/explorer.log"
+        );
+        // cargo-fuzz itself killed, with nothing said.
+        let run = FuzzRun::read("explorer", &lines(LOG), killed(9));
+        let report = run.failure_report(&Places { root: PathBuf::from("target/fuzz") }).unwrap();
+        assert!(
+            report.contains("was killed by SIGKILL (the kernel's OOM killer sends it) and saved no input"),
+            "{report}"
+        );
+        let mut run = FuzzRun::read("explorer", &lines(LOG), killed(9));
+        run.seconds = 20;
+        assert!(table(&[run]).lines().nth(1).unwrap().ends_with("FAILED"));
+    }
+
+    #[test]
     fn the_table_gives_each_target_its_executions_rate_and_coverage() {
-        let mut run = FuzzRun::read("methods", &lines(LOG));
+        let mut run = FuzzRun::read("methods", &lines(LOG), exited(0));
         run.seconds = 20;
         let table = table(&[run]);
         assert_eq!(

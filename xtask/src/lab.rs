@@ -1,6 +1,7 @@
 //! `cargo xtask lab`: runs the lab crate's binary in release, since the
 //! xtask itself is built unoptimised and the lab measures speed, after
-//! installing the libcairo headers its Cairo peer builds against.
+//! installing the C libraries its peers build against (libcairo, Allegro
+//! 4, SDL2 with SDL2_gfx, GD).
 //!
 //! The lab is built for the machine it runs on (`-C target-cpu=native`),
 //! our code and the Rust peers alike, so that every contender may use the
@@ -13,7 +14,7 @@
 use std::path::absolute;
 
 use anyhow::{Context, Result};
-use harness::prerequisites::ensure_cairo;
+use harness::prerequisites::{ensure_cairo, ensure_peer_libraries};
 use harness::process::run_streaming;
 
 use crate::opt::LabOpt;
@@ -24,8 +25,10 @@ const NATIVE_RUSTFLAGS: &str = "-C target-cpu=native";
 const NATIVE_TARGET_DIR: &str = "target/native";
 
 pub fn lab(opt: &LabOpt) -> Result<()> {
-    // The Cairo peer builds against the system libcairo.
+    // The Cairo peer builds against the system libcairo; the Allegro,
+    // SDL2_gfx and GD peers against theirs.
     ensure_cairo()?;
+    ensure_peer_libraries()?;
     let out = absolute(&opt.out).with_context(|| format!("bad output directory {}", opt.out.display()))?;
     let mut command = harness::cargo::host();
     command.env("RUSTFLAGS", NATIVE_RUSTFLAGS);

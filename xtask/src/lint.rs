@@ -5,8 +5,8 @@
 //! Formatting is checked with the host toolchain's rustfmt, whose output
 //! does not change between releases. Warnings are errors. Installs rustfmt,
 //! the pinned nightly and its clippy where missing (the minimal rustup
-//! profile has neither tool), libcairo's headers, which the lab's Cairo
-//! peer builds against, and a C++ compiler for the fuzz targets' libFuzzer.
+//! profile has neither tool), the C libraries the lab's peers build
+//! against (libcairo, Allegro 4, SDL2 with SDL2_gfx, GD), and a C++ compiler for the fuzz targets' libFuzzer.
 //! The fuzz targets (tests/fuzz/targets, a workspace of their own) are
 //! formatted and linted apart.
 
@@ -17,7 +17,7 @@ use boot_image::cargo::{host, pinned, NightlyBuild, KERNEL_TARGET, NIGHTLY_ONLY}
 use boot_image::process::run_streaming;
 use boot_image::toolchain::ensure_toolchain;
 use boot_image::workspace;
-use harness::prerequisites::{ensure_cairo, ensure_cxx};
+use harness::prerequisites::{ensure_cairo, ensure_cxx, ensure_peer_libraries};
 
 pub fn lint() -> Result<()> {
     // Under `cargo xtask`, rustup names the running toolchain in
@@ -28,8 +28,10 @@ pub fn lint() -> Result<()> {
     ensure_toolchain()?;
     run_streaming(pinned("rustup").args(["component", "add", "clippy"]))
         .context("failed to install clippy for the pinned nightly")?;
-    // Clippy builds the lab, whose Cairo peer links the system libcairo.
+    // Clippy builds the lab, whose peers link the system libcairo, Allegro
+    // 4, SDL2 with SDL2_gfx, and GD.
     ensure_cairo()?;
+    ensure_peer_libraries()?;
     // The fuzz targets build libFuzzer, which is C++.
     ensure_cxx()?;
     for mut command in [host_clippy(), kernel_clippy(), fuzz_targets_clippy()] {

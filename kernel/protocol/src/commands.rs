@@ -10,6 +10,10 @@ use crate::{BENCH_DEFAULT_REPEATS, BENCH_MAX_REPEATS, EVERY_ENTRY, MAX_LINE};
 /// Which CPU fault the test-only `FAULT` command provokes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FaultKind {
+    /// `#DE`, vector 0: a division by zero.
+    DivideError,
+    /// `#UD`, vector 6: `ud2`, the instruction made to be undefined.
+    InvalidOpcode,
     Breakpoint,
     PageFault,
     DoubleFault,
@@ -17,11 +21,19 @@ pub enum FaultKind {
 }
 
 impl FaultKind {
-    pub const ALL: [FaultKind; 4] =
-        [FaultKind::Breakpoint, FaultKind::PageFault, FaultKind::DoubleFault, FaultKind::Panic];
+    pub const ALL: [FaultKind; 6] = [
+        FaultKind::DivideError,
+        FaultKind::InvalidOpcode,
+        FaultKind::Breakpoint,
+        FaultKind::PageFault,
+        FaultKind::DoubleFault,
+        FaultKind::Panic,
+    ];
 
     pub const fn name(self) -> &'static str {
         match self {
+            FaultKind::DivideError => "divideerror",
+            FaultKind::InvalidOpcode => "invalidopcode",
             FaultKind::Breakpoint => "breakpoint",
             FaultKind::PageFault => "pagefault",
             FaultKind::DoubleFault => "doublefault",
@@ -64,9 +76,12 @@ pub enum Command<'a> {
     /// ([`BENCH_DEFAULT_REPEATS`] if absent, 1 to [`BENCH_MAX_REPEATS`])
     /// with every method; answers a `BENCH` frame.
     Bench { scene: &'a str, repeats: u8 },
-    /// `EXIT CODE`: leaves QEMU through isa-debug-exit with CODE (0-255).
+    /// `EXIT CODE`: leaves QEMU through isa-debug-exit with CODE (0-255);
+    /// answered `ERR`, with nothing touched, on a machine the kernel has
+    /// not identified as QEMU.
     Exit(u8),
     /// `FAULT KIND`: test only; provokes a fault, which must be reported.
+    /// Answered `ERR` on a machine the kernel has not identified as QEMU.
     Fault(FaultKind),
     /// `READY`: answers a `READY` frame as at boot, its line losses as of
     /// now: how a host that connects after the kernel booted learns what
@@ -242,6 +257,8 @@ mod tests {
             Command::VgaCheck,
             Command::Exit(16),
             Command::Fault(FaultKind::PageFault),
+            Command::Fault(FaultKind::DivideError),
+            Command::Fault(FaultKind::InvalidOpcode),
             Command::Ready,
             Command::Clock,
         ];

@@ -22,12 +22,19 @@ mod sealed;
 pub use commands::{Command, CommandError, FaultKind};
 pub use frames::{FrameHeader, FrameKind};
 pub use replies::{
-    ClockSource, Firmware, HeapState, LineLosses, PciId, Pong, Presentation, Ready, ShowReply, TscRate, Video, PONG,
+    ClockSource, Firmware, HeapState, LineErrors, LineLosses, Machine, PciAddress, PciId, Pong, Presentation, Ready,
+    ShowReply, TscRate, Video, PONG,
 };
 pub use sealed::{unseal, Damaged, Sealed, SEAL_MARK};
 
 /// Longest command line the kernel accepts, terminator excluded.
 pub const MAX_LINE: usize = 4096;
+/// Seconds a command line may sit unfinished, no byte arriving, before the
+/// kernel drops it (saying so in a `LOG` frame) and plays the show again:
+/// far longer than any pause inside a line a program sends (a whole line
+/// of [`MAX_LINE`] bytes takes 0.36 s at 115200 baud), and long enough
+/// for a person typing at a terminal.
+pub const PARTIAL_LINE_IDLE_SECONDS: u64 = 10;
 /// Bytes in a mode-13h framebuffer.
 pub const FRAMEBUFFER_LEN: usize = 320 * 200;
 /// Bytes in a dump: the 320x200 frame read back (from 0xA0000 on the VGA

@@ -55,14 +55,16 @@ impl<'a> ShowReply<'a> {
 }
 
 /// Space-separated `key=value` fields read in a fixed order, as the `SHOW`,
-/// `PING` and `READY` texts are written.
+/// `PING` and `READY` texts are written. Fields a kernel gained later are
+/// read with [`Fields::optional`], so that a host still reads what an
+/// older image says.
 struct Fields<'a> {
-    fields: core::str::Split<'a, char>,
+    fields: core::iter::Peekable<core::str::Split<'a, char>>,
 }
 
 impl<'a> Fields<'a> {
     fn new(text: &'a str) -> Self {
-        Self { fields: text.split(' ') }
+        Self { fields: text.split(' ').peekable() }
     }
 
     /// The value of the next field, if it is called `key`.
@@ -76,6 +78,12 @@ impl<'a> Fields<'a> {
         self.text(key)?.parse().ok()
     }
 
+    /// Whether the next field is called `key` (it is then read as usual);
+    /// an older kernel's text lacks the fields added since.
+    fn next_is(&mut self, key: &str) -> bool {
+        self.fields.peek().and_then(|field| field.split_once('=')).is_some_and(|(k, _)| k == key)
+    }
+
     /// Whether every field has been read.
     fn end(mut self) -> bool {
         self.fields.next().is_none()
@@ -85,29 +93,63 @@ impl<'a> Fields<'a> {
 /// What the serial line lost on its way into the kernel since boot, as the
 /// kernel counted it: `overruns`, overrun errors in the UART's line status
 /// (a byte arrived while its FIFO was full; each loses at least one byte),
-/// and `dropped`, bytes that found the kernel's receive buffer full. Text:
-/// `overruns=N dropped=M`. `PING` and `READY` report it, so that a log of
-/// a run on a real PC shows any loss.
+/// `dropped`, bytes that found the kernel's receive buffer full, and the
+/// bytes the UART received with a line error, which the kernel drops
+/// ([`LineErrors`]). Text: `overruns=N dropped=M framing=F parity=P
+/// breaks=B`. `PING` and `READY` report it, so that a log of a run on a
+/// real PC shows any loss.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct LineLosses {
     pub overruns: u32,
     pub dropped: u32,
+    /// `None` in what a kernel older than these counts says.
+    pub errors: Option<LineErrors>,
+}
+
+/// Bytes the UART flagged in its line status as it received them, each
+/// dropped by the kernel and counted under its first flag in this order:
+/// `breaks`, a break (the line held at 0 for longer than a character:
+/// a cable plugged in, an adapter powering up, a terminal's break key; the
+/// UART receives it as one 0 byte), `framing` (no stop bit where one
+/// belongs: a speed mismatch or noise), `parity` (a parity bit that does
+/// not match; the kernel sets no parity, so it counts only with a UART
+/// set up otherwise).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct LineErrors {
+    pub framing: u32,
+    pub parity: u32,
+    pub breaks: u32,
 }
 
 impl LineLosses {
     fn read(fields: &mut Fields<'_>) -> Option<Self> {
-        Some(Self { overruns: fields.parsed("overruns")?, dropped: fields.parsed("dropped")? })
+        let overruns = fields.parsed("overruns")?;
+        let dropped = fields.parsed("dropped")?;
+        let errors = if fields.next_is("framing") {
+            Some(LineErrors {
+                framing: fields.parsed("framing")?,
+                parity: fields.parsed("parity")?,
+                breaks: fields.parsed("breaks")?,
+            })
+        } else {
+            None
+        };
+        Some(Self { overruns, dropped, errors })
     }
 
     /// Whether nothing was lost.
     pub fn none(&self) -> bool {
-        *self == Self::default()
+        self.overruns == 0 && self.dropped == 0 && self.errors.unwrap_or_default() == LineErrors::default()
     }
 }
 
 impl fmt::Display for LineLosses {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "overruns={} dropped={}", self.overruns, self.dropped)
+        write!(f, "overruns={} dropped={}", self.overruns, self.dropped)?;
+        if let Some(LineErrors { framing, parity, breaks }) = self.errors {
+            write!(f, " framing={framing} parity={parity} breaks={breaks}")?;
+        }
+        Ok(())
     }
 }
 
@@ -228,8 +270,67 @@ impl fmt::Display for PciId {
 impl PciId {
     fn parse(text: &str) -> Option<Self> {
         let (vendor, device) = text.split_once(':')?;
-        let hex = |word: &str| (word.len() == 4).then(|| u16::from_str_radix(word, 16).ok()).flatten();
-        Some(Self { vendor: hex(vendor)?, device: hex(device)? })
+        Some(Self { vendor: hex(vendor, 4)?, device: hex(device, 4)? })
+    }
+}
+
+/// `text` as a number of exactly `digits` hex digits.
+fn hex<T: TryFrom<u32>>(text: &str, digits: usize) -> Option<T> {
+    let valid = text.len() == digits && text.bytes().all(|b| b.is_ascii_hexdigit());
+    valid.then(|| u32::from_str_radix(text, 16).ok()?.try_into().ok()).flatten()
+}
+
+/// Where a PCI function sits: bus, device (0-31), function (0-7), written
+/// `bb:dd.f` in hex as `lspci` does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PciAddress {
+    pub bus: u8,
+    pub device: u8,
+    pub function: u8,
+}
+
+impl fmt::Display for PciAddress {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:02x}:{:02x}.{:x}", self.bus, self.device, self.function)
+    }
+}
+
+impl PciAddress {
+    fn parse(text: &str) -> Option<Self> {
+        let (bus, rest) = text.split_once(':')?;
+        let (device, function) = rest.split_once('.')?;
+        let address = Self { bus: hex(bus, 2)?, device: hex(device, 2)?, function: hex(function, 1)? };
+        (address.device < 32 && address.function < 8).then_some(address)
+    }
+}
+
+/// The machine the kernel found itself on, as far as it can tell without
+/// touching a port it has not identified (`kernel/src/machine.rs`). Only on
+/// QEMU does the kernel answer `EXIT` and `FAULT`, and write QEMU's exit
+/// port after a fatal error.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Machine {
+    /// QEMU: its CPUID hypervisor signature and its PCI subsystem IDs.
+    Qemu,
+    /// Anything else: a PC, or an emulator that does not say what it is.
+    #[default]
+    Unknown,
+}
+
+impl Machine {
+    pub const ALL: [Machine; 2] = [Machine::Qemu, Machine::Unknown];
+
+    /// `qemu` or `unknown`, as `READY` writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Machine::Qemu => "qemu",
+            Machine::Unknown => "unknown",
+        }
+    }
+
+    /// The machine [`Machine::name`] calls `name`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|machine| machine.name() == name)
     }
 }
 
@@ -289,14 +390,22 @@ pub struct Presentation {
 }
 
 /// The payload of the `READY` frame the kernel sends once at boot:
-/// `firmware=bios|uefi display=vvvv:dddd VIDEO overruns=N dropped=M`,
-/// where VIDEO is `video=vga13h vga_mismatches=K`, `video=framebuffer
-/// screen=WxH scale=S offset=X,Y` or `video=none` ([`Video`]). `display`
-/// is the first PCI display controller found (`none` if there is none).
+/// `firmware=bios|uefi machine=qemu|unknown display=vvvv:dddd
+/// display_at=bb:dd.f VIDEO LOSSES`, where VIDEO is `video=vga13h
+/// vga_mismatches=K`, `video=framebuffer screen=WxH scale=S offset=X,Y` or
+/// `video=none` ([`Video`]) and LOSSES the [`LineLosses`]. `display` is
+/// the display controller the kernel uses: the one that decodes the
+/// legacy VGA addresses if any does, else the first in bus order
+/// (`display=none`, and no `display_at`, if there is none).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Ready {
     pub firmware: Firmware,
+    /// `None` in what a kernel older than the field says.
+    pub machine: Option<Machine>,
     pub display: Option<PciId>,
+    /// Where `display` sits; `None` with no display, or from an older
+    /// kernel.
+    pub display_at: Option<PciAddress>,
     pub video: Video,
     pub losses: LineLosses,
 }
@@ -304,9 +413,15 @@ pub struct Ready {
 impl fmt::Display for Ready {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "firmware={} ", self.firmware.name())?;
+        if let Some(machine) = self.machine {
+            write!(f, "machine={} ", machine.name())?;
+        }
         match self.display {
             Some(id) => write!(f, "display={id}")?,
             None => write!(f, "display=none")?,
+        }
+        if let Some(address) = self.display_at {
+            write!(f, " display_at={address}")?;
         }
         match self.video {
             Video::Vga13h { mismatches } => write!(f, " video=vga13h vga_mismatches={mismatches}")?,
@@ -324,9 +439,17 @@ impl Ready {
     pub fn parse(text: &str) -> Option<Self> {
         let mut fields = Fields::new(text);
         let firmware = Firmware::from_name(fields.text("firmware")?)?;
+        let machine = match fields.next_is("machine") {
+            true => Some(Machine::from_name(fields.text("machine")?)?),
+            false => None,
+        };
         let display = match fields.text("display")? {
             "none" => None,
             id => Some(PciId::parse(id)?),
+        };
+        let display_at = match fields.next_is("display_at") {
+            true => Some(PciAddress::parse(fields.text("display_at")?)?),
+            false => None,
         };
         let video = match fields.text("video")? {
             "vga13h" => Video::Vga13h { mismatches: fields.parsed("vga_mismatches")? },
@@ -347,7 +470,7 @@ impl Ready {
             _ => return None,
         };
         let losses = LineLosses::read(&mut fields)?;
-        fields.end().then_some(Self { firmware, display, video, losses })
+        fields.end().then_some(Self { firmware, machine, display, display_at, video, losses })
     }
 }
 
@@ -397,30 +520,56 @@ mod tests {
 
     #[test]
     fn pongs_and_readies_round_trip_and_reject_garbage() {
-        let losses = LineLosses { overruns: 2, dropped: 0 };
+        let errors = Some(LineErrors { framing: 4, parity: 0, breaks: 1 });
+        let losses = LineLosses { overruns: 2, dropped: 0, errors };
         let pong = Pong { losses, heap: HeapState { used: 70_000, free_largest: 4_100_000 } };
-        assert_eq!(pong.to_string(), "pong overruns=2 dropped=0 heap_used=70000 heap_free_largest=4100000");
+        assert_eq!(
+            pong.to_string(),
+            "pong overruns=2 dropped=0 framing=4 parity=0 breaks=1 heap_used=70000 heap_free_largest=4100000"
+        );
         assert_eq!(Pong::parse(&pong.to_string()), Some(pong));
         assert_eq!(Pong::parse("pong"), None);
         assert_eq!(Pong::parse("pong overruns=2 dropped=0"), None);
         assert_eq!(Pong::parse("pong overruns=2 dropped=0 heap_free_largest=1 heap_used=2"), None);
         assert_eq!(Pong::parse("pong dropped=0 overruns=2 heap_used=2 heap_free_largest=1"), None);
+        assert_eq!(Pong::parse("pong overruns=2 dropped=0 framing=4 breaks=1 heap_used=2 heap_free_largest=1"), None);
         assert!(!losses.none() && LineLosses::default().none());
+        let only_a_break =
+            LineLosses { errors: Some(LineErrors { breaks: 1, ..LineErrors::default() }), ..LineLosses::default() };
+        assert!(!only_a_break.none());
 
         let display = Some(PciId { vendor: 0x1013, device: 0x00b8 });
-        let ready = Ready { firmware: Firmware::Bios, display, video: Video::Vga13h { mismatches: 3 }, losses };
+        let display_at = Some(PciAddress { bus: 0, device: 0x1f, function: 2 });
+        let ready = Ready {
+            firmware: Firmware::Bios,
+            machine: Some(Machine::Qemu),
+            display,
+            display_at,
+            video: Video::Vga13h { mismatches: 3 },
+            losses,
+        };
         assert_eq!(
             ready.to_string(),
-            "firmware=bios display=1013:00b8 video=vga13h vga_mismatches=3 overruns=2 dropped=0"
+            "firmware=bios machine=qemu display=1013:00b8 display_at=00:1f.2 video=vga13h vga_mismatches=3 \
+             overruns=2 dropped=0 framing=4 parity=0 breaks=1"
         );
         let presentation = Presentation { width: 800, height: 600, scale: 2, left: 80, top: 100 };
-        let framed = Ready { firmware: Firmware::Uefi, video: Video::Framebuffer(presentation), ..ready };
+        let framed = Ready {
+            firmware: Firmware::Uefi,
+            machine: Some(Machine::Unknown),
+            video: Video::Framebuffer(presentation),
+            ..ready
+        };
         assert_eq!(
             framed.to_string(),
-            "firmware=uefi display=1013:00b8 video=framebuffer screen=800x600 scale=2 offset=80,100 overruns=2 dropped=0"
+            "firmware=uefi machine=unknown display=1013:00b8 display_at=00:1f.2 video=framebuffer screen=800x600 \
+             scale=2 offset=80,100 overruns=2 dropped=0 framing=4 parity=0 breaks=1"
         );
-        let headless = Ready { display: None, video: Video::None, ..ready };
-        assert_eq!(headless.to_string(), "firmware=bios display=none video=none overruns=2 dropped=0");
+        let headless = Ready { display: None, display_at: None, video: Video::None, ..ready };
+        assert_eq!(
+            headless.to_string(),
+            "firmware=bios machine=qemu display=none video=none overruns=2 dropped=0 framing=4 parity=0 breaks=1"
+        );
         for ready in [ready, framed, headless] {
             assert_eq!(Ready::parse(&ready.to_string()), Some(ready));
         }
@@ -434,8 +583,30 @@ mod tests {
             "firmware=bios display=none video=vga13h overruns=2 dropped=0",
             "display=1013:00b8 vga_mismatches=3 overruns=2 dropped=0",
             "vga: 0 mismatches",
+            "firmware=bios machine=bochs display=none video=none overruns=2 dropped=0",
+            "firmware=bios display=1013:00b8 display_at=00:20.0 video=none overruns=2 dropped=0",
+            "firmware=bios display=1013:00b8 display_at=0:1.0 video=none overruns=2 dropped=0",
+            "firmware=bios display=1013:00b8 display_at=00:01.8 video=none overruns=2 dropped=0",
+            "firmware=bios display=none video=none overruns=2 dropped=0 framing=1 parity=0",
+            "firmware=bios display=none video=none overruns=2 dropped=0 machine=qemu",
         ] {
             assert_eq!(Ready::parse(garbage), None, "{garbage}");
         }
+    }
+
+    #[test]
+    fn an_older_kernels_ready_and_pong_still_parse_without_the_newer_fields() {
+        let ready = Ready::parse("firmware=bios display=1234:1111 video=vga13h vga_mismatches=0 overruns=0 dropped=0");
+        let expected = Ready {
+            firmware: Firmware::Bios,
+            machine: None,
+            display: Some(PciId { vendor: 0x1234, device: 0x1111 }),
+            display_at: None,
+            video: Video::Vga13h { mismatches: 0 },
+            losses: LineLosses { overruns: 0, dropped: 0, errors: None },
+        };
+        assert_eq!(ready, Some(expected));
+        let pong = Pong::parse("pong overruns=1 dropped=0 heap_used=96 heap_free_largest=4096").unwrap();
+        assert_eq!(pong.losses, LineLosses { overruns: 1, dropped: 0, errors: None });
     }
 }

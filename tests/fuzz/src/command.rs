@@ -9,7 +9,8 @@
 //! command it seals, which seals again to the same line.
 
 use protocol::{
-    unseal, Command, FaultKind, FrameHeader, FrameKind, Pong, Ready, Sealed, ShowReply, TscRate, BENCH_MAX_REPEATS,
+    unseal, Command, FaultKind, FrameHeader, FrameKind, LineErrors, LineLosses, Machine, PciAddress, PciId, Pong,
+    Ready, Sealed, ShowReply, TscRate, BENCH_MAX_REPEATS,
 };
 use raster::{CoverageSink, MethodId, SCREEN};
 use scenes::file;
@@ -108,10 +109,23 @@ pub fn seeds() -> Vec<(String, Vec<u8>)> {
         refused: 0,
         strays: 0,
     };
+    // As a kernel of today writes them, every field there, and as an older
+    // one did (the defaults leave the later fields out).
+    let errors = Some(LineErrors { framing: 1, parity: 0, breaks: 2 });
+    let losses = LineLosses { overruns: 0, dropped: 3, errors };
+    let ready = Ready {
+        machine: Some(Machine::Qemu),
+        display: Some(PciId { vendor: 0x1234, device: 0x1111 }),
+        display_at: Some(PciAddress { bus: 0, device: 2, function: 0 }),
+        losses,
+        ..Ready::default()
+    };
     let replies = [
         show.to_string(),
         Pong::default().to_string(),
         Ready::default().to_string(),
+        Pong { losses, ..Pong::default() }.to_string(),
+        ready.to_string(),
         FrameHeader::for_payload(FrameKind::Ok, b"pong").to_string(),
         FrameHeader::for_reply(FrameKind::Ok, b"pong", Some(17)).to_string(),
         TscRate { hz: 2_593_000_000, source: protocol::ClockSource::Pit }.to_string(),
@@ -142,6 +156,13 @@ pub fn dictionary() -> Vec<String> {
             "heap_used=",
             "heap_free_largest=",
             "display=",
+            "display_at=",
+            "machine=",
+            "qemu",
+            "unknown",
+            "framing=",
+            "parity=",
+            "breaks=",
             "none",
             "vga_mismatches=",
             "color=",

@@ -4,16 +4,15 @@
 pub mod webdriver;
 
 use std::net::{SocketAddr, TcpListener};
-use std::path::PathBuf;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context, Result};
 use serde_json::{json, Value};
 
-use crate::prerequisites::{ensure_chromium, find_in_path, CHROMEDRIVER, CHROMIUM};
+use crate::prerequisites::{chromedriver, chromium, ensure_chromium};
 use crate::process::command_line;
-use crate::workspace;
+use crate::supervisor::Supervised;
 use webdriver::Session;
 
 /// Chromium's flags. This machine's network is closed: without the flags
@@ -37,25 +36,11 @@ const WINDOW_SIZE: &str = "--window-size=1400,1200";
 /// with a fresh profile removed on drop.
 pub struct Browser {
     // Fields drop in order: the session first (deleting it closes
-    // Chromium), then the driver.
+    // Chromium), then chromedriver's run: its process group (Chromium
+    // included, should it outlive the session) killed, its folder (log and
+    // Chromium's profile) removed.
     session: Session,
-    _driver: Driver,
-}
-
-/// The chromedriver process, killed on drop, and its folder (log and
-/// Chromium's profile), removed on drop.
-struct Driver {
-    child: Child,
-    run_dir: PathBuf,
-}
-
-impl Drop for Driver {
-    fn drop(&mut self) {
-        // Killing an exited child fails harmlessly; waiting reaps it.
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-        let _ = std::fs::remove_dir_all(&self.run_dir);
-    }
+    driver: Supervised,
 }
 
 impl Browser {
@@ -63,34 +48,38 @@ impl Browser {
     /// session through it, installing both when missing.
     pub fn start() -> Result<Self> {
         ensure_chromium()?;
-        let run_dir = workspace::fresh_run_dir("browser")?;
+        let mut driver = Supervised::with_folder("browser")?;
+        let run_dir = driver.folder().to_path_buf();
         let port = TcpListener::bind("127.0.0.1:0")?.local_addr()?.port();
         let address = SocketAddr::from(([127, 0, 0, 1], port));
-        let mut command = Command::new(CHROMEDRIVER);
+        let mut command = Command::new(chromedriver().context("chromedriver is not there")?);
         command.arg(format!("--port={port}")).arg(format!("--log-path={}", run_dir.join("chromedriver.log").display()));
         command.stdin(Stdio::null()).stdout(Stdio::null()).stderr(Stdio::null());
-        let line = command_line(&command);
-        eprintln!("harness: running {line}");
-        let child = command.spawn().with_context(|| format!("failed to start `{line}`"))?;
-        let mut driver = Driver { child, run_dir };
-        wait_until_ready(address, &mut driver.child)?;
+        eprintln!("harness: running {}", command_line(&command));
+        wait_until_ready(address, driver.spawn(&mut command)?)?;
         let mut args: Vec<String> = CHROMIUM_FLAGS.iter().map(|flag| flag.to_string()).collect();
-        args.push(format!("--user-data-dir={}", driver.run_dir.join("profile").display()));
+        args.push(format!("--user-data-dir={}", run_dir.join("profile").display()));
         args.push(WINDOW_SIZE.to_string());
-        let binary = find_in_path(CHROMIUM).context("chromium is not on the PATH")?;
+        let binary = chromium().context("chromium is not there")?;
         let capabilities = json!({
             "browserName": "chrome",
             "goog:chromeOptions": { "binary": binary, "args": args },
         });
         let session = Session::new(address, capabilities).with_context(|| {
             // The folder goes with the driver: keep the log's end here.
-            let log = std::fs::read_to_string(driver.run_dir.join("chromedriver.log")).unwrap_or_default();
+            let log = std::fs::read_to_string(run_dir.join("chromedriver.log")).unwrap_or_default();
             let tail: String =
                 log.lines().rev().take(20).collect::<Vec<_>>().into_iter().rev().collect::<Vec<_>>().join("\n");
             format!("chromedriver's log ends:\n{tail}")
         })?;
         session.set_timeouts(Duration::from_secs(20), Duration::from_secs(60))?;
-        Ok(Self { session, _driver: driver })
+        Ok(Self { session, driver })
+    }
+
+    /// chromedriver's process id (its process group's, which Chromium
+    /// joins, too).
+    pub fn driver_pid(&self) -> u32 {
+        self.driver.pid()
     }
 
     pub fn session(&self) -> &Session {

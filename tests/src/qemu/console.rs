@@ -1,7 +1,7 @@
 //! The host end of the serial protocol: commands out, typed replies in.
 
 use std::io::Write;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use anyhow::{bail, ensure, Context, Result};
 use protocol::{
@@ -240,9 +240,27 @@ impl Console {
         self.reply_within(REPLY_TIMEOUT)
     }
 
-    fn reply_within(&mut self, timeout: Duration) -> Result<Reply> {
+    /// The next reply within `timeout`: one deadline for the whole wait,
+    /// which LOG frames on the way do not extend (a kernel that keeps
+    /// logging and never answers still times out).
+    pub fn reply_within(&mut self, timeout: Duration) -> Result<Reply> {
+        let deadline = Instant::now() + timeout;
+        let logs_before = self.logs.len();
+        let late = |logs: usize| {
+            format!("no reply within {:.1} s, only {} LOG frames", timeout.as_secs_f64(), logs - logs_before)
+        };
         loop {
-            let frame = self.frames.next_frame(timeout)?;
+            let remaining = deadline.saturating_duration_since(Instant::now());
+            if remaining.is_zero() {
+                bail!(late(self.logs.len()));
+            }
+            let frame = match self.frames.next_frame(remaining) {
+                Ok(frame) => frame,
+                Err(error) if logs_before < self.logs.len() && Instant::now() >= deadline => {
+                    return Err(error.context(late(self.logs.len())));
+                }
+                Err(error) => return Err(error),
+            };
             if frame.kind == FrameKind::Log {
                 self.logs.push(frame.text());
                 continue;
@@ -405,7 +423,7 @@ mod tests {
             (Firmware::Uefi, "1234:1111".to_string(), Video::Vga13h { mismatches: 1 })
         );
         let pong = console.pong().unwrap();
-        assert_eq!(pong.losses, LineLosses { overruns: 3, dropped: 1 });
+        assert_eq!(pong.losses, LineLosses { overruns: 3, dropped: 1, errors: None });
         assert_eq!(pong.heap, HeapState { used: 96, free_largest: 4096 });
         let listing = console.list().unwrap();
         let expected = Listing {
@@ -508,6 +526,30 @@ mod tests {
         assert_eq!(error, "READY \"vga: 0 mismatches\" does not parse");
         let error = console.ping().unwrap_err().to_string();
         assert_eq!(error, "`PING` answered OK \"pong\", not a pong");
+    }
+
+    #[test]
+    fn log_frames_do_not_extend_the_deadline_of_a_reply() {
+        let (console, _, sender) = console(&[]);
+        // A kernel that logs every 20 ms and never answers.
+        std::thread::spawn(move || {
+            let payload = b"still busy";
+            let mut frame = format!("{}\n", FrameHeader::for_payload(FrameKind::Log, payload)).into_bytes();
+            frame.extend_from_slice(payload);
+            frame.push(b'\n');
+            while sender.send(frame.clone()).is_ok() {
+                std::thread::sleep(Duration::from_millis(20));
+            }
+        });
+        let (done, outcome) = mpsc::channel();
+        std::thread::spawn(move || {
+            let mut console = console;
+            let _ = done.send(console.reply_within(Duration::from_millis(300)).map_err(|e| e.to_string()));
+        });
+        // Far beyond the 300 ms deadline, to stay clear of a busy machine.
+        let error =
+            outcome.recv_timeout(Duration::from_secs(20)).expect("the wait for a reply never ended").unwrap_err();
+        assert!(error.starts_with("no reply within 0.3 s, only "), "{error}");
     }
 
     #[test]

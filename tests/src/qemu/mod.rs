@@ -8,24 +8,25 @@ pub mod qmp;
 pub mod serial;
 
 use std::ffi::OsString;
+use std::net::{TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, ExitStatus, Stdio};
+use std::process::{Command, ExitStatus, Stdio};
 use std::sync::mpsc::Receiver;
 use std::time::{Duration, Instant};
 
-use anyhow::{anyhow, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use protocol::{Firmware, PciId, Ready};
 
 use crate::picture::Image;
 use crate::prerequisites::{
-    ensure_ovmf, ensure_qemu, ensure_secure_boot_ovmf, OVMF_CODE, OVMF_MICROSOFT_VARS, OVMF_SECURE_BOOT_CODE,
-    OVMF_VARS, QEMU,
+    ensure_ovmf, ensure_qemu, ensure_secure_boot_ovmf, ovmf_code, ovmf_microsoft_vars, ovmf_secure_boot_code,
+    ovmf_vars, QEMU,
 };
 use crate::process::command_line;
-use crate::workspace;
+use crate::supervisor::Supervised;
 use boot_image::build_image;
 use console::Console;
-use qmp::Qmp;
+use qmp::{Qmp, QMP_TIMEOUT};
 use serial::{forward_bytes, FrameReader};
 
 /// Longest wait for QEMU to exit after QMP `quit`.
@@ -144,6 +145,21 @@ impl Adapter {
         }
     }
 
+    /// QEMU's device for the card on the PCI bus, which `-device` can put
+    /// at a slot of one's choosing; `None` for ramfb and no card.
+    fn pci_device(self) -> Option<&'static str> {
+        match self {
+            Adapter::Std => Some("VGA"),
+            Adapter::Cirrus => Some("cirrus-vga"),
+            Adapter::Vmware => Some("vmware-svga"),
+            Adapter::QxlVga => Some("qxl-vga"),
+            Adapter::VirtioVga => Some("virtio-vga"),
+            Adapter::AtiVga => Some("ati-vga"),
+            Adapter::BochsDisplay => Some("bochs-display"),
+            Adapter::Ramfb | Adapter::None => None,
+        }
+    }
+
     /// The PCI IDs QEMU gives the card (as `lspci -n` shows them in a
     /// guest), which the kernel reports in READY; `None` for no card and
     /// for ramfb, which is not on the PCI bus.
@@ -175,7 +191,7 @@ pub enum Clock {
     InstructionCount,
 }
 
-/// Where COM1 goes on the host.
+/// Where COM1, the protocol line, reaches the harness.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum SerialLine {
     /// QEMU's standard input and output, pipes to the harness: [`Qemu::console`].
@@ -185,6 +201,32 @@ pub enum SerialLine {
     /// program opens as it would a real serial port. [`Qemu::console`]
     /// then hears nothing.
     Pty,
+    /// A telnet server on TCP port `port` of 127.0.0.1 (0: [`Qemu::spawn`]
+    /// picks a free one): the one QEMU backend that carries a break (IAC
+    /// BRK, bytes 255 243, which QEMU turns into a break on the UART's
+    /// receiving end). A data byte 255 must be sent twice.
+    Telnet { port: u16 },
+}
+
+/// What QEMU's CPU tells the guest about itself.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Cpu {
+    /// QEMU's default CPU, which says a hypervisor runs it (CPUID leaf 1,
+    /// ECX bit 31) and names it (`TCGTCGTCGTCG`).
+    #[default]
+    Default,
+    /// The same CPU with CPUID's hypervisor bit clear: from the CPU, a
+    /// guest cannot tell it runs under QEMU.
+    WithoutHypervisorBit,
+}
+
+/// Whether QEMU has its exit device (`isa-debug-exit`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ExitDevice {
+    #[default]
+    Present,
+    /// None: a kernel's write to its port goes nowhere, as on a PC.
+    Absent,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -202,7 +244,21 @@ pub struct QemuOptions {
     /// A guest reboot restarts the machine (MokManager reboots after
     /// enrolling a key) instead of ending QEMU.
     pub allow_reboot: bool,
+    /// COM1's IRQ line if not its standard 4: the UART then interrupts on
+    /// a line the kernel does not listen to.
+    pub com1_irq: Option<u8>,
+    pub cpu: Cpu,
+    pub exit_device: ExitDevice,
+    /// A display controller with no VGA (bochs-display, class 03/80, the
+    /// std VGA's PCI IDs) in slot 2, ahead of the card in bus order, and
+    /// the card (a PCI one) in slot 5, where screendumps are taken of it.
+    pub display_ahead: bool,
 }
+
+/// The slot `QemuOptions::display_ahead` puts the card in, and the QEMU
+/// id screendumps name it by.
+const CARD_BEHIND_SLOT: &str = "05.0";
+const CARD_BEHIND_ID: &str = "card";
 
 /// Where a run keeps its QMP socket and, under UEFI, its copy of the
 /// firmware's variable store.
@@ -229,7 +285,7 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
         flag(
             &mut args,
             "-drive",
-            with_path("if=pflash,format=raw,unit=0,readonly=on,file=", Path::new(OVMF_SECURE_BOOT_CODE), ""),
+            with_path("if=pflash,format=raw,unit=0,readonly=on,file=", &ovmf_secure_boot_code(), ""),
         );
         flag(&mut args, "-drive", with_path("if=pflash,format=raw,unit=1,file=", &uefi_variables(run_dir), ""));
     } else {
@@ -241,7 +297,7 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
         // OVMF instead, as a UEFI PC's flash: its code read-only, and its
         // variable store (boot entries it writes as it boots) a copy of
         // the package's empty one, private to this run.
-        flag(&mut args, "-drive", with_path("if=pflash,format=raw,unit=0,readonly=on,file=", Path::new(OVMF_CODE), ""));
+        flag(&mut args, "-drive", with_path("if=pflash,format=raw,unit=0,readonly=on,file=", &ovmf_code(), ""));
         flag(&mut args, "-drive", with_path("if=pflash,format=raw,unit=1,file=", &uefi_variables(run_dir), ""));
     }
     // Always emulate: KVM here is nested and pathologically slow, and TCG
@@ -259,10 +315,26 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
     // VGA BIOS puts them in text mode; under OVMF its graphics driver sets
     // their native mode, which the kernel undoes on the cards it knows.
     let [card_flag, card] = options.adapter.qemu_flags();
-    flag(&mut args, card_flag, card);
-    if card_flag == "-device" {
-        // No built-in VGA beside the card given as a device.
-        flag(&mut args, "-vga", "none");
+    match options.adapter.pci_device().filter(|_| options.display_ahead) {
+        Some(device) => {
+            // A display controller without VGA first in bus order, the
+            // card behind it: the kernel must find the VGA by the legacy
+            // VGA decoding, not by bus order.
+            flag(&mut args, "-vga", "none");
+            flag(&mut args, "-device", "bochs-display,addr=02.0");
+            flag(&mut args, "-device", format!("{device},addr={CARD_BEHIND_SLOT},id={CARD_BEHIND_ID}"));
+        }
+        None => {
+            flag(&mut args, card_flag, card);
+            if card_flag == "-device" {
+                // No built-in VGA beside the card given as a device.
+                flag(&mut args, "-vga", "none");
+            }
+        }
+    }
+    if options.cpu == Cpu::WithoutHypervisorBit {
+        // QEMU's default CPU model, its hypervisor bit cleared.
+        flag(&mut args, "-cpu", "qemu64,-hypervisor");
     }
     // No network card: nothing boots from the network, and no option ROM
     // of one slows the firmware down.
@@ -280,11 +352,23 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
         SerialLine::Stdio => flag(&mut args, "-serial", "stdio"),
         // COM1 on a pseudo-terminal, found through QMP (`Qemu::pty`).
         SerialLine::Pty => flag(&mut args, "-serial", "pty"),
+        SerialLine::Telnet { port } => {
+            // COM1 on a telnet server; `wait=on`: the guest starts once
+            // the harness has connected, so no frame is lost.
+            let server = format!("socket,id=com1,host=127.0.0.1,port={port},server=on,wait=on,telnet=on");
+            flag(&mut args, "-chardev", server);
+            flag(&mut args, "-serial", "chardev:com1");
+        }
+    }
+    if let Some(irq) = options.com1_irq {
+        flag(&mut args, "-global", format!("isa-serial.irq={irq}"));
     }
     // Screendump and quit; `wait=off` lets the guest run with no client yet.
     flag(&mut args, "-qmp", with_path("unix:", &qmp_socket(run_dir), ",server=on,wait=off"));
-    // `EXIT n` and fault reports leave QEMU with exit status (n << 1) | 1.
-    flag(&mut args, "-device", "isa-debug-exit,iobase=0xf4,iosize=0x04");
+    if options.exit_device == ExitDevice::Present {
+        // `EXIT n` and fault reports leave QEMU with exit status (n << 1) | 1.
+        flag(&mut args, "-device", "isa-debug-exit,iobase=0xf4,iosize=0x04");
+    }
     if !options.allow_reboot {
         // A triple fault exits QEMU instead of rebooting the guest forever.
         args.push("-no-reboot".into());
@@ -307,6 +391,25 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
     args
 }
 
+/// A TCP port of 127.0.0.1 free a moment ago.
+fn free_port() -> Result<u16> {
+    let listener = TcpListener::bind("127.0.0.1:0").context("failed to find a free TCP port")?;
+    Ok(listener.local_addr()?.port())
+}
+
+/// A connection to QEMU's server on 127.0.0.1:`port`, retried until QEMU
+/// listens there, within `timeout`.
+fn connect_within(port: u16, timeout: Duration) -> Result<TcpStream> {
+    let deadline = Instant::now() + timeout;
+    loop {
+        match TcpStream::connect(("127.0.0.1", port)) {
+            Ok(stream) => return Ok(stream),
+            Err(_) if Instant::now() < deadline => std::thread::sleep(Duration::from_millis(20)),
+            Err(error) => return Err(error).with_context(|| format!("failed to connect to COM1 on port {port}")),
+        }
+    }
+}
+
 fn flag(args: &mut Vec<OsString>, flag: &str, value: impl Into<OsString>) {
     args.push(flag.into());
     args.push(value.into());
@@ -320,17 +423,20 @@ fn with_path(prefix: &str, path: &Path, suffix: &str) -> OsString {
     arg
 }
 
-/// A running QEMU. Dropping it kills the process.
+/// A running QEMU. Dropping it kills the process and removes its run
+/// folder (its watchdog does both if the harness dies first).
 pub struct Qemu {
-    child: Child,
+    process: Supervised,
     /// The protocol session on COM1.
     pub console: Console,
     /// What the kernel's READY frame said, once booted.
     pub ready: Ready,
-    run_dir: PathBuf,
     qmp: Option<Qmp>,
     stderr: Receiver<Vec<u8>>,
     stderr_seen: Vec<u8>,
+    /// The QEMU id of the display screendumps are taken of; `None`: the
+    /// first one.
+    screen: Option<&'static str>,
 }
 
 impl Qemu {
@@ -350,46 +456,67 @@ impl Qemu {
     pub fn spawn(image: &Path, options: QemuOptions) -> Result<Self> {
         let variables = if options.secure_boot {
             ensure_secure_boot_ovmf()?;
-            OVMF_MICROSOFT_VARS
+            ovmf_microsoft_vars()
         } else {
-            OVMF_VARS
+            ovmf_vars()
         };
-        Self::spawn_with_variables(image, options, Path::new(variables))
+        Self::spawn_with_variables(image, options, &variables)
     }
 
     /// [`Qemu::spawn`] under UEFI with a copy of `variables` as the
     /// firmware's variable store (the Secure Boot tests' MOK lists).
     pub fn spawn_with_variables(image: &Path, options: QemuOptions, variables: &Path) -> Result<Self> {
         ensure_qemu()?;
-        let run_dir = workspace::fresh_run_dir("qemu")?;
+        let options = match options.serial {
+            SerialLine::Telnet { port: 0 } => {
+                QemuOptions { serial: SerialLine::Telnet { port: free_port()? }, ..options }
+            }
+            _ => options,
+        };
         if options.firmware == Firmware::Uefi {
             ensure_ovmf()?;
             if options.secure_boot {
                 ensure_secure_boot_ovmf()?;
             }
+        }
+        let mut process = Supervised::with_folder("qemu")?;
+        let run_dir = process.folder().to_path_buf();
+        if options.firmware == Firmware::Uefi {
             std::fs::copy(variables, uefi_variables(&run_dir))
                 .with_context(|| format!("failed to copy {} into {}", variables.display(), run_dir.display()))?;
         }
         let mut command = Command::new(QEMU);
         command.args(qemu_arguments(image, &run_dir, options));
         command.stdin(Stdio::piped()).stdout(Stdio::piped()).stderr(Stdio::piped());
-        let line = command_line(&command);
-        eprintln!("harness: running {line}");
-        let mut child = command.spawn().with_context(|| format!("failed to start `{line}`"))?;
+        eprintln!("harness: running {}", command_line(&command));
+        let child = process.spawn(&mut command)?;
         let (Some(input), Some(output), Some(stderr)) = (child.stdin.take(), child.stdout.take(), child.stderr.take())
         else {
             unreachable!("all three streams are piped");
         };
         let console = Console::new(input, FrameReader::new(forward_bytes(output)));
-        Ok(Self {
-            child,
+        let mut qemu = Self {
+            process,
             console,
             ready: Ready::default(),
-            run_dir,
             qmp: None,
             stderr: forward_bytes(stderr),
             stderr_seen: Vec::new(),
-        })
+            screen: options.adapter.pci_device().filter(|_| options.display_ahead).map(|_| CARD_BEHIND_ID),
+        };
+        if let SerialLine::Telnet { port } = options.serial {
+            let stream = match connect_within(port, QMP_TIMEOUT) {
+                Ok(stream) => stream,
+                Err(error) => return Err(qemu.explain(error)),
+            };
+            qemu.console = Console::new(stream.try_clone()?, FrameReader::new(forward_bytes(stream)));
+        }
+        Ok(qemu)
+    }
+
+    /// QEMU's process id (its process group's too).
+    pub fn pid(&self) -> u32 {
+        self.process.pid()
     }
 
     /// `error` with what QEMU printed on its standard error, if anything.
@@ -405,40 +532,71 @@ impl Qemu {
         error.context(format!("QEMU's standard error says: {stderr}"))
     }
 
-    /// The QMP session, connected on first use.
+    /// The QMP session, connected on first use. Gives up as soon as QEMU
+    /// has exited, with what it printed on its standard error.
     pub fn qmp(&mut self) -> Result<&mut Qmp> {
         if self.qmp.is_none() {
-            self.qmp = Some(Qmp::connect(&qmp_socket(&self.run_dir))?);
+            let socket = qmp_socket(self.process.folder());
+            let child = self.process.child();
+            let running = || match child.try_wait().context("failed to poll QEMU")? {
+                Some(status) => bail!("QEMU exited ({status}) before its QMP socket answered"),
+                None => Ok(()),
+            };
+            match Qmp::connect(&socket, running) {
+                Ok(qmp) => self.qmp = Some(qmp),
+                Err(error) => return Err(self.explain(error)),
+            }
         }
         Ok(self.qmp.as_mut().expect("connected above"))
     }
 
     /// The pseudo-terminal COM1 is on, with [`SerialLine::Pty`].
     pub fn pty(&mut self) -> Result<PathBuf> {
-        let filename = self.qmp()?.chardev_filename("serial0")?;
+        let filename = self.with_qmp(|qmp| qmp.chardev_filename("serial0"))?;
         let path = filename.strip_prefix("pty:").with_context(|| format!("COM1 is on {filename}, not a pty"))?;
         Ok(PathBuf::from(path))
     }
 
-    /// QEMU's screendump of the display now.
+    /// Runs `work` on the QMP session; a failure carries what QEMU printed
+    /// on its standard error (why it went away, if it did).
+    fn with_qmp<T>(&mut self, work: impl FnOnce(&mut Qmp) -> Result<T>) -> Result<T> {
+        let done = work(self.qmp()?);
+        done.map_err(|error| self.explain(error))
+    }
+
+    /// QEMU's screendump of the display now (of the card, with
+    /// `QemuOptions::display_ahead`).
     pub fn screendump(&mut self) -> Result<Image> {
-        let scratch = self.run_dir.join("screen.ppm");
-        self.qmp()?.screendump(&scratch)
+        let scratch = self.process.folder().join("screen.ppm");
+        let screen = self.screen;
+        self.with_qmp(|qmp| qmp.screendump(&scratch, screen))
+    }
+
+    /// Raises a non-maskable interrupt on the CPU, as a chipset does to
+    /// report a hardware error (QMP `inject-nmi`).
+    pub fn inject_nmi(&mut self) -> Result<()> {
+        self.with_qmp(|qmp| qmp.inject_nmi())
     }
 
     /// Presses and releases the key QEMU names `qcode` on the PS/2 keyboard,
     /// through QMP: nothing goes over the serial line, so the kernel's demo
     /// keeps playing.
     pub fn send_key(&mut self, qcode: &str) -> Result<()> {
-        self.qmp()?.send_key(qcode)
+        self.with_qmp(|qmp| qmp.send_key(qcode))
     }
 
     /// Asks QEMU to quit through QMP and waits (at most [`QUIT_TIMEOUT`])
     /// for it to go.
     pub fn quit(mut self) -> Result<ExitStatus> {
         self.qmp()?;
-        self.qmp.take().expect("connected above").quit()?;
+        let quit = self.qmp.take().expect("connected above").quit();
+        quit.map_err(|error| self.explain(error))?;
         self.wait_exit(QUIT_TIMEOUT)
+    }
+
+    /// Whether QEMU is still running.
+    pub fn is_running(&mut self) -> Result<bool> {
+        Ok(self.process.child().try_wait().context("failed to poll QEMU")?.is_none())
     }
 
     /// Waits at most `timeout` for QEMU to exit by itself (after `EXIT`, a
@@ -446,7 +604,7 @@ impl Qemu {
     pub fn wait_exit(&mut self, timeout: Duration) -> Result<ExitStatus> {
         let deadline = Instant::now() + timeout;
         loop {
-            if let Some(status) = self.child.try_wait().context("failed to poll QEMU")? {
+            if let Some(status) = self.process.child().try_wait().context("failed to poll QEMU")? {
                 return Ok(status);
             }
             if Instant::now() >= deadline {
@@ -461,20 +619,11 @@ impl Qemu {
     /// for interactive runs: a person is the timeout. Fails (with QEMU's
     /// complaint) unless QEMU exits successfully, as closing the window does.
     pub fn wait_until_closed(&mut self) -> Result<()> {
-        let status = self.child.wait().context("failed to wait for QEMU")?;
+        let status = self.process.child().wait().context("failed to wait for QEMU")?;
         if !status.success() {
             return Err(self.explain(anyhow!("QEMU exited with {status}")));
         }
         Ok(())
-    }
-}
-
-impl Drop for Qemu {
-    fn drop(&mut self) {
-        // Killing an exited child fails harmlessly; waiting reaps it.
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-        let _ = std::fs::remove_dir_all(&self.run_dir);
     }
 }
 
@@ -516,7 +665,7 @@ mod tests {
     #[test]
     fn uefi_boots_ovmf_from_read_only_code_and_a_private_variable_store() {
         let args = arguments(QemuOptions { firmware: Firmware::Uefi, ..QemuOptions::default() });
-        let code = format!("if=pflash,format=raw,unit=0,readonly=on,file={OVMF_CODE}");
+        let code = format!("if=pflash,format=raw,unit=0,readonly=on,file={}", ovmf_code().display());
         assert!(has_pair(&args, "-drive", &code), "{args:?}");
         assert!(has_pair(&args, "-drive", "if=pflash,format=raw,unit=1,file=/run/OVMF_VARS_4M.fd"), "{args:?}");
         assert!(has_pair(&args, "-drive", "if=ide,index=0,format=raw,snapshot=on,file=/img/polylab.img"));
@@ -525,7 +674,7 @@ mod tests {
     #[test]
     fn secure_boot_is_ovmfs_secure_build_on_q35_with_smm_and_its_flash_secured() {
         let args = arguments(QemuOptions { firmware: Firmware::Uefi, secure_boot: true, ..QemuOptions::default() });
-        let code = format!("if=pflash,format=raw,unit=0,readonly=on,file={OVMF_SECURE_BOOT_CODE}");
+        let code = format!("if=pflash,format=raw,unit=0,readonly=on,file={}", ovmf_secure_boot_code().display());
         assert!(has_pair(&args, "-drive", &code), "{args:?}");
         assert!(has_pair(&args, "-drive", "if=pflash,format=raw,unit=1,file=/run/OVMF_VARS_4M.fd"), "{args:?}");
         assert!(has_pair(&args, "-machine", "q35,smm=on"), "{args:?}");
@@ -611,6 +760,42 @@ mod tests {
         assert!(!arguments(QemuOptions::default()).iter().any(|a| a == "-icount"));
         let args = arguments(QemuOptions { clock: Clock::InstructionCount, ..QemuOptions::default() });
         assert!(has_pair(&args, "-icount", "shift=0,sleep=off"), "{args:?}");
+    }
+
+    #[test]
+    fn a_telnet_com1_waits_for_the_harness_and_carries_breaks() {
+        let args = arguments(QemuOptions { serial: SerialLine::Telnet { port: 4555 }, ..QemuOptions::default() });
+        let server = "socket,id=com1,host=127.0.0.1,port=4555,server=on,wait=on,telnet=on";
+        assert!(has_pair(&args, "-chardev", server), "{args:?}");
+        assert!(has_pair(&args, "-serial", "chardev:com1"), "{args:?}");
+        assert!(!has_pair(&args, "-serial", "stdio"), "{args:?}");
+    }
+
+    #[test]
+    fn com1_irq_cpu_and_exit_device_options_change_only_their_flags() {
+        let default = arguments(QemuOptions::default());
+        assert!(!default.iter().any(|a| a == "-cpu" || a == "-global"), "{default:?}");
+        let moved = arguments(QemuOptions { com1_irq: Some(3), ..QemuOptions::default() });
+        assert!(has_pair(&moved, "-global", "isa-serial.irq=3"), "{moved:?}");
+        let disguised = arguments(QemuOptions { cpu: Cpu::WithoutHypervisorBit, ..QemuOptions::default() });
+        assert!(has_pair(&disguised, "-cpu", "qemu64,-hypervisor"), "{disguised:?}");
+        let bare = arguments(QemuOptions { exit_device: ExitDevice::Absent, ..QemuOptions::default() });
+        assert!(!bare.iter().any(|a| a.contains("isa-debug-exit")), "{bare:?}");
+        // One flag and its value more, or less; nothing else moves.
+        assert_eq!(
+            [moved.len(), disguised.len(), bare.len()],
+            [default.len() + 2, default.len() + 2, default.len() - 2]
+        );
+    }
+
+    #[test]
+    fn a_display_ahead_puts_bochs_display_in_slot_2_and_the_card_in_slot_5() {
+        let args = arguments(QemuOptions { adapter: Adapter::Cirrus, display_ahead: true, ..QemuOptions::default() });
+        assert!(has_pair(&args, "-vga", "none"), "{args:?}");
+        let devices: Vec<&String> = args.windows(2).filter(|w| w[0] == "-device").map(|w| &w[1]).collect();
+        assert_eq!(devices[..2], ["bochs-display,addr=02.0", "cirrus-vga,addr=05.0,id=card"], "{args:?}");
+        let ramfb = arguments(QemuOptions { adapter: Adapter::Ramfb, display_ahead: true, ..QemuOptions::default() });
+        assert!(has_pair(&ramfb, "-device", "ramfb") && !ramfb.iter().any(|a| a.contains("bochs-display")));
     }
 
     #[test]

@@ -25,13 +25,17 @@ pub struct Qmp {
 impl Qmp {
     /// Connects to `socket` (retrying until QEMU has created it, within
     /// [`QMP_TIMEOUT`]), reads the greeting and leaves capabilities
-    /// negotiation mode.
-    pub fn connect(socket: &Path) -> Result<Self> {
+    /// negotiation mode. `running` is asked between tries and fails when
+    /// QEMU has gone: its error ends the wait at once.
+    pub fn connect(socket: &Path, mut running: impl FnMut() -> Result<()>) -> Result<Self> {
         let deadline = Instant::now() + QMP_TIMEOUT;
         let stream = loop {
             match UnixStream::connect(socket) {
                 Ok(stream) => break stream,
-                Err(_) if Instant::now() < deadline => std::thread::sleep(Duration::from_millis(20)),
+                Err(_) if Instant::now() < deadline => {
+                    running()?;
+                    std::thread::sleep(Duration::from_millis(20));
+                }
                 Err(error) => {
                     return Err(error).with_context(|| format!("failed to connect to QMP socket {}", socket.display()))
                 }
@@ -90,11 +94,16 @@ impl Qmp {
     }
 
     /// What the emulated display shows now, as QEMU renders it: for mode
-    /// 13h a 640x400 picture. QEMU writes a PPM to `scratch`, which is read
-    /// back and parsed.
-    pub fn screendump(&mut self, scratch: &Path) -> Result<Image> {
+    /// 13h a 640x400 picture. `device`: the QEMU id of the display, `None`
+    /// for the first. QEMU writes a PPM to `scratch`, which is read back
+    /// and parsed.
+    pub fn screendump(&mut self, scratch: &Path, device: Option<&str>) -> Result<Image> {
         let filename = scratch.to_str().context("screendump path is not UTF-8")?;
-        self.execute("screendump", json!({ "filename": filename }))?;
+        let arguments = match device {
+            Some(device) => json!({ "filename": filename, "device": device }),
+            None => json!({ "filename": filename }),
+        };
+        self.execute("screendump", arguments)?;
         let bytes = std::fs::read(scratch).with_context(|| format!("failed to read the screendump {filename}"))?;
         parse_ppm(&bytes).with_context(|| format!("bad screendump {filename}"))
     }
@@ -121,9 +130,33 @@ impl Qmp {
         device["filename"].as_str().map(str::to_string).with_context(|| format!("`{label}` has no file: {device}"))
     }
 
+    /// Raises a non-maskable interrupt on every CPU.
+    pub fn inject_nmi(&mut self) -> Result<()> {
+        self.execute("inject-nmi", json!({})).context("failed to inject an NMI")?;
+        Ok(())
+    }
+
     /// Asks QEMU to exit.
     pub fn quit(mut self) -> Result<()> {
         self.execute_allowing_close("quit", json!({}))?;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn connecting_gives_up_as_soon_as_qemu_is_gone() {
+        let socket = Path::new("/nonexistent/qmp.sock");
+        let mut asked = 0;
+        let gone = || {
+            asked += 1;
+            bail!("QEMU exited (exit status: 1) before its QMP socket answered")
+        };
+        let error = Qmp::connect(socket, gone).err().expect("no QMP there");
+        assert_eq!(error.to_string(), "QEMU exited (exit status: 1) before its QMP socket answered");
+        assert_eq!(asked, 1, "the connection was retried after QEMU had gone");
     }
 }

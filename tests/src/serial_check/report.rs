@@ -5,6 +5,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
+use protocol::LineLosses;
 use serde_json::{json, Value};
 
 use super::CheckReport;
@@ -79,9 +80,13 @@ fn markdown(report: &CheckReport) -> String {
     let _ = writeln!(text, "\n## VGACHECK\n\n{} `{vga}`\n", if *ok { "OK:" } else { "ERR:" });
     text.push_str(&report.bench.markdown(2));
     let _ = writeln!(text, "\n## The line\n");
+    let errors = match report.line.errors {
+        Some(e) => format!(", and {} framing errors, {} parity errors, {} breaks", e.framing, e.parity, e.breaks),
+        None => String::new(),
+    };
     let _ = writeln!(
         text,
-        "What the kernel counted lost on the way in (the last `PING`): {} overruns, {} bytes dropped.\n",
+        "What the kernel counted lost on the way in (the last `PING`): {} overruns, {} bytes dropped{errors}.\n",
         report.line.overruns, report.line.dropped
     );
     let _ = writeln!(
@@ -133,7 +138,7 @@ fn to_json(report: &CheckReport) -> Value {
         "retries_allowed": report.retries_allowed,
         "troubles": troubles,
         "stale_replies": report.stats.stale_replies,
-        "line": {"overruns": report.line.overruns, "dropped": report.line.dropped},
+        "line": line_json(&report.line),
         "commands_sent": report.stats.commands,
         "bytes_sent": report.stats.bytes_sent,
         "bytes_received": report.bytes_received,
@@ -142,13 +147,25 @@ fn to_json(report: &CheckReport) -> Value {
     })
 }
 
+/// The kernel's losses as `report.json`'s `line`: `overruns` and
+/// `dropped`, and the UART's error counts where the kernel reports them.
+fn line_json(line: &LineLosses) -> Value {
+    let mut json = json!({"overruns": line.overruns, "dropped": line.dropped});
+    if let Some(errors) = line.errors {
+        json["framing"] = errors.framing.into();
+        json["parity"] = errors.parity.into();
+        json["breaks"] = errors.breaks.into();
+    }
+    json
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::line::LineStats;
     use crate::serial_check::bench::{BenchTable, TickUnit};
     use crate::serial_check::Picture;
-    use protocol::{ClockSource, LineLosses, TscRate};
+    use protocol::{ClockSource, LineErrors, TscRate};
     use raster::MethodId;
     use std::time::Duration;
 
@@ -180,7 +197,7 @@ mod tests {
                 refused: vec![vec![(0, None)]],
             },
             tsc,
-            line: LineLosses { overruns: 1, dropped: 0 },
+            line: LineLosses { overruns: 1, dropped: 0, errors: Some(LineErrors { framing: 2, parity: 0, breaks: 1 }) },
             stats,
             retries_allowed: 5,
             bytes_received: 115_200,
@@ -202,7 +219,7 @@ mod tests {
         assert_eq!(json["tsc_hz"], json!(1_000_000));
         assert_eq!(json["retries"], json!(2));
         assert_eq!(json["troubles"]["stalled_reply"], json!(2));
-        assert_eq!(json["line"], json!({"overruns": 1, "dropped": 0}));
+        assert_eq!(json["line"], json!({"overruns": 1, "dropped": 0, "framing": 2, "parity": 0, "breaks": 1}));
         // 115,200 bytes of 10 bits at 115200 baud.
         assert_eq!(json["seconds_at_115200_baud"], json!(10.0));
     }
@@ -216,7 +233,10 @@ mod tests {
         assert!(text.contains("## Kernel BENCH: TSC ticks on this machine"), "{text}");
         assert!(text.contains("| steps retried | 2 |"), "{text}");
         assert!(text.contains("| a reply stopped half way (a byte of it lost) | 2 |"), "{text}");
-        assert!(text.contains("1 overruns, 0 bytes dropped"), "{text}");
+        assert!(
+            text.contains("1 overruns, 0 bytes dropped, and 2 framing errors, 0 parity errors, 1 breaks"),
+            "{text}"
+        );
         assert!(text.contains("take 10.0 s on the wire"), "{text}");
     }
 }

@@ -16,6 +16,8 @@
 
 use raster::{CoverageSink, MethodId, Point, Polygon, SpanSink, SCREEN, SUBPIXEL_ONE};
 
+use crate::spans;
+
 /// Sample points per pixel along each axis.
 const GRID: i32 = 16;
 
@@ -37,20 +39,8 @@ pub fn fill(polygon: &Polygon, threshold: u8, sink: &mut dyn SpanSink) {
         }
     }
     let samples = (GRID * GRID) as u32;
-    for y in 0..SCREEN.height {
-        let mut run_start = None;
-        for x in 0..=SCREEN.width {
-            let covered = x < SCREEN.width && samples_inside.count(x, y) * 255 > u32::from(threshold) * samples;
-            match (run_start, covered) {
-                (None, true) => run_start = Some(x),
-                (Some(start), false) => {
-                    sink.span(y, start, x, polygon.color);
-                    run_start = None;
-                }
-                _ => {}
-            }
-        }
-    }
+    let above_threshold = |count: u32| count * 255 > u32::from(threshold) * samples;
+    spans::emit_covered(&samples_inside, above_threshold, polygon.color, sink);
 }
 
 #[cfg(test)]

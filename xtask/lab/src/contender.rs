@@ -74,12 +74,12 @@ impl Contender {
         }
     }
 
-    /// Whether it runs on `family` at all (a peer must take every polygon).
+    /// Whether it runs on `family` at all ([`Peer::takes`]).
     pub fn accepts(&self, family: &Family) -> bool {
         match self {
             // A path is given every polygon: it must refuse what it cannot fill.
             Contender::Method(_) | Contender::Path(_) | Contender::Auto => true,
-            Contender::Peer(p) => family.polygons.iter().all(|polygon| p.accepts(polygon)),
+            Contender::Peer(p) => p.takes(family),
         }
     }
 

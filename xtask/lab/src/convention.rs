@@ -14,4 +14,9 @@ pub enum Own {
     /// By the part of the pixel covered: in where it is above
     /// `threshold / 255` ([`crate::area`]).
     Coverage { threshold: u8 },
+    /// At whole-pixel points of the polygon with its vertices rounded to
+    /// whole pixels, by the even-odd rule, points on its edges in (spans
+    /// take both their ends); with `outline`, every edge drawn as a line
+    /// besides ([`crate::closed`]).
+    Closed { outline: bool },
 }

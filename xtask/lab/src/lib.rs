@@ -1,6 +1,7 @@
 //! The polygon-fill lab (`cargo xtask lab`): every method of `raster`, the
-//! peers (tiny-skia, Cairo, embedded-graphics, vello_cpu) and three bounds (memset,
-//! span stores, the dyn-sink replay) on one seeded corpus; accuracy against
+//! peers (tiny-skia, Cairo, embedded-graphics, vello_cpu, Allegro 4,
+//! SDL2_gfx, GD, imageproc) and three bounds (memset, span stores, the
+//! dyn-sink replay) on one seeded corpus; accuracy against
 //! `raster::reference`, speed in wall-clock time; results.json, report.md
 //! and the charts under the output directory.
 //!
@@ -23,6 +24,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 pub mod area;
 pub mod charts;
+pub mod closed;
 pub mod contender;
 pub mod convention;
 pub mod corpus;

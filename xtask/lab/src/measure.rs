@@ -20,6 +20,7 @@ use raster::reference::{self, SampleOffset};
 use raster::{CoverageReport, CoverageSink, Polygon, SCREEN};
 
 use crate::area;
+use crate::closed;
 use crate::contender::Contender;
 use crate::convention::Own;
 use crate::corpus::Family;
@@ -38,6 +39,10 @@ pub struct Tally {
     pub wrong_pixels: u64,
     /// Pixels differing from the reference under the contender's own.
     pub wrong_pixels_own: u64,
+    /// Of the wrong pixels, those the reference draws and the contender
+    /// left out, under our convention and under its own.
+    pub missing_pixels: u64,
+    pub missing_pixels_own: u64,
     /// Pixels drawn more than once: within one fill, or within one tiling
     /// on tiling families.
     pub overdraw: u64,
@@ -69,6 +74,8 @@ struct Outcome {
     status: Status,
     wrong: u64,
     wrong_own: u64,
+    missing: u64,
+    missing_own: u64,
     overdraw: u64,
     drawn: u64,
     bias: Option<(f64, f64)>,
@@ -82,6 +89,8 @@ impl Tally {
         self.failures += later.failures;
         self.wrong_pixels += later.wrong_pixels;
         self.wrong_pixels_own += later.wrong_pixels_own;
+        self.missing_pixels += later.missing_pixels;
+        self.missing_pixels_own += later.missing_pixels_own;
         self.overdraw += later.overdraw;
         self.gaps += later.gaps;
         self.faulty_polygons += later.faulty_polygons;
@@ -99,6 +108,8 @@ impl Tally {
         self.polygons += 1;
         self.wrong_pixels += outcome.wrong;
         self.wrong_pixels_own += outcome.wrong_own;
+        self.missing_pixels += outcome.missing;
+        self.missing_pixels_own += outcome.missing_own;
         self.drawn_pixels += outcome.drawn;
         if count_overdraw {
             self.overdraw += outcome.overdraw;
@@ -134,8 +145,8 @@ pub struct Judged {
     /// Per contender, a tally for each sweep run (empty without a sweep or
     /// where it does not take the family).
     pub run_tallies: Vec<Vec<Tally>>,
-    /// Per contender, the polygons it drew or declined without failing:
-    /// the ones its timing runs on.
+    /// Per contender, the polygons its timing runs on: those a method drew
+    /// or refused without failing, those a peer drew.
     pub timed: Vec<Vec<usize>>,
 }
 
@@ -155,6 +166,7 @@ impl ReferenceFill {
         match own {
             Own::Sample(sample) => reference::fill(polygon, sample, &mut recorder),
             Own::Coverage { threshold } => area::fill(polygon, threshold, &mut recorder),
+            Own::Closed { outline } => closed::fill(polygon, outline, &mut recorder),
         }
         let normal = spans::normal_form(&recorder.spans);
         Self { own, spans: recorder.spans, normal, coverage: OnceCell::new() }
@@ -293,7 +305,7 @@ impl<'a> Plan<'a> {
                     if tiled {
                         spans::replay(&drawn, 1, &mut drawn_together[c]);
                     }
-                    if !matches!(outcome.status, Status::Failed(_)) {
+                    if timed(contender, &outcome.status) {
                         judged.timed[c].push(index);
                     }
                     if let Some(tally) = &mut judged.tallies[c] {
@@ -371,12 +383,25 @@ fn judge_one(
     let outcome = Outcome {
         wrong: if judged { (against_ours.gaps + against_ours.extras) as u64 } else { 0 },
         wrong_own: if judged { (against_own.gaps + against_own.extras) as u64 } else { 0 },
+        missing: if judged { against_ours.gaps as u64 } else { 0 },
+        missing_own: if judged { against_own.gaps as u64 } else { 0 },
         overdraw: against_ours.overdrawn as u64,
         drawn: spans::pixel_count(&drawn),
         bias,
         status,
     };
     (outcome, drawn)
+}
+
+/// Whether a fill is timed: not where it failed; a method on what it
+/// refused too (deciding to refuse is its work), a peer only on what it
+/// drew (what it declines it is never given).
+fn timed(contender: &Contender, status: &Status) -> bool {
+    match status {
+        Status::Drawn => true,
+        Status::Refused(_) => !contender.is_peer(),
+        Status::Failed(_) => false,
+    }
 }
 
 fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {

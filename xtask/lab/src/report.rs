@@ -26,6 +26,7 @@ pub fn markdown(results: &Results) -> String {
     exact_goals(&mut out, results);
     modelling_tables(&mut out, results);
     classic_failures(&mut out, results);
+    peers_on_everyday_families(&mut out, results);
     measure_table(&mut out, results, "Speed: ns per polygon", true, |r| r.ns_per_polygon.map(duration));
     measure_table(&mut out, results, "Speed: time over the memset bound's", false, |r| {
         r.time_vs_memset.map(|x| format!("{x:.1}×"))
@@ -33,6 +34,13 @@ pub fn markdown(results: &Results) -> String {
     measure_table(&mut out, results, "Wrong pixels: our convention / the method's own", false, |r| {
         Some(format!("{} / {}", count(r.wrong_pixels?), count(r.wrong_pixels_own?)))
     });
+    measure_table(
+        &mut out,
+        results,
+        "Missing pixels (the reference's, left out): our convention / the method's own",
+        false,
+        |r| Some(format!("{} / {}", count(r.missing_pixels?), count(r.missing_pixels_own?))),
+    );
     measure_table(&mut out, results, "Overdraw / gaps (gaps on tilings only)", false, |r| {
         let gaps = r.gaps.map_or("–".to_string(), count);
         Some(format!("{} / {gaps}", count(r.overdraw?)))
@@ -244,6 +252,106 @@ fn classic_failures(out: &mut String, results: &Results) {
         let _ = writeln!(out, "- **{}** ({}) {}.", c.name, c.source, parts.join("; "));
     }
     out.push('\n');
+}
+
+/// The peers on the everyday families: each one's time per polygon and
+/// wrong pixels under its own convention, family by family; then, over
+/// the families each draws whole (declining and failing on none), its
+/// time against `exact`'s and its wrong pixels, with the fastest and the
+/// most exact of them.
+fn peers_on_everyday_families(out: &mut String, results: &Results) {
+    let peers: Vec<&str> = results.contenders.iter().filter(|c| c.kind == Kind::Peer).map(|c| c.name).collect();
+    let _ = writeln!(
+        out,
+        "## The peers on the everyday families\n\nTime per polygon and wrong pixels under the peer's own convention \
+         (`exact`'s own is ours); a peer is timed on the polygons it drew, and declined ones are counted.\n"
+    );
+    let _ = writeln!(out, "| family | {EXACT} | {} |\n|---|{}", peers.join(" | "), "---:|".repeat(peers.len() + 1));
+    for f in results.families.iter().filter(|f| f.group.is_everyday()) {
+        let cells: Vec<String> = std::iter::once(EXACT)
+            .chain(peers.iter().copied())
+            .map(|name| {
+                let Some(r) = results.row(name, f.name) else { return "–".to_string() };
+                let mut cell = format!(
+                    "{}, {}",
+                    r.ns_per_polygon.map_or("–".to_string(), duration),
+                    r.wrong_pixels_own.map_or("–".to_string(), count)
+                );
+                if let Some(declined) = r.refusals.filter(|&n| n > 0) {
+                    let _ = write!(cell, " ({} declined)", count(declined));
+                }
+                cell
+            })
+            .collect();
+        let _ = writeln!(out, "| {} | {} |", f.name, cells.join(" | "));
+    }
+    let _ = writeln!(
+        out,
+        "\nOver the everyday families each peer draws whole: its time over `{EXACT}`'s (geometric mean of the \
+         families' ratios) and its wrong pixels in % of the exact pixels of those families.\n\n\
+         | peer | families | time / exact's | wrong, our convention | wrong, its own |\n|---|---:|---:|---:|---:|"
+    );
+    let summaries: Vec<PeerSummary> = peers.iter().filter_map(|&peer| PeerSummary::of(results, peer)).collect();
+    for s in &summaries {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {:.2}× | {:.3}% | {:.3}% |",
+            s.name,
+            s.families,
+            s.time_over_exact,
+            s.wrong * 100.0,
+            s.wrong_own * 100.0
+        );
+    }
+    let fastest = summaries.iter().min_by(|a, b| a.time_over_exact.total_cmp(&b.time_over_exact));
+    let most_exact = summaries.iter().min_by(|a, b| a.wrong.total_cmp(&b.wrong));
+    if let (Some(fastest), Some(most_exact)) = (fastest, most_exact) {
+        let _ = writeln!(
+            out,
+            "\nFastest of the peers: {} ({:.2}× `{EXACT}`'s time); most exact: {} ({:.3}% of the pixels wrong under \
+             our convention).",
+            fastest.name,
+            fastest.time_over_exact,
+            most_exact.name,
+            most_exact.wrong * 100.0
+        );
+    }
+    out.push('\n');
+}
+
+/// One peer over the everyday families it draws whole.
+struct PeerSummary {
+    name: &'static str,
+    families: usize,
+    /// Geometric mean of its time per polygon over `exact`'s.
+    time_over_exact: f64,
+    /// Wrong pixels per exact pixel, our convention and its own.
+    wrong: f64,
+    wrong_own: f64,
+}
+
+impl PeerSummary {
+    fn of(results: &Results, name: &'static str) -> Option<Self> {
+        let whole: Vec<(&Row, f64)> = results
+            .rows_of(name)
+            .filter(|r| r.group.is_everyday() && r.refusals == Some(0) && r.failures == Some(0))
+            .filter_map(|r| Some((r, r.ns_per_polygon? / results.row(EXACT, r.family)?.ns_per_polygon?)))
+            .collect();
+        if whole.is_empty() {
+            return None;
+        }
+        let pixels = whole.iter().map(|(r, _)| r.pixels).sum::<u64>().max(1) as f64;
+        let rate =
+            |pick: fn(&Row) -> Option<u64>| whole.iter().filter_map(|(r, _)| pick(r)).sum::<u64>() as f64 / pixels;
+        let log_mean = whole.iter().map(|(_, ratio)| ratio.ln()).sum::<f64>() / whole.len() as f64;
+        Some(Self {
+            name,
+            families: whole.len(),
+            time_over_exact: log_mean.exp(),
+            wrong: rate(|r| r.wrong_pixels),
+            wrong_own: rate(|r| r.wrong_pixels_own),
+        })
+    }
 }
 
 fn own_rate(r: &Row) -> f64 {

@@ -92,7 +92,8 @@ pub struct ContenderInfo {
     pub source: &'static str,
     pub summary: String,
     /// Own sample point in subpixels from the pixel's corner (none for
-    /// bounds, and for a peer that decides by area coverage).
+    /// bounds, and for a peer that decides by area coverage; for an
+    /// integer peer, the corner of its closed polygon in whole pixels).
     pub sample: Option<(i32, i32)>,
 }
 
@@ -107,7 +108,8 @@ pub struct Row {
     pub polygons: u64,
     /// Pixels of the exact fill of the family (our convention).
     pub pixels: u64,
-    /// Polygons timed: all but the failed ones.
+    /// Polygons timed: all but the failed ones (for a peer, the ones it
+    /// drew).
     pub timed_polygons: u64,
     pub ns_per_polygon: Option<f64>,
     /// Exact pixels of the timed polygons per second of fill.
@@ -118,6 +120,11 @@ pub struct Row {
     pub time_vs_store: Option<f64>,
     pub wrong_pixels: Option<u64>,
     pub wrong_pixels_own: Option<u64>,
+    /// Of the wrong pixels, those the reference draws and the contender
+    /// left out (the rest it drew and the reference does not), under our
+    /// convention and under its own.
+    pub missing_pixels: Option<u64>,
+    pub missing_pixels_own: Option<u64>,
     pub overdraw: Option<u64>,
     pub gaps: Option<u64>,
     pub failures: Option<u64>,
@@ -177,6 +184,7 @@ impl Results {
                 summary: c.summary(),
                 sample: match c.own() {
                     Own::Sample(sample) => Some((sample.x, sample.y)),
+                    Own::Closed { .. } => Some((0, 0)),
                     Own::Coverage { .. } => None,
                 },
             })
@@ -232,6 +240,8 @@ impl Results {
             time_vs_store: ratio(ns, Bound::Store),
             wrong_pixels: None,
             wrong_pixels_own: None,
+            missing_pixels: None,
+            missing_pixels_own: None,
             overdraw: None,
             gaps: None,
             failures: None,
@@ -302,10 +312,9 @@ impl Results {
     /// Rows with a refusal or failure are left out: they drew less work,
     /// and their point would flatter them.
     pub fn speed_accuracy_points(&self, zero_floor: f64) -> Vec<(&Row, (f64, f64))> {
-        let everyday = |group: Group| matches!(group, Group::Scene | Group::Random | Group::Tiling);
         self.rows
             .iter()
-            .filter(|r| everyday(r.group) && r.refusals == Some(0) && r.failures == Some(0))
+            .filter(|r| r.group.is_everyday() && r.refusals == Some(0) && r.failures == Some(0))
             .filter_map(|r| Some((r, (r.time_vs_memset?, (r.error_rate()? * 100.0).max(zero_floor)))))
             .collect()
     }
@@ -359,6 +368,8 @@ fn with_tally(row: Row, tally: &Tally, tiled: bool) -> Row {
     Row {
         wrong_pixels: Some(tally.wrong_pixels),
         wrong_pixels_own: Some(tally.wrong_pixels_own),
+        missing_pixels: Some(tally.missing_pixels),
+        missing_pixels_own: Some(tally.missing_pixels_own),
         overdraw: Some(tally.overdraw),
         gaps: tiled.then_some(tally.gaps),
         failures: Some(tally.failures),

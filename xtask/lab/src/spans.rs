@@ -1,7 +1,7 @@
 //! Spans as data: a sink that records them as they come, and the few
 //! things the lab reads off a recorded fill.
 
-use raster::{Size, SpanSink, SCREEN};
+use raster::{CoverageSink, Size, SpanSink, SCREEN};
 
 /// One span as a method emitted it: row `y`, pixels `x_start..x_end`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,6 +54,25 @@ pub fn normal_form(spans: &[Span]) -> Option<Vec<Span>> {
         }
     }
     Some(normal)
+}
+
+/// Every run of pixels of `coverage` (the screen's size) whose count is
+/// `covered`, row by row, as spans into `sink`.
+pub fn emit_covered(coverage: &CoverageSink, covered: impl Fn(u32) -> bool, color: u8, sink: &mut dyn SpanSink) {
+    for y in 0..SCREEN.height {
+        let mut run_start = None;
+        for x in 0..=SCREEN.width {
+            let inside = x < SCREEN.width && covered(coverage.count(x, y));
+            match (run_start, inside) {
+                (None, true) => run_start = Some(x),
+                (Some(start), false) => {
+                    sink.span(y, start, x, color);
+                    run_start = None;
+                }
+                _ => {}
+            }
+        }
+    }
 }
 
 /// The part of a span on the screen, if any.

@@ -15,7 +15,7 @@ pub(super) const FONT: &str = "sans-serif";
 
 /// Methods and peers, in results order, each with its colour.
 pub(super) fn contenders(results: &Results) -> Vec<(&'static str, Kind, RGBColor)> {
-    const PALETTE: [RGBColor; 11] = [
+    const PALETTE: [RGBColor; 15] = [
         RGBColor(31, 119, 180),
         RGBColor(255, 127, 14),
         RGBColor(44, 160, 44),
@@ -27,6 +27,10 @@ pub(super) fn contenders(results: &Results) -> Vec<(&'static str, Kind, RGBColor
         RGBColor(23, 190, 207),
         RGBColor(255, 187, 120),
         RGBColor(152, 223, 138),
+        RGBColor(0, 0, 128),
+        RGBColor(0, 128, 128),
+        RGBColor(204, 163, 0),
+        RGBColor(230, 0, 230),
     ];
     let mut next = PALETTE.iter().cycle();
     results

@@ -48,8 +48,8 @@ impl Chart {
     const fn size(self) -> (u32, u32) {
         match self {
             Chart::SpeedVsAccuracy => (1200, 800),
-            Chart::Stability => (1300, 640),
-            Chart::Rotation => (1200, 900),
+            Chart::Stability => (1300, 880),
+            Chart::Rotation => (1200, 1100),
             Chart::Scaling => (1400, 700),
             Chart::ModellingCost => (1600, 760),
         }

@@ -42,8 +42,8 @@ where
             .margin(15)
             .x_label_area_size(45)
             .y_label_area_size(70)
-            // Headroom above the lines for the legend.
-            .build_cartesian_2d(0.0..360.0, 0.0..top * 1.6)?;
+            // Headroom above the lines for the legend of sixteen.
+            .build_cartesian_2d(0.0..360.0, 0.0..top * 2.8)?;
         chart
             .configure_mesh()
             .x_labels(13)
@@ -54,7 +54,7 @@ where
             .label_style((FONT, 14))
             .axis_desc_style((FONT, 16))
             .draw()?;
-        for (name, _, color) in contenders(results) {
+        for (name, kind, color) in contenders(results) {
             let line = points(name);
             if line.is_empty() {
                 continue;
@@ -62,7 +62,7 @@ where
             let width = if name == EXACT { 3 } else { 2 };
             chart
                 .draw_series(LineSeries::new(line, color.stroke_width(width)))?
-                .label(name)
+                .label(peer_label(name, kind))
                 .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], color.stroke_width(3)));
         }
         draw_legend(&mut chart, SeriesLabelPosition::UpperRight, 13)?;
@@ -103,10 +103,9 @@ where
                 continue;
             }
             let width = if name == EXACT { 3 } else { 2 };
-            let label = if kind == Kind::Peer { format!("{name} (peer)") } else { name.to_string() };
             chart
                 .draw_series(LineSeries::new(points, color.stroke_width(width)))?
-                .label(label)
+                .label(peer_label(name, kind))
                 .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], color.stroke_width(3)));
         }
         let dashes = [(10, 5, BLACK), (3, 4, RGBColor(110, 110, 110))];
@@ -124,4 +123,13 @@ where
         draw_legend(&mut chart, SeriesLabelPosition::UpperLeft, 13)?;
     }
     Ok(())
+}
+
+/// A legend's name for a contender: peers say so.
+fn peer_label(name: &str, kind: Kind) -> String {
+    if kind == Kind::Peer {
+        format!("{name} (peer)")
+    } else {
+        name.to_string()
+    }
 }

@@ -23,6 +23,14 @@ pub enum Group {
     Stress,
 }
 
+impl Group {
+    /// The demo scenes, random polygons and tilings: the work a program
+    /// does every day, where speed and accuracy are weighed together.
+    pub const fn is_everyday(self) -> bool {
+        matches!(self, Group::Scene | Group::Random | Group::Tiling)
+    }
+}
+
 /// What a sweep varies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]

@@ -1,0 +1,97 @@
+//! What a real serial line does that a quiet one does not: a break and
+//! stray bytes (a cable plugged in, a USB adapter powering up), and a UART
+//! whose interrupt never reaches the CPU (a UEFI PC that does not route
+//! IRQ 4, a Super I/O set to another line).
+//!
+//! QEMU's UART cannot make framing or parity errors, but its telnet
+//! backend carries a break: IAC BRK (bytes 255 243) becomes a break on the
+//! UART's receiving end, one 0 byte flagged in the line status. And COM1
+//! can be wired to IRQ 3, which the kernel does not listen to.
+
+use std::time::{Duration, Instant};
+
+use anyhow::{bail, ensure, Result};
+use harness::checks::dump_matches_host_render;
+use harness::{Qemu, QemuOptions, Reply, SerialLine};
+use protocol::{LineErrors, PARTIAL_LINE_IDLE_SECONDS};
+use scenes::builtin;
+
+/// Telnet's "interpret as command" and "break".
+const IAC: u8 = 255;
+const BRK: u8 = 243;
+
+/// How long the show is watched, and how often its screen is taken: a
+/// still page of the show stays 3 s, so 8 s see at least two entries.
+const WATCH: Duration = Duration::from_secs(8);
+const WATCH_EVERY: Duration = Duration::from_millis(500);
+
+/// How many different screens QEMU shows over [`WATCH`].
+fn distinct_screens(qemu: &mut Qemu) -> Result<usize> {
+    let mut screens = Vec::new();
+    let started = Instant::now();
+    while started.elapsed() < WATCH {
+        let screen = qemu.screendump()?;
+        if !screens.contains(&screen) {
+            screens.push(screen);
+        }
+        std::thread::sleep(WATCH_EVERY);
+    }
+    Ok(screens.len())
+}
+
+/// A break, then stray bytes with no newline: the break's byte is dropped
+/// and counted; the stray bytes stop the show, as any byte from a host
+/// does, but the line they start stays unfinished, and after
+/// `PARTIAL_LINE_IDLE_SECONDS` the kernel drops it, says so, and plays
+/// the show again. `PING` then answers, counting the break.
+#[test]
+fn after_a_break_and_stray_bytes_the_show_plays_on_and_ping_counts_the_break() -> Result<()> {
+    let mut qemu = Qemu::boot(QemuOptions { serial: SerialLine::Telnet { port: 0 }, ..QemuOptions::default() })?;
+    std::thread::sleep(Duration::from_secs(1));
+    qemu.console.send_bytes(&[IAC, BRK])?;
+    // Time for the break to reach the UART on its own, ahead of the bytes.
+    std::thread::sleep(Duration::from_millis(500));
+    qemu.console.send_bytes(b"\x01~x\x7fq\r")?;
+    std::thread::sleep(Duration::from_secs(PARTIAL_LINE_IDLE_SECONDS + 2));
+    let screens = distinct_screens(&mut qemu)?;
+    ensure!(
+        screens >= 2,
+        "after a break and stray bytes, {} s later QEMU showed {screens} screen(s) in {} s: the show is not playing",
+        PARTIAL_LINE_IDLE_SECONDS + 2,
+        WATCH.as_secs()
+    );
+    let losses = qemu.console.ping()?;
+    let one_break = LineErrors { breaks: 1, ..LineErrors::default() };
+    ensure!(losses.errors == Some(one_break), "PING counts {losses}, expected the one break and nothing else");
+    ensure!(losses.overruns == 0 && losses.dropped == 0, "PING says the serial line lost bytes: {losses}");
+    let dropped = qemu.console.logs().iter().any(|log| log.starts_with("dropped an unfinished line (6 bytes kept)"));
+    ensure!(dropped, "no LOG says the unfinished line was dropped: {:?}", qemu.console.logs());
+    Ok(())
+}
+
+/// Commands in the burst sent to a kernel that receives by polling alone.
+const BURST: u32 = 40;
+
+/// COM1 wired to IRQ 3: the kernel's test at boot finds its interrupt
+/// does not arrive and says so, then receives by polling alone: `READY`,
+/// commands, a page and its 64 KB `DUMP`, and a burst of commands in one
+/// write, all answered in order, nothing lost.
+#[test]
+fn with_com1_on_irq_3_the_kernel_hears_every_command_by_polling() -> Result<()> {
+    let mut qemu = Qemu::boot(QemuOptions { com1_irq: Some(3), ..QemuOptions::default() })?;
+    let page = builtin::ABRASH40_2;
+    dump_matches_host_render(&mut qemu.console, page.name, page.method)?;
+    let burst: String = (0..BURST).map(|i| format!("CLEAR {i}\n")).collect();
+    qemu.console.send_bytes(burst.as_bytes())?;
+    for i in 0..BURST {
+        match qemu.console.reply()? {
+            Reply::Ok(text) if text == format!("clear {i}") => {}
+            other => bail!("reply {i} of the burst is {other:?}, expected OK \"clear {i}\""),
+        }
+    }
+    let losses = qemu.console.ping()?;
+    ensure!(losses.none(), "PING says the serial line lost bytes: {losses}");
+    let polling = "COM1: its interrupt (IRQ 4) did not arrive; receiving by polling alone";
+    ensure!(qemu.console.logs().iter().any(|log| log == polling), "no LOG says so: {:?}", qemu.console.logs());
+    Ok(())
+}
