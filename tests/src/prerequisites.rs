@@ -23,6 +23,7 @@ use std::sync::OnceLock;
 use anyhow::{ensure, Context, Result};
 
 use boot_image::once::once_per_process;
+pub use boot_image::process::find_in_path;
 use boot_image::process::{output_of, run_streaming};
 
 pub use crate::packages::ensure_debian_packages;
@@ -365,12 +366,6 @@ fn virt_firmware_install_command(venv: &Path) -> Command {
     let mut install = Command::new(venv.join("bin").join("pip"));
     install.args(["install", "--quiet", &format!("virt-firmware=={VIRT_FIRMWARE_VERSION}")]);
     install
-}
-
-/// The first `program` on the `PATH`.
-pub fn find_in_path(program: &str) -> Option<PathBuf> {
-    let path = std::env::var_os("PATH")?;
-    std::env::split_paths(&path).map(|dir| dir.join(program)).find(|candidate| candidate.is_file())
 }
 
 #[cfg(test)]

@@ -18,7 +18,7 @@ use std::process::Command;
 use anyhow::{bail, ensure, Context, Result};
 use sha2::{Digest, Sha256};
 
-use crate::process::output_of;
+use crate::process::{find_in_path, output_of};
 
 /// A private key (PEM) to sign with instead of the generated one; needs [`CERT_ENV`].
 pub const KEY_ENV: &str = "POLYLAB_SECURE_BOOT_KEY";
@@ -87,6 +87,11 @@ impl SigningKey {
             .mode(0o700)
             .create(folder)
             .with_context(|| format!("failed to create {}", folder.display()))?;
+        ensure!(
+            find_in_path("openssl").is_some(),
+            "making your Secure Boot key needs `openssl`, which is not on the PATH: install it (Debian and Ubuntu: \
+             `sudo apt-get install openssl`), or give a key of your own with --key and --cert"
+        );
         eprintln!("image: making your own Secure Boot key in {} (openssl, RSA 2048)", folder.display());
         let scratch_key = folder.join(format!("{KEY_FILE}.partial"));
         let scratch_cert = folder.join(format!("{CERT_FILE}.partial"));
