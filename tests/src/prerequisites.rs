@@ -347,8 +347,12 @@ pub fn ensure_virt_fw_vars() -> Result<PathBuf> {
         if program.is_file() && installed.is_file() {
             return Ok(program);
         }
-        let has_venv =
-            || Command::new("python3").args(["-m", "venv", "--help"]).output().is_ok_and(|o| o.status.success());
+        // Debian's python3 has the `venv` module but not `ensurepip`, which
+        // `venv` needs to put pip into the environment: python3-venv adds
+        // it. (`python3 -m venv --help` succeeds without it.)
+        let has_venv = || {
+            Command::new("python3").args(["-c", "import ensurepip, venv"]).output().is_ok_and(|o| o.status.success())
+        };
         ensure_debian_packages("Python's venv module (for virt-firmware)", &["python3-venv"], has_venv)?;
         eprintln!(
             "harness: installing virt-firmware {VIRT_FIRMWARE_VERSION} from PyPI into {} (its virt-fw-vars \
