@@ -192,11 +192,7 @@ pub struct LabOpt {
 #[derive(Args, Debug)]
 pub struct KbenchOpt {
     /// Draws per method and scene; the median is reported.
-    #[arg(
-        long,
-        default_value_t = BENCH_DEFAULT_REPEATS,
-        value_parser = clap::value_parser!(u8).range(1..=i64::from(BENCH_MAX_REPEATS)),
-    )]
+    #[arg(long, default_value_t = BENCH_DEFAULT_REPEATS, value_parser = bench_repeats())]
     pub repeats: u8,
     /// Where kernel_bench.md and kernel_bench.json go.
     #[arg(long, default_value = "target/lab")]
@@ -208,6 +204,11 @@ pub struct KbenchOpt {
     /// With --serial: how many times a step the line damages is retried.
     #[arg(long, default_value_t = DEFAULT_RETRIES)]
     pub retries: u32,
+}
+
+/// `--repeats`: what the kernel's `BENCH` takes, 1 to its most.
+fn bench_repeats() -> impl clap::builder::TypedValueParser<Value = u8> {
+    clap::value_parser!(u8).range(1..=i64::from(BENCH_MAX_REPEATS))
 }
 
 /// Retries of one step the serial line damaged, by default.
@@ -231,11 +232,7 @@ pub struct CheckOpt {
     #[arg(long)]
     pub quick: bool,
     /// BENCH draws per method and scene; the median is reported.
-    #[arg(
-        long,
-        default_value_t = BENCH_DEFAULT_REPEATS,
-        value_parser = clap::value_parser!(u8).range(1..=i64::from(BENCH_MAX_REPEATS)),
-    )]
+    #[arg(long, default_value_t = BENCH_DEFAULT_REPEATS, value_parser = bench_repeats())]
     pub repeats: u8,
     /// Seconds to wait for the kernel to answer at all (a PC still booting).
     #[arg(long, value_name = "SECONDS", default_value_t = 120)]
