@@ -99,9 +99,7 @@ pub fn ensure_bochs() -> Result<()> {
     static DONE: OnceLock<Result<(), String>> = OnceLock::new();
     once_per_process(&DONE, || {
         let files = [(BOCHS_BIOS_ENV, BOCHS_BIOS), (BOCHS_CIRRUS_VGA_BIOS_ENV, BOCHS_CIRRUS_VGA_BIOS)];
-        ensure_named_files_exist(&files)?;
-        let present = || on_path(&[BOCHS]) && files.iter().all(|(env, path)| system_file(env, path).is_file());
-        ensure_debian_packages("Bochs (with its BIOS and VGA BIOS)", &BOCHS_PACKAGES, present)
+        ensure_system_files("Bochs (with its BIOS and VGA BIOS)", &BOCHS_PACKAGES, &[BOCHS], &files)
     })
 }
 
@@ -111,9 +109,7 @@ pub fn ensure_ovmf() -> Result<()> {
     static DONE: OnceLock<Result<(), String>> = OnceLock::new();
     once_per_process(&DONE, || {
         let files = [(OVMF_CODE_ENV, OVMF_CODE), (OVMF_VARS_ENV, OVMF_VARS)];
-        ensure_named_files_exist(&files)?;
-        let present = || files.iter().all(|(env, path)| system_file(env, path).is_file());
-        ensure_debian_packages("OVMF (the UEFI firmware for QEMU)", &[OVMF_PACKAGE], present)
+        ensure_system_files("OVMF (the UEFI firmware for QEMU)", &[OVMF_PACKAGE], &[], &files)
     })
 }
 
@@ -125,6 +121,16 @@ pub fn system_file(env: &str, default: &str) -> PathBuf {
 
 fn chosen(named: Option<OsString>, default: &str) -> PathBuf {
     named.filter(|named| !named.is_empty()).map_or_else(|| PathBuf::from(default), PathBuf::from)
+}
+
+/// Makes sure `programs` are on the `PATH` and `files` (each an
+/// environment variable and Debian's path, [`system_file`]) exist,
+/// installing `packages` as [`ensure_qemu`] installs QEMU; a file a
+/// variable names must exist already.
+fn ensure_system_files(what: &str, packages: &[&str], programs: &[&str], files: &[(&str, &str)]) -> Result<()> {
+    ensure_named_files_exist(files)?;
+    let present = || on_path(programs) && files.iter().all(|(env, path)| system_file(env, path).is_file());
+    ensure_debian_packages(what, packages, present)
 }
 
 /// Fails unless every file an environment variable of `files` names
@@ -313,9 +319,7 @@ pub fn ensure_secure_boot_ovmf() -> Result<()> {
     once_per_process(&DONE, || {
         let files =
             [(OVMF_SECURE_BOOT_CODE_ENV, OVMF_SECURE_BOOT_CODE), (OVMF_MICROSOFT_VARS_ENV, OVMF_MICROSOFT_VARS)];
-        ensure_named_files_exist(&files)?;
-        let present = || files.iter().all(|(env, path)| system_file(env, path).is_file());
-        ensure_debian_packages("OVMF's Secure Boot build (with Microsoft's keys)", &[OVMF_PACKAGE], present)
+        ensure_system_files("OVMF's Secure Boot build (with Microsoft's keys)", &[OVMF_PACKAGE], &[], &files)
     })
 }
 
