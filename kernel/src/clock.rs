@@ -56,7 +56,7 @@ pub fn init() {
 /// The TSC's rate and how it was found, as `CLOCK` reports it.
 pub fn rate() -> TscRate {
     let source = ClockSource::ALL[usize::from(SOURCE.load(Ordering::Relaxed))];
-    TscRate { hz: cycles_per_second(), source }
+    TscRate { hz: cycles_per_second(), source, readings: protocol::ClockReadings::default() }
 }
 
 /// The time-stamp counter.

@@ -19,9 +19,8 @@ use scenes::{builtin, file, Op, Scene};
 
 use crate::clock::Deadline;
 use crate::machine::Identity;
-use crate::pci::DisplayController;
 use crate::video::Screen;
-use crate::{bench, clock, demo, exit, fault, heap, machine, player, serial};
+use crate::{bench, clock, demo, exit, fault, heap, interrupts, machine, pic, player, serial};
 
 /// What `announce` found at boot (the firmware, the machine, the display
 /// controller and where it sits), for the `READY` command to say again.
@@ -29,20 +28,31 @@ static BOOTED: spin::Once<Ready> = spin::Once::new();
 
 /// Tells the host the kernel is up: a `LOG` frame saying which machine it
 /// found and by what signs, one if COM1's interrupt did not arrive (the
-/// kernel then receives by polling alone), on the VGA path one per
+/// kernel then receives by polling alone), one if the PIT's did not (the
+/// console then never halts), one per thing the screen found on its way
+/// (a framebuffer missing, or not the VGA's), on the VGA path one per
 /// register or DAC entry that did not read back as written, then `READY`
 /// naming the firmware, the machine, the display controller and where it
 /// sits, the video path (with the count of those mismatches, or where the
-/// frame is presented), and the bytes the serial line lost so far.
-pub fn announce(screen: &Screen, firmware: Firmware, identity: &Identity, display: Option<DisplayController>) {
+/// frame is presented) and its memory type, and the bytes the serial
+/// line lost so far.
+pub fn announce(screen: &Screen, firmware: Firmware, identity: &Identity) {
     serial::send_frame(FrameKind::Log, identity.evidence().as_bytes());
     if !serial::interrupt_arrives() {
         let text = "COM1: its interrupt (IRQ 4) did not arrive; receiving by polling alone";
         serial::send_frame(FrameKind::Log, text.as_bytes());
     }
+    if !pic::timer_arrives() {
+        let text = "PIT: its interrupt (IRQ 0) did not arrive; the console waits without halting";
+        serial::send_frame(FrameKind::Log, text.as_bytes());
+    }
+    for finding in screen.findings() {
+        serial::send_frame(FrameKind::Log, finding.as_bytes());
+    }
     for mismatch in screen.mismatches() {
         serial::send_frame(FrameKind::Log, mismatch.to_string().as_bytes());
     }
+    let display = screen.display();
     BOOTED.call_once(|| Ready {
         firmware,
         machine: Some(identity.machine),
@@ -57,7 +67,7 @@ pub fn announce(screen: &Screen, firmware: Firmware, identity: &Identity, displa
 /// and the line's losses so far.
 fn ready(screen: &Screen) -> Ready {
     let booted = BOOTED.get().copied().unwrap_or_default();
-    Ready { video: screen.video(), losses: serial::losses(), ..booted }
+    Ready { video: screen.video(), memory: screen.memory_type(), losses: serial::losses(), ..booted }
 }
 
 /// Serves the host forever, starting with `first_byte` (the byte that
@@ -144,6 +154,7 @@ impl Console<'_> {
     /// sequence number, a damaged one is answered `ERR` without one and
     /// runs nothing.
     fn execute(&mut self, line: &[u8]) {
+        interrupts::report();
         let (seq, reply) = match protocol::unseal(line) {
             Ok((seq, command)) => {
                 (seq, Command::parse(command).map_err(|error| error.to_string()).and_then(|command| self.run(command)))
@@ -158,7 +169,9 @@ impl Console<'_> {
 
     fn run(&mut self, command: Command<'_>) -> Reply {
         match command {
-            Command::Ping => ok(Pong { losses: serial::losses(), heap: heap::state() }),
+            Command::Ping => {
+                ok(Pong { losses: serial::losses(), heap: heap::state(), interrupts: Some(interrupts::counts()) })
+            }
             Command::List => Ok((FrameKind::List, listing().into_bytes())),
             Command::Draw { scene, method } => {
                 let scene = builtin_scene(scene)?;
@@ -209,7 +222,7 @@ impl Console<'_> {
             }
             Command::Fault(kind) => {
                 on_qemu("FAULT")?;
-                fault::provoke(kind)
+                ok(fault::provoke(kind))
             }
         }
     }

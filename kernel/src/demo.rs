@@ -26,8 +26,8 @@ use scenes::show::{Stage, ENTRIES_IN_ORDER};
 
 use crate::keyboard::{self, Key};
 use crate::player::{self, Pacer};
-use crate::serial;
 use crate::video::Screen;
+use crate::{interrupts, serial};
 
 /// Where the demo starts and what it keeps to.
 #[derive(Clone, Copy, Debug, Default)]
@@ -77,6 +77,7 @@ pub fn run(screen: &mut Screen, stage: &mut Stage, start: Start) -> u8 {
             index = (index + 1) % ENTRIES_IN_ORDER.len();
             frame = 0;
         }
+        interrupts::report();
         if let Some(byte) = serial::try_read_byte() {
             screen.clear(0);
             return byte;

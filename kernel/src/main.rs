@@ -16,6 +16,7 @@
 
 extern crate alloc;
 
+mod apic;
 mod bench;
 mod card;
 mod clock;
@@ -32,7 +33,9 @@ mod interrupts;
 mod keyboard;
 mod machine;
 mod paging;
+mod pat;
 mod pci;
+mod pic;
 mod pit;
 mod player;
 mod port;
@@ -62,12 +65,15 @@ fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
     gdt::init();
     interrupts::init();
     heap::init();
+    paging::init(boot_info);
+    apic::init();
     let firmware = firmware::of(boot_info);
-    let display = pci::display_controller();
-    let mut screen = video::Screen::open(boot_info, firmware, display);
+    let displays = pci::Displays::scan();
+    let mut screen = video::Screen::open(boot_info, firmware, &displays);
     serial::enable_interrupt();
     interrupts::enable();
-    console::announce(&screen, firmware, &identity, display);
+    pic::check_timer();
+    console::announce(&screen, firmware, &identity);
     // The show's memory, allocated once for the demo and `SHOW`.
     let mut stage = scenes::show::Stage::new();
     let first_byte = demo::run(&mut screen, &mut stage, demo::Start::default());

@@ -200,6 +200,17 @@ pub mod pit {
     pub const COMMAND: IoPort<u8> = IoPort::new(0x43);
 }
 
+/// System control port B: reading it says why an NMI came (bit 7 a PCI
+/// system error, SERR#; bit 6 an I/O channel check, IOCHK#); writing bit
+/// 2 or 3 clears that latch (and masks it while set). Bits 0 and 1 gate
+/// PIT channel 2 and the speaker, which the kernel leaves as it finds
+/// them (`interrupts.rs`).
+pub mod system_control {
+    use super::IoPort;
+
+    pub const PORT_B: IoPort<u8> = IoPort::new(0x61);
+}
+
 /// The 8042 PS/2 controller.
 pub mod ps2 {
     use super::IoPort;

@@ -8,10 +8,10 @@
 //! UART's receiving end, one 0 byte flagged in the line status. And COM1
 //! can be wired to IRQ 3, which the kernel does not listen to.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use anyhow::{bail, ensure, Result};
-use harness::checks::dump_matches_host_render;
+use harness::checks::{distinct_screens, dump_matches_host_render};
 use harness::{Qemu, QemuOptions, Reply, SerialLine};
 use protocol::{LineErrors, PARTIAL_LINE_IDLE_SECONDS};
 use scenes::builtin;
@@ -24,20 +24,6 @@ const BRK: u8 = 243;
 /// still page of the show stays 3 s, so 8 s see at least two entries.
 const WATCH: Duration = Duration::from_secs(8);
 const WATCH_EVERY: Duration = Duration::from_millis(500);
-
-/// How many different screens QEMU shows over [`WATCH`].
-fn distinct_screens(qemu: &mut Qemu) -> Result<usize> {
-    let mut screens = Vec::new();
-    let started = Instant::now();
-    while started.elapsed() < WATCH {
-        let screen = qemu.screendump()?;
-        if !screens.contains(&screen) {
-            screens.push(screen);
-        }
-        std::thread::sleep(WATCH_EVERY);
-    }
-    Ok(screens.len())
-}
 
 /// A break, then stray bytes with no newline: the break's byte is dropped
 /// and counted; the stray bytes stop the show, as any byte from a host
@@ -53,7 +39,7 @@ fn after_a_break_and_stray_bytes_the_show_plays_on_and_ping_counts_the_break() -
     std::thread::sleep(Duration::from_millis(500));
     qemu.console.send_bytes(b"\x01~x\x7fq\r")?;
     std::thread::sleep(Duration::from_secs(PARTIAL_LINE_IDLE_SECONDS + 2));
-    let screens = distinct_screens(&mut qemu)?;
+    let screens = distinct_screens(&mut qemu, WATCH, WATCH_EVERY)?;
     ensure!(
         screens >= 2,
         "after a break and stray bytes, {} s later QEMU showed {screens} screen(s) in {} s: the show is not playing",

@@ -249,16 +249,55 @@ pub struct QemuOptions {
     pub com1_irq: Option<u8>,
     pub cpu: Cpu,
     pub exit_device: ExitDevice,
-    /// A display controller with no VGA (bochs-display, class 03/80, the
-    /// std VGA's PCI IDs) in slot 2, ahead of the card in bus order, and
-    /// the card (a PCI one) in slot 5, where screendumps are taken of it.
-    pub display_ahead: bool,
+    /// A display controller with no legacy VGA ranges ahead of the card
+    /// in bus order, and the card (a PCI one) in slot 5, where
+    /// screendumps are taken of it ([`Qemu::screendump_ahead`] takes the
+    /// one ahead).
+    pub display_ahead: Option<DisplayAhead>,
+    pub board: Board,
+}
+
+/// A display controller ahead of the card (`QemuOptions::display_ahead`):
+/// class 03/80, the std VGA's PCI IDs, no legacy VGA ranges; OVMF shows
+/// its own screen on it, and hands its framebuffer over.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DisplayAhead {
+    /// bochs-display in slot 2: only a framebuffer.
+    BochsDisplay,
+    /// secondary-vga in slot 4: the std VGA without the legacy ranges.
+    SecondaryVga,
+}
+
+impl DisplayAhead {
+    /// Its `-device` value.
+    fn device(self) -> String {
+        match self {
+            DisplayAhead::BochsDisplay => format!("bochs-display,addr=02.0,id={AHEAD_ID}"),
+            DisplayAhead::SecondaryVga => format!("secondary-vga,addr=04.0,id={AHEAD_ID}"),
+        }
+    }
 }
 
 /// The slot `QemuOptions::display_ahead` puts the card in, and the QEMU
-/// id screendumps name it by.
+/// ids screendumps name it and the device ahead by.
 const CARD_BEHIND_SLOT: &str = "05.0";
 const CARD_BEHIND_ID: &str = "card";
+const AHEAD_ID: &str = "ahead";
+
+/// The PC QEMU emulates, and its timers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Board {
+    /// The i440FX PC with its 8254 PIT (and HPET, and PIIX4's ACPI PM
+    /// timer).
+    #[default]
+    Pc,
+    /// The same without a PIT (`pit=off`), as a "legacy-free" PC: the
+    /// HPET and the ACPI PM timer remain.
+    PcWithoutPit,
+    /// The Q35 (ICH9) PC without a PIT: the ICH9's ACPI PM timer and the
+    /// HPET.
+    Q35WithoutPit,
+}
 
 /// Where a run keeps its QMP socket and, under UEFI, its copy of the
 /// firmware's variable store.
@@ -289,9 +328,15 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
         );
         flag(&mut args, "-drive", with_path("if=pflash,format=raw,unit=1,file=", &uefi_variables(run_dir), ""));
     } else {
-        // The i440FX PC. Its own firmware is SeaBIOS: a BIOS that boots the
-        // image's BIOS side, like a PC's BIOS or CSM.
-        flag(&mut args, "-machine", "pc");
+        // The i440FX PC (or Q35). Its own firmware is SeaBIOS: a BIOS that
+        // boots the image's BIOS side, like a PC's BIOS or CSM. `pit=off`
+        // leaves the 8254 out, as on a legacy-free PC.
+        let machine = match options.board {
+            Board::Pc => "pc",
+            Board::PcWithoutPit => "pc,pit=off",
+            Board::Q35WithoutPit => "q35,pit=off",
+        };
+        flag(&mut args, "-machine", machine);
     }
     if options.firmware == Firmware::Uefi && !options.secure_boot {
         // OVMF instead, as a UEFI PC's flash: its code read-only, and its
@@ -315,13 +360,14 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
     // VGA BIOS puts them in text mode; under OVMF its graphics driver sets
     // their native mode, which the kernel undoes on the cards it knows.
     let [card_flag, card] = options.adapter.qemu_flags();
-    match options.adapter.pci_device().filter(|_| options.display_ahead) {
-        Some(device) => {
+    match options.adapter.pci_device().zip(options.display_ahead) {
+        Some((device, ahead)) => {
             // A display controller without VGA first in bus order, the
             // card behind it: the kernel must find the VGA by the legacy
-            // VGA decoding, not by bus order.
+            // VGA decoding, not by bus order, and under UEFI the head the
+            // firmware used.
             flag(&mut args, "-vga", "none");
-            flag(&mut args, "-device", "bochs-display,addr=02.0");
+            flag(&mut args, "-device", ahead.device());
             flag(&mut args, "-device", format!("{device},addr={CARD_BEHIND_SLOT},id={CARD_BEHIND_ID}"));
         }
         None => {
@@ -502,7 +548,7 @@ impl Qemu {
             qmp: None,
             stderr: forward_bytes(stderr),
             stderr_seen: Vec::new(),
-            screen: options.adapter.pci_device().filter(|_| options.display_ahead).map(|_| CARD_BEHIND_ID),
+            screen: options.adapter.pci_device().and(options.display_ahead).map(|_| CARD_BEHIND_ID),
         };
         if let SerialLine::Telnet { port } = options.serial {
             let stream = match connect_within(port, QMP_TIMEOUT) {
@@ -570,6 +616,13 @@ impl Qemu {
         let scratch = self.process.folder().join("screen.ppm");
         let screen = self.screen;
         self.with_qmp(|qmp| qmp.screendump(&scratch, screen))
+    }
+
+    /// QEMU's screendump of the display ahead of the card
+    /// (`QemuOptions::display_ahead`).
+    pub fn screendump_ahead(&mut self) -> Result<Image> {
+        let scratch = self.process.folder().join("screen.ppm");
+        self.with_qmp(|qmp| qmp.screendump(&scratch, Some(AHEAD_ID)))
     }
 
     /// Raises a non-maskable interrupt on the CPU, as a chipset does to
@@ -789,13 +842,37 @@ mod tests {
     }
 
     #[test]
-    fn a_display_ahead_puts_bochs_display_in_slot_2_and_the_card_in_slot_5() {
-        let args = arguments(QemuOptions { adapter: Adapter::Cirrus, display_ahead: true, ..QemuOptions::default() });
-        assert!(has_pair(&args, "-vga", "none"), "{args:?}");
-        let devices: Vec<&String> = args.windows(2).filter(|w| w[0] == "-device").map(|w| &w[1]).collect();
-        assert_eq!(devices[..2], ["bochs-display,addr=02.0", "cirrus-vga,addr=05.0,id=card"], "{args:?}");
-        let ramfb = arguments(QemuOptions { adapter: Adapter::Ramfb, display_ahead: true, ..QemuOptions::default() });
+    fn a_display_ahead_puts_bochs_display_in_slot_2_or_secondary_vga_in_slot_4_and_the_card_in_slot_5() {
+        for (ahead, expected) in [
+            (DisplayAhead::BochsDisplay, "bochs-display,addr=02.0,id=ahead"),
+            (DisplayAhead::SecondaryVga, "secondary-vga,addr=04.0,id=ahead"),
+        ] {
+            let options =
+                QemuOptions { adapter: Adapter::Cirrus, display_ahead: Some(ahead), ..QemuOptions::default() };
+            let args = arguments(options);
+            assert!(has_pair(&args, "-vga", "none"), "{args:?}");
+            let devices: Vec<&String> = args.windows(2).filter(|w| w[0] == "-device").map(|w| &w[1]).collect();
+            assert_eq!(devices[..2], [expected, "cirrus-vga,addr=05.0,id=card"], "{args:?}");
+        }
+        let options = QemuOptions {
+            adapter: Adapter::Ramfb,
+            display_ahead: Some(DisplayAhead::BochsDisplay),
+            ..QemuOptions::default()
+        };
+        let ramfb = arguments(options);
         assert!(has_pair(&ramfb, "-device", "ramfb") && !ramfb.iter().any(|a| a.contains("bochs-display")));
+    }
+
+    #[test]
+    fn a_board_without_a_pit_is_pc_or_q35_with_pit_off() {
+        assert!(has_pair(&arguments(QemuOptions::default()), "-machine", "pc"));
+        for (board, machine) in [(Board::PcWithoutPit, "pc,pit=off"), (Board::Q35WithoutPit, "q35,pit=off")] {
+            for firmware in Firmware::ALL {
+                let args = arguments(QemuOptions { board, firmware, ..QemuOptions::default() });
+                assert!(has_pair(&args, "-machine", machine), "{args:?}");
+                assert_eq!(args.iter().filter(|a| *a == "-machine").count(), 1, "{args:?}");
+            }
+        }
     }
 
     #[test]
