@@ -17,7 +17,6 @@ use core::arch::x86_64::__cpuid;
 
 use protocol::MemoryType;
 use spin::Once;
-use volatile::VolatilePtr;
 use x86_64::registers::model_specific::Msr;
 use x86_64::VirtAddr;
 
@@ -91,7 +90,7 @@ fn read(registers: Registers, offset: u32) -> u32 {
     match registers {
         // SAFETY: the local APIC's register page, mapped uncacheable by
         // `init`; reading these registers has no side effects.
-        Registers::Memory(base) => unsafe { register(base, offset).read() },
+        Registers::Memory(base) => unsafe { paging::register(base, u64::from(offset)).read() },
         // SAFETY: in x2APIC mode these MSRs are the same registers.
         Registers::Msrs => unsafe { Msr::new(X2APIC_MSRS + offset / 16).read() as u32 },
     }
@@ -101,21 +100,10 @@ fn write(registers: Registers, offset: u32, value: u32) {
     match registers {
         // SAFETY: as in `read`; the registers written (EOI, the command
         // register) end an interrupt or send one, and touch no memory.
-        Registers::Memory(base) => unsafe { register(base, offset).write(value) },
+        Registers::Memory(base) => unsafe { paging::register(base, u64::from(offset)).write(value) },
         // SAFETY: as above, through the x2APIC MSRs.
         Registers::Msrs => unsafe { Msr::new(X2APIC_MSRS + offset / 16).write(u64::from(value)) },
     }
-}
-
-/// The 32-bit register at `offset` of the page at `base`.
-///
-/// # Safety
-/// `base` must be the local APIC's register page, mapped.
-unsafe fn register(base: VirtAddr, offset: u32) -> VolatilePtr<'static, u32> {
-    let address = (base + u64::from(offset)).as_mut_ptr::<u32>();
-    // SAFETY: the caller's page is the APIC's; `offset` is one of its
-    // 16-byte-aligned registers, inside the page.
-    unsafe { VolatilePtr::new(core::ptr::NonNull::new_unchecked(address)) }
 }
 
 /// Ends `vector`'s interrupt if the local APIC has it in service, and

@@ -7,8 +7,9 @@
 //! show), and serves the host's commands over COM1 as soon as one arrives.
 //!
 //! Hardware access lives in small modules with `// SAFETY:` notes
-//! (`port`, `video`, `paging`, `heap`, `gdt`, `interrupts`, `fault`, and
-//! `clock`'s one RDTSC); everything above them is safe code.
+//! (`port`, `video`, `paging`, `pat`, `apic`, `timers`, `heap`, `gdt`,
+//! `interrupts`, `fault`, and `clock`'s one RDTSC); everything above them
+//! is safe code.
 #![no_std]
 #![no_main]
 #![feature(abi_x86_interrupt)]
@@ -16,6 +17,7 @@
 
 extern crate alloc;
 
+mod acpi;
 mod apic;
 mod bench;
 mod card;
@@ -40,6 +42,7 @@ mod pit;
 mod player;
 mod port;
 mod serial;
+mod timers;
 mod vga;
 mod video;
 
@@ -60,12 +63,14 @@ fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
     // First, so that a fatal error from here on knows whether it may
     // leave QEMU through its exit port.
     let identity = machine::identify();
-    clock::init();
-    serial::init();
     gdt::init();
     interrupts::init();
     heap::init();
     paging::init(boot_info);
+    // After the page tables, through which it reaches the ACPI tables and
+    // the HPET; before anything that waits.
+    clock::init(boot_info.rsdp_addr.into_option());
+    serial::init();
     apic::init();
     let firmware = firmware::of(boot_info);
     let displays = pci::Displays::scan();

@@ -22,12 +22,14 @@
 
 use alloc::vec::Vec;
 use core::fmt;
+use core::ptr::NonNull;
 use core::sync::atomic::{AtomicU64, Ordering};
 
 use bootloader_api::info::MemoryRegionKind;
 use bootloader_api::BootInfo;
 use protocol::MemoryType;
 use spin::Mutex;
+use volatile::VolatilePtr;
 use x86_64::instructions::tlb;
 use x86_64::registers::control::Cr3;
 use x86_64::structures::paging::mapper::{MappedFrame, TranslateResult};
@@ -71,6 +73,41 @@ pub fn physical(address: u64) -> Option<VirtAddr> {
     // keeps every other page table handle away.
     let table = unsafe { active_page_table(VirtAddr::new(offset)) };
     (offset != 0 && table.translate_addr(virtual_address).is_some()).then_some(virtual_address)
+}
+
+/// Copies the bytes at physical address `address` into `buffer`, through
+/// the physical-memory map; `None` (and nothing read) if the map does not
+/// reach all of them. For firmware tables in RAM or ROM, which reading
+/// does not change: never for device memory, where a read can have side
+/// effects.
+pub fn read_physical(address: u64, buffer: &mut [u8]) -> Option<()> {
+    let last = address.checked_add(buffer.len().max(1) as u64 - 1)?;
+    let start = physical(address)?;
+    // Every page in between is mapped if the first and the last are: the
+    // bootloader maps physical memory from 0 to its end in one piece.
+    physical(last)?;
+    for (offset, byte) in (0..).zip(buffer.iter_mut()) {
+        // SAFETY: `start + offset` lies in the mapped range checked above,
+        // physical memory the caller says reading does not change; a
+        // volatile read of a byte there touches no Rust object.
+        *byte = unsafe { (start + offset).as_ptr::<u8>().read_volatile() };
+    }
+    Some(())
+}
+
+/// The 32-bit device register at `offset` from `base`, for volatile
+/// access.
+///
+/// # Safety
+/// `base` must be a block of device registers (no Rust object lives
+/// there), mapped for the whole run with the type the device needs
+/// ([`set_memory_type`]), and `offset` one of its 32-bit registers.
+pub unsafe fn register(base: VirtAddr, offset: u64) -> VolatilePtr<'static, u32> {
+    let address = NonNull::new((base + offset).as_mut_ptr::<u32>());
+    // SAFETY: the caller's block is device memory, valid for volatile
+    // access for the whole run; its address is a mapped one above the
+    // physical-memory map's offset, so not null.
+    unsafe { VolatilePtr::new(address.expect("a mapped register's address is not null")) }
 }
 
 /// The physical address `address` is mapped to, if it is mapped.
