@@ -3,21 +3,21 @@
 //! answers and keeps serving: a bad line gets an `ERR` frame naming the
 //! problem, an over-long one is thrown away up to its newline, a line
 //! left unfinished for `PARTIAL_LINE_IDLE_SECONDS` is dropped and the
-//! show plays again (a stray byte on the line does not end the show for
-//! good), and no byte sequence can make it panic or wait forever. `EXIT`
-//! and `FAULT` are answered only on QEMU (`machine.rs`).
+//! show plays again (`line.rs`: a stray byte on the line does not end
+//! the show for good), and no byte sequence can make it panic or wait
+//! forever. `EXIT` and `FAULT` are answered only on QEMU (`machine.rs`).
 
 use alloc::format;
 use alloc::string::{String, ToString};
 use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt::Write;
-use protocol::{Command, CommandError, Firmware, FrameKind, Machine, Pong, Ready, MAX_LINE, PARTIAL_LINE_IDLE_SECONDS};
+use protocol::{Command, CommandError, Firmware, FrameKind, Machine, Pong, Ready};
 use raster::MethodId;
 use scenes::show::{Stage, ENTRIES_IN_ORDER};
 use scenes::{builtin, file, Op, Scene};
 
-use crate::clock::Deadline;
+use crate::line::{Complete, PendingLine};
 use crate::machine::Identity;
 use crate::video::Screen;
 use crate::{bench, clock, demo, exit, fault, heap, interrupts, machine, pic, player, serial};
@@ -70,24 +70,24 @@ fn ready(screen: &Screen) -> Ready {
     Ready { video: screen.video(), memory: screen.memory_type(), losses: serial::losses(), ..booted }
 }
 
-/// Serves the host forever, starting with `first_byte` (the byte that
-/// stopped the demo). `SHOW` draws on `stage`.
-pub fn serve(screen: &mut Screen, stage: &mut Stage, first_byte: u8) -> ! {
-    let mut console = Console { screen, stage, line: Vec::with_capacity(MAX_LINE), overlong: false, demo: None };
-    let mut byte = first_byte;
+/// Serves the host forever, starting with `first` (the line that stopped
+/// the demo), taking the lines that follow from `pending`. `SHOW` draws
+/// on `stage`.
+pub fn serve(screen: &mut Screen, stage: &mut Stage, mut pending: PendingLine, first: Complete) -> ! {
+    let mut console = Console { screen, stage, demo: None };
+    let mut complete = first;
     loop {
-        console.accept(byte);
-        // `DEMO` was answered: play until the host's next byte, which is
-        // then the first of its next command.
-        byte = match console.demo.take() {
-            Some(start) => demo::run(console.screen, console.stage, start),
-            None => match serial::read_byte(console.idle_deadline()) {
-                Some(byte) => byte,
-                None => {
-                    console.drop_partial_line();
-                    demo::run(console.screen, console.stage, demo::Start::default())
-                }
-            },
+        match complete {
+            Complete::Line(line) => {
+                console.execute(&line);
+                pending.recycle(line);
+            }
+            Complete::TooLong => serial::send_frame(FrameKind::Err, CommandError::TooLong.to_string().as_bytes()),
+        }
+        // `DEMO` was answered: play until the host's next line.
+        complete = match console.demo.take() {
+            Some(start) => demo::run(console.screen, console.stage, start, &mut pending),
+            None => console.next_line(&mut pending),
         };
     }
 }
@@ -100,53 +100,26 @@ struct Console<'a> {
     screen: &'a mut Screen,
     /// Where `SHOW` draws its frames, allocated once.
     stage: &'a mut Stage,
-    /// The line so far, without its `\n`; never longer than `MAX_LINE`.
-    line: Vec<u8>,
-    /// The current line outgrew `MAX_LINE`: drop bytes up to its `\n`.
-    overlong: bool,
     /// The demo `DEMO` asked for, to play once its answer is sent.
     demo: Option<demo::Start>,
 }
 
 impl Console<'_> {
-    /// When the line being received is given up if no byte comes: never
-    /// between lines, [`PARTIAL_LINE_IDLE_SECONDS`] from now inside one.
-    fn idle_deadline(&self) -> Option<Deadline> {
-        let idle = PARTIAL_LINE_IDLE_SECONDS * 1_000_000;
-        (!self.line.is_empty() || self.overlong).then(|| Deadline::after_micros(idle))
-    }
-
-    /// Drops the unfinished line, saying so in a `LOG` frame.
-    fn drop_partial_line(&mut self) {
-        let what = if self.overlong { "an overlong line" } else { "an unfinished line" };
-        let text = format!(
-            "dropped {what} ({} bytes kept) idle for {PARTIAL_LINE_IDLE_SECONDS} s; the show plays again",
-            self.line.len(),
-        );
-        serial::send_frame(FrameKind::Log, text.as_bytes());
-        self.line.clear();
-        self.overlong = false;
-    }
-
-    fn accept(&mut self, byte: u8) {
-        match byte {
-            b'\n' if self.overlong => {
-                self.overlong = false;
-                serial::send_frame(FrameKind::Err, CommandError::TooLong.to_string().as_bytes());
+    /// Waits for the next complete line; a line left unfinished for its
+    /// bound is dropped and the show plays again, until one comes.
+    fn next_line(&mut self, pending: &mut PendingLine) -> Complete {
+        loop {
+            match serial::read_byte(pending.give_up()) {
+                Some(byte) => {
+                    if let Some(complete) = pending.push(byte) {
+                        return complete;
+                    }
+                }
+                None => {
+                    pending.drop_if_idle();
+                    return demo::run(self.screen, self.stage, demo::Start::default(), pending);
+                }
             }
-            b'\n' => {
-                let line = core::mem::take(&mut self.line);
-                self.execute(&line);
-                // Keep the buffer and its capacity for the next line.
-                self.line = line;
-                self.line.clear();
-            }
-            _ if self.overlong => {}
-            _ if self.line.len() == MAX_LINE => {
-                self.overlong = true;
-                self.line.clear();
-            }
-            _ => self.line.push(byte),
         }
     }
 

@@ -33,6 +33,7 @@ mod gdt;
 mod heap;
 mod interrupts;
 mod keyboard;
+mod line;
 mod machine;
 mod paging;
 mod pat;
@@ -81,6 +82,7 @@ fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
     console::announce(&screen, firmware, &identity);
     // The show's memory, allocated once for the demo and `SHOW`.
     let mut stage = scenes::show::Stage::new();
-    let first_byte = demo::run(&mut screen, &mut stage, demo::Start::default());
-    console::serve(&mut screen, &mut stage, first_byte)
+    let mut pending = line::PendingLine::new();
+    let first = demo::run(&mut screen, &mut stage, demo::Start::default(), &mut pending);
+    console::serve(&mut screen, &mut stage, pending, first)
 }

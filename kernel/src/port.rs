@@ -70,6 +70,9 @@ pub mod vga {
     pub const MISC_WRITE: IoPort<u8> = IoPort::new(0x3C2);
     pub const SEQUENCER_INDEX: IoPort<u8> = IoPort::new(0x3C4);
     pub const SEQUENCER_DATA: IoPort<u8> = IoPort::new(0x3C5);
+    /// The DAC's pixel mask: ANDed with every pixel's byte before the DAC
+    /// looks it up.
+    pub const DAC_PIXEL_MASK: IoPort<u8> = IoPort::new(0x3C6);
     /// DAC read index: the entry that the next reads of [`DAC_DATA`] return.
     pub const DAC_READ_INDEX: IoPort<u8> = IoPort::new(0x3C7);
     /// DAC write index: the entry that the next writes of [`DAC_DATA`] set.

@@ -147,7 +147,10 @@ fn the_matrix_is_every_card_each_firmware_can_drive() {
         proven.map(Adapter::name).collect::<Vec<_>>()
     };
     assert_eq!(names(Firmware::Bios), ["std", "cirrus", "vmware", "qxl-vga", "virtio-vga", "ati-vga", "none"]);
-    assert_eq!(names(Firmware::Uefi), ["std", "cirrus", "vmware", "qxl-vga", "virtio-vga", "bochs-display", "ramfb"]);
+    assert_eq!(
+        names(Firmware::Uefi),
+        ["std", "cirrus", "vmware", "qxl-vga", "virtio-vga", "bochs-display", "ramfb", "virtio-gpu"]
+    );
 }
 
 /// The image on the emulated USB stick (xHCI usb-storage, which SeaBIOS
@@ -190,5 +193,23 @@ fn with_no_display_card_the_kernel_boots_and_says_so_over_serial() -> Result<()>
     dump_matches_host_render(&mut qemu.console, page_1.name, page_1.method)?;
     let losses = qemu.console.ping()?;
     ensure!(losses.none(), "-vga none: PING says the serial line lost bytes: {losses}");
+    Ok(())
+}
+
+/// virtio-gpu under OVMF: its driver offers a BltOnly mode, with no
+/// framebuffer to draw in. The loader hands over none (before its edit it
+/// panicked there, and the kernel never started); the kernel boots, says
+/// so in a `LOG` frame, names the card and no video path, and serves.
+#[test]
+fn under_uefi_a_blt_only_display_gets_no_framebuffer_and_the_kernel_says_so() -> Result<()> {
+    let options = QemuOptions { firmware: Firmware::Uefi, adapter: Adapter::VirtioGpu, ..QemuOptions::default() };
+    let mut qemu = Qemu::boot(options)?;
+    let ready = qemu.ready;
+    ensure!(ready.display == Adapter::VirtioGpu.pci_id(), "virtio-gpu: READY names the display {:?}", ready.display);
+    ensure!(ready.video == Video::None, "virtio-gpu: READY names the video path {:?}", ready.video);
+    let said = qemu.console.logs().iter().any(|log| log.starts_with("video: the loader handed over no framebuffer"));
+    ensure!(said, "virtio-gpu: no LOG says there is no framebuffer: {:?}", qemu.console.logs());
+    let losses = qemu.console.ping()?;
+    ensure!(losses.none(), "virtio-gpu: PING says the serial line lost bytes: {losses}");
     Ok(())
 }

@@ -62,14 +62,18 @@ fn without_a_pit_the_pm_timer_clocks_the_tsc_as_the_pit_does_and_the_show_keeps_
     drop(qemu);
     for (board, firmware) in [(Board::PcWithoutPit, Firmware::Bios), (Board::Q35WithoutPit, Firmware::Uefi)] {
         let on = format!("{board:?} under {}", firmware.name());
-        let (mut qemu, rate) = clock_on(board, firmware)?;
+        let (qemu, rate) = clock_on(board, firmware)?;
         ensure!(rate.source == ClockSource::PmTimer, "{on}: CLOCK names the source {:?}", rate.source);
         ensure!(rate.readings.pit.is_none(), "{on}: CLOCK gives a PIT reading: {rate}");
         ensure!(agree(with_pit.hz, rate.hz), "{on}: the TSC runs at {} Hz, with the PIT {} Hz", rate.hz, with_pit.hz);
         let hpet = rate.readings.hpet.unwrap_or_default();
         ensure!(agree(rate.hz, hpet), "{on}: the HPET gives {hpet} Hz, the PM timer {} Hz", rate.hz);
         let no_tick = "PIT: its interrupt (IRQ 0) did not arrive; the console waits without halting";
-        ensure!(qemu.console.logs().iter().any(|log| log == no_tick), "{on}: no LOG says so: {:?}", qemu.console.logs());
+        ensure!(
+            qemu.console.logs().iter().any(|log| log == no_tick),
+            "{on}: no LOG says so: {:?}",
+            qemu.console.logs()
+        );
         // A fresh boot: CLOCK's line stopped the show this one played.
         drop(qemu);
         let mut qemu = Qemu::boot(QemuOptions { board, firmware, ..QemuOptions::default() })?;

@@ -3,6 +3,7 @@
 //! (killed on drop, every wait bounded) and its channels: COM1 on the
 //! child's stdin/stdout, QMP on a unix socket.
 
+mod board;
 pub mod console;
 pub mod qmp;
 pub mod serial;
@@ -24,6 +25,8 @@ use crate::prerequisites::{
 };
 use crate::process::command_line;
 use crate::supervisor::Supervised;
+use board::AHEAD_ID;
+pub use board::{Board, DisplayAhead};
 use boot_image::build_image;
 use console::Console;
 use qmp::{Qmp, QMP_TIMEOUT};
@@ -75,13 +78,16 @@ pub enum Adapter {
     /// A framebuffer in guest RAM the firmware sets up: no PCI device, no
     /// VGA.
     Ramfb,
+    /// virtio-gpu without a VGA core (class 03/80): OVMF's driver for it
+    /// offers only a BltOnly mode, no framebuffer the kernel can draw in.
+    VirtioGpu,
     /// No display card at all.
     None,
 }
 
 impl Adapter {
     /// Every card, in the order `--vga` lists them.
-    pub const ALL: [Adapter; 9] = [
+    pub const ALL: [Adapter; 10] = [
         Adapter::Std,
         Adapter::Cirrus,
         Adapter::Vmware,
@@ -90,19 +96,22 @@ impl Adapter {
         Adapter::AtiVga,
         Adapter::BochsDisplay,
         Adapter::Ramfb,
+        Adapter::VirtioGpu,
         Adapter::None,
     ];
 
-    /// Whether the adapter matrix proves the picture (or, with `None`,
-    /// the boot) on this card under `firmware`: SeaBIOS's VGA BIOSes put
-    /// the VGA-compatible cards in text mode; OVMF has a graphics driver
-    /// for the first five and for bochs-display and ramfb (none for
-    /// ati-vga), and with no card it shows nothing.
+    /// Whether the adapter matrix proves the picture (or, with `None` and
+    /// `VirtioGpu`, the boot) on this card under `firmware`: SeaBIOS's VGA
+    /// BIOSes put the VGA-compatible cards in text mode; OVMF has a
+    /// graphics driver for the first five and for bochs-display and ramfb
+    /// (none for ati-vga), a BltOnly one for virtio-gpu, and with no card
+    /// it shows nothing.
     pub fn proven_under(self, firmware: Firmware) -> bool {
         match self {
             Adapter::Std | Adapter::Cirrus | Adapter::Vmware | Adapter::QxlVga | Adapter::VirtioVga => true,
             Adapter::AtiVga | Adapter::None => firmware == Firmware::Bios,
-            Adapter::BochsDisplay | Adapter::Ramfb => firmware == Firmware::Uefi,
+            // virtio-gpu: the boot with no framebuffer (a BltOnly mode).
+            Adapter::BochsDisplay | Adapter::Ramfb | Adapter::VirtioGpu => firmware == Firmware::Uefi,
         }
     }
 
@@ -117,6 +126,7 @@ impl Adapter {
             Adapter::AtiVga => "ati-vga",
             Adapter::BochsDisplay => "bochs-display",
             Adapter::Ramfb => "ramfb",
+            Adapter::VirtioGpu => "virtio-gpu",
             Adapter::None => "none",
         }
     }
@@ -141,6 +151,7 @@ impl Adapter {
             Adapter::AtiVga => ["-device", "ati-vga"],
             Adapter::BochsDisplay => ["-device", "bochs-display"],
             Adapter::Ramfb => ["-device", "ramfb"],
+            Adapter::VirtioGpu => ["-device", "virtio-gpu-pci"],
             Adapter::None => ["-vga", "none"],
         }
     }
@@ -156,6 +167,7 @@ impl Adapter {
             Adapter::VirtioVga => Some("virtio-vga"),
             Adapter::AtiVga => Some("ati-vga"),
             Adapter::BochsDisplay => Some("bochs-display"),
+            Adapter::VirtioGpu => Some("virtio-gpu-pci"),
             Adapter::Ramfb | Adapter::None => None,
         }
     }
@@ -169,7 +181,7 @@ impl Adapter {
             Adapter::Cirrus => (0x1013, 0x00b8),
             Adapter::Vmware => (0x15ad, 0x0405),
             Adapter::QxlVga => (0x1b36, 0x0100),
-            Adapter::VirtioVga => (0x1af4, 0x1050),
+            Adapter::VirtioVga | Adapter::VirtioGpu => (0x1af4, 0x1050),
             Adapter::AtiVga => (0x1002, 0x5046),
             Adapter::Ramfb | Adapter::None => return None,
         };
@@ -257,47 +269,10 @@ pub struct QemuOptions {
     pub board: Board,
 }
 
-/// A display controller ahead of the card (`QemuOptions::display_ahead`):
-/// class 03/80, the std VGA's PCI IDs, no legacy VGA ranges; OVMF shows
-/// its own screen on it, and hands its framebuffer over.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum DisplayAhead {
-    /// bochs-display in slot 2: only a framebuffer.
-    BochsDisplay,
-    /// secondary-vga in slot 4: the std VGA without the legacy ranges.
-    SecondaryVga,
-}
-
-impl DisplayAhead {
-    /// Its `-device` value.
-    fn device(self) -> String {
-        match self {
-            DisplayAhead::BochsDisplay => format!("bochs-display,addr=02.0,id={AHEAD_ID}"),
-            DisplayAhead::SecondaryVga => format!("secondary-vga,addr=04.0,id={AHEAD_ID}"),
-        }
-    }
-}
-
 /// The slot `QemuOptions::display_ahead` puts the card in, and the QEMU
-/// ids screendumps name it and the device ahead by.
+/// id screendumps name it by.
 const CARD_BEHIND_SLOT: &str = "05.0";
 const CARD_BEHIND_ID: &str = "card";
-const AHEAD_ID: &str = "ahead";
-
-/// The PC QEMU emulates, and its timers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum Board {
-    /// The i440FX PC with its 8254 PIT (and HPET, and PIIX4's ACPI PM
-    /// timer).
-    #[default]
-    Pc,
-    /// The same without a PIT (`pit=off`), as a "legacy-free" PC: the
-    /// HPET and the ACPI PM timer remain.
-    PcWithoutPit,
-    /// The Q35 (ICH9) PC without a PIT: the ICH9's ACPI PM timer and the
-    /// HPET.
-    Q35WithoutPit,
-}
 
 /// Where a run keeps its QMP socket and, under UEFI, its copy of the
 /// firmware's variable store.
@@ -331,12 +306,7 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
         // The i440FX PC (or Q35). Its own firmware is SeaBIOS: a BIOS that
         // boots the image's BIOS side, like a PC's BIOS or CSM. `pit=off`
         // leaves the 8254 out, as on a legacy-free PC.
-        let machine = match options.board {
-            Board::Pc => "pc",
-            Board::PcWithoutPit => "pc,pit=off",
-            Board::Q35WithoutPit => "q35,pit=off",
-        };
-        flag(&mut args, "-machine", machine);
+        flag(&mut args, "-machine", options.board.machine());
     }
     if options.firmware == Firmware::Uefi && !options.secure_boot {
         // OVMF instead, as a UEFI PC's flash: its code read-only, and its
@@ -764,6 +734,7 @@ mod tests {
             (Adapter::AtiVga, "-device", "ati-vga"),
             (Adapter::BochsDisplay, "-device", "bochs-display"),
             (Adapter::Ramfb, "-device", "ramfb"),
+            (Adapter::VirtioGpu, "-device", "virtio-gpu-pci"),
             (Adapter::None, "-vga", "none"),
         ] {
             let args = arguments(QemuOptions { adapter, ..QemuOptions::default() });
@@ -786,7 +757,7 @@ mod tests {
                 error,
                 format!(
                     "unknown display adapter `{name}`; the adapters are std, cirrus, vmware, qxl-vga, virtio-vga, \
-                     ati-vga, bochs-display, ramfb, none"
+                     ati-vga, bochs-display, ramfb, virtio-gpu, none"
                 )
             );
         }
