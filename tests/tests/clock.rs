@@ -17,8 +17,8 @@ const AGREEMENT: f64 = 0.01;
 /// at `FRAMES_PER_SECOND`), and how far a page's time on QEMU's screen may
 /// be from it: the screen is sampled every [`SAMPLE_EVERY`], and a page's
 /// draw under TCG adds to its time (a late frame restarts the show's
-/// schedule: 3.16 s and 3.25 s were measured here). A clock taken on
-/// trust at 1 GHz on this 2.6 GHz host made it 1.15 s.
+/// schedule: 3.16 s and 3.25 s were measured here). The clock taken on
+/// trust at 1 GHz on this 2.6 GHz host made it 1.66 s.
 const STILL_SECONDS: f64 = 3.0;
 const PACE_TOLERANCE: f64 = 0.20;
 const SAMPLE_EVERY: Duration = Duration::from_millis(100);
