@@ -166,7 +166,8 @@ pub fn set_memory_type(start: VirtAddr, len: u64, memory_type: MemoryType) -> Re
             }
             _ => return Err(TypeError::Unmapped(page.start_address())),
         };
-        let flags = flags - PageTableFlags::WRITE_THROUGH - PageTableFlags::NO_CACHE - PAT_BIT_4KIB | pat_bits(entry);
+        let cache_bits = PageTableFlags::WRITE_THROUGH | PageTableFlags::NO_CACHE | PAT_BIT_4KIB;
+        let flags = (flags - cache_bits) | pat_bits(entry);
         // SAFETY: the page maps device memory (or a framebuffer), which no
         // Rust object lives in; only its cache type changes, before the
         // caller accesses it with the new one.
