@@ -98,7 +98,9 @@ impl Presenter {
             left: u32::try_from((info.width - FRAME_WIDTH * scale) / 2).ok()?,
             top: u32::try_from((info.height - FRAME_HEIGHT * scale) / 2).ok()?,
         };
-        let buffer = framebuffer.into_buffer();
+        // Only the rows on the screen: a firmware may hand over its whole
+        // aperture (hundreds of MB on a real GPU) as the framebuffer.
+        let buffer = &mut framebuffer.into_buffer()[..last_byte];
         let (start, len) = (VirtAddr::from_ptr(buffer.as_ptr()), buffer.len() as u64);
         // Where a step fails (no RAM left for a page table), the pages keep
         // the type they had, and `mapping` reports what they have.

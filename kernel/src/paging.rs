@@ -67,12 +67,15 @@ pub fn init(boot_info: &BootInfo) {
 /// the map reaches it.
 pub fn physical(address: u64) -> Option<VirtAddr> {
     let offset = PHYSICAL_OFFSET.load(Ordering::Relaxed);
+    if offset == 0 {
+        return None;
+    }
     let virtual_address = VirtAddr::try_new(offset.checked_add(address)?).ok()?;
     let _frames = FRAMES.lock();
     // SAFETY: the offset maps all physical memory, and the lock held
     // keeps every other page table handle away.
     let table = unsafe { active_page_table(VirtAddr::new(offset)) };
-    (offset != 0 && table.translate_addr(virtual_address).is_some()).then_some(virtual_address)
+    table.translate_addr(virtual_address).is_some().then_some(virtual_address)
 }
 
 /// Copies the bytes at physical address `address` into `buffer`, through
@@ -153,10 +156,14 @@ pub fn set_memory_type(start: VirtAddr, len: u64, memory_type: MemoryType) -> Re
         MemoryType::WriteCombining => pat::write_combining_entry(),
         other => pat::entry_holding(other).ok_or(TypeError::NoPatEntry(other))?,
     };
+    let offset = VirtAddr::new(PHYSICAL_OFFSET.load(Ordering::Relaxed));
+    if offset.is_null() {
+        return Err(TypeError::Unmapped(start));
+    }
     let mut frames = FRAMES.lock();
     // SAFETY: the offset maps all physical memory, and the lock held
     // keeps every other page table handle away.
-    let mut table = unsafe { active_page_table(VirtAddr::new(PHYSICAL_OFFSET.load(Ordering::Relaxed))) };
+    let mut table = unsafe { active_page_table(offset) };
     for page in pages(start, len) {
         let flags = match table.translate(page.start_address()) {
             TranslateResult::Mapped { frame: MappedFrame::Size4KiB(_), flags, .. } => flags,
