@@ -47,7 +47,7 @@ use std::process::Command;
 use anyhow::{ensure, Context, Result};
 
 use crate::sources::{self, PinnedCrate, BOOTLOADER, STAGE_2, UEFI_LOADER};
-use crate::workspace;
+use crate::{tree, workspace};
 
 pub use crate::sources::VERSION;
 
@@ -159,6 +159,47 @@ pub const LOADER_EDITS: &[Edit] = &[
     config
 }
 ",
+    },
+    Edit {
+        file: "src/main.rs",
+        purpose: "refuse a ramdisk on the volume: nothing checks it, and the loader would map it for the kernel",
+        find: "fn load_ramdisk(boot_mode: BootMode) -> Option<&'static mut [u8]> {
+    load_file_from_boot_method(&RAMDISK_FILE, boot_mode)
+}
+",
+        replace: "fn load_ramdisk(boot_mode: BootMode) -> Option<&'static mut [u8]> {
+    let ramdisk = load_file_from_boot_method(&RAMDISK_FILE, boot_mode);
+    polylab_verify::check_no_ramdisk(ramdisk.is_some());
+    ramdisk
+}
+",
+    },
+    Edit {
+        file: "src/main.rs",
+        purpose: "refuse an empty file on the disk before the loader asks for a zero-byte allocation, which panics",
+        find: "    let file_size = usize::try_from(file_info.file_size()).unwrap();\n",
+        replace: "    let file_size = usize::try_from(file_info.file_size()).unwrap();\n    \
+                  polylab_verify::check_not_empty(&name, file_size);\n",
+    },
+    Edit {
+        file: "src/main.rs",
+        purpose: "refuse an empty file over TFTP as on the disk",
+        find: "    let kernel_size = usize::try_from(file_size).expect(\"The file size should fit into usize\");\n",
+        replace: "    let kernel_size = usize::try_from(file_size).expect(\"The file size should fit into usize\");\n    \
+                  polylab_verify::check_not_empty(&name, kernel_size);\n",
+    },
+    Edit {
+        file: "Cargo.toml",
+        purpose: "let the loader's profile trim paths (a nightly cargo feature)",
+        find: "\n[package]\n",
+        replace: "\ncargo-features = [\"trim-paths\"]\n\n[package]\n",
+    },
+    Edit {
+        file: "Cargo.toml",
+        purpose: "write no path of the build machine into the loader: cargo remaps the sources of the toolchain \
+                  and of every crate to names without the builder's home folder",
+        find: "\n[[bin]]\n",
+        replace: "\n[profile.release]\ntrim-paths = \"all\"\n\n[[bin]]\n",
     },
 ];
 
@@ -300,12 +341,15 @@ fn toml_string(path: &Path) -> Result<String> {
 }
 
 /// The patched copy, made unless one made from the same sources by the
-/// same edits is there, and the lock file for a build against it, fresh
-/// from the workspace's.
+/// same edits is there (which is then checked file by file against a copy
+/// made afresh: a hand edit stops the build), and the lock file for a
+/// build against it, fresh from the workspace's.
 pub fn prepare() -> Result<PatchedBootloader> {
     let patched = PatchedBootloader::in_target_dir();
     let fingerprint = fingerprint();
-    if !is_current(&patched, &fingerprint) {
+    if is_current(&patched, &fingerprint) {
+        check_copy(&patched.dir)?;
+    } else {
         make_copy(&patched)?;
         std::fs::write(patched.stamp(), &fingerprint)
             .with_context(|| format!("failed to write {}", patched.stamp().display()))?;
@@ -317,6 +361,36 @@ pub fn prepare() -> Result<PatchedBootloader> {
         .with_context(|| format!("failed to copy {} to {}", workspace_lock.display(), patched.lockfile.display()))?;
     Ok(patched)
 }
+
+/// Fails, naming every difference, unless the copy at `dir` holds exactly
+/// what the pinned archives and the edits make (besides the loader's
+/// build folder, [`COPY_BUILD_FOLDER`]): the stamp says which sources and
+/// edits made the copy, not that nobody changed it since.
+pub fn check_copy(dir: &Path) -> Result<()> {
+    let work_dir = dir.parent().context("the copy is in a folder")?;
+    let expected = tempfile::Builder::new()
+        .prefix("expected-")
+        .tempdir_in(work_dir)
+        .with_context(|| format!("failed to create a folder in {}", work_dir.display()))?;
+    let expected_tree = expected.path().join("bootloader");
+    make_tree(work_dir, &expected_tree)?;
+    let differences = tree::differences(&expected_tree, dir, &[COPY_BUILD_FOLDER])?;
+    ensure!(
+        differences.is_empty(),
+        "refusing to build the image: the patched bootloader in {} is not what bootloader {VERSION}'s pinned \
+         sources and the edits in boot/image/src/bootloader.rs make ({}). A loader built from it could lack \
+         its checks and would be signed all the same. Remove the folder to have it made again: rm -r {}",
+        dir.display(),
+        differences.join("; "),
+        dir.display()
+    );
+    Ok(())
+}
+
+/// The folder in the copy where bootloader's build script builds the UEFI
+/// loader (`target/uefi_target`): the only thing in the copy that is not
+/// made from the sources.
+pub const COPY_BUILD_FOLDER: &str = "target";
 
 /// Whether the copy is there and its stamp says it was made with
 /// `fingerprint`.
@@ -347,18 +421,9 @@ pub fn fingerprint() -> String {
     text
 }
 
-/// Fetches the pinned archives, checks them, unpacks them into a fresh
-/// folder beside `patched.dir`, applies the patches and moves the result
-/// into place, so an interrupted run never leaves a half-patched copy.
+/// Makes the copy in a fresh folder beside `patched.dir` and moves it into
+/// place, so an interrupted run never leaves a half-patched copy.
 fn make_copy(patched: &PatchedBootloader) -> Result<()> {
-    let work_dir = patched.dir.parent().expect("the copy is in a folder");
-    let archives = sources::fetch(work_dir)?;
-    // Every archive is checked before any is unpacked.
-    let checked: Vec<Vec<u8>> = sources::PINNED
-        .iter()
-        .zip(&archives)
-        .map(|(pinned, archive)| sources::read_checked(archive, pinned))
-        .collect::<Result<_>>()?;
     eprintln!(
         "image: patching bootloader {VERSION}'s BIOS stage 2 (no VBE mode set, so the card stays in text mode) \
          and UEFI loader (an .sbat section, and a check of the kernel's and boot.json's SHA-256) in {}",
@@ -370,10 +435,25 @@ fn make_copy(patched: &PatchedBootloader) -> Result<()> {
             std::fs::remove_dir_all(dir).with_context(|| format!("failed to remove {}", dir.display()))?;
         }
     }
+    make_tree(patched.dir.parent().expect("the copy is in a folder"), &scratch)?;
+    std::fs::rename(&scratch, &patched.dir)
+        .with_context(|| format!("failed to move {} to {}", scratch.display(), patched.dir.display()))
+}
+
+/// Fetches the pinned archives (cargo works in `work_dir`), checks them,
+/// unpacks them into `to` (not there yet) and applies the patches.
+fn make_tree(work_dir: &Path, to: &Path) -> Result<()> {
+    let archives = sources::fetch(work_dir)?;
+    // Every archive is checked before any is unpacked.
+    let checked: Vec<Vec<u8>> = sources::PINNED
+        .iter()
+        .zip(&archives)
+        .map(|(pinned, archive)| sources::read_checked(archive, pinned))
+        .collect::<Result<_>>()?;
     for (pinned, bytes) in sources::PINNED.iter().zip(&checked) {
         let to = match PATCHES.iter().find(|patch| patch.source == *pinned) {
-            Some(patch) => scratch.join(patch.folder),
-            None if *pinned == BOOTLOADER => scratch.clone(),
+            Some(patch) => to.join(patch.folder),
+            None if *pinned == BOOTLOADER => to.to_path_buf(),
             None => unreachable!("every pinned crate is bootloader or patched"),
         };
         if let Some(parent) = to.parent() {
@@ -382,19 +462,19 @@ fn make_copy(patched: &PatchedBootloader) -> Result<()> {
         sources::unpack(bytes, pinned, &to)?;
     }
     for patch in &PATCHES {
-        apply_patch(patch, &scratch.join(patch.folder))?;
+        apply_patch(patch, &to.join(patch.folder))?;
     }
     for folder in WATCHED_EMPTY_FOLDERS {
-        let folder = scratch.join(folder);
+        let folder = to.join(folder);
         std::fs::create_dir_all(&folder).with_context(|| format!("failed to create {}", folder.display()))?;
     }
-    std::fs::rename(&scratch, &patched.dir)
-        .with_context(|| format!("failed to move {} to {}", scratch.display(), patched.dir.display()))
+    Ok(())
 }
 
 /// Applies `patch`'s edits to the crate in `dir` and adds its files.
 fn apply_patch(patch: &Patch, dir: &Path) -> Result<()> {
     let mut files: Vec<&str> = patch.edits.iter().map(|edit| edit.file).collect();
+    files.sort_unstable();
     files.dedup();
     for file in files {
         let path = dir.join(file);

@@ -21,6 +21,7 @@ pub mod process;
 pub mod secure_boot;
 pub mod sources;
 pub mod toolchain;
+pub mod tree;
 pub mod workspace;
 
 use std::path::{Path, PathBuf};
