@@ -5,8 +5,9 @@
 //! MokManager compute) to be enrolled, or signed with the user's key by
 //! `sbsign`; the digest and the signature both cover the kernel's digests.
 
+use std::io::Write;
 use std::path::Path;
-use std::process::Command;
+use std::process::{Command, Stdio};
 
 use anyhow::{ensure, Context, Result};
 use object::pe::{ImageDataDirectory, ImageFileHeader, ImageOptionalHeader64, IMAGE_DIRECTORY_ENTRY_SECURITY};
@@ -15,7 +16,7 @@ use object::{Object, ObjectSection, LittleEndian as LE};
 use sha2::{Digest, Sha256};
 
 use super::key::SigningKey;
-use crate::process::output_of;
+use crate::process::command_line;
 
 /// The bytes that start the digest placeholder in the loader (its
 /// `MARKER`); the kernel's SHA-256 follows, then `boot.json`'s.
@@ -141,11 +142,31 @@ pub fn write_digests(loader: &mut [u8], kernel: &[u8], boot_json: &[u8]) -> Resu
     Ok(())
 }
 
-/// Signs `unsigned` into `signed` with `key`, by `sbsign`.
+/// Signs `unsigned` into `signed` with `key`, by `sbsign`, which reads
+/// the key decrypted from a pipe: it is never on disk in the clear.
 pub fn sign(sbsign: &Path, key: &SigningKey, unsigned: &Path, signed: &Path) -> Result<()> {
+    key.ensure_current()?;
+    let decrypted = key.decrypted()?;
     let mut command = Command::new(sbsign);
-    command.arg("--key").arg(&key.key).arg("--cert").arg(&key.cert).arg("--output").arg(signed).arg(unsigned);
-    output_of(&mut command).map(drop).context("failed to sign the UEFI loader")
+    command.args(["--key", "/dev/stdin", "--cert"]).arg(&key.cert).arg("--output").arg(signed).arg(unsigned);
+    let line = command_line(&command);
+    let mut child = command
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .with_context(|| format!("failed to start `{line}`"))?;
+    let mut stdin = child.stdin.take().context("sbsign's standard input")?;
+    let written = stdin.write_all(&decrypted);
+    drop(stdin);
+    let output = child.wait_with_output().with_context(|| format!("failed to wait for `{line}`"))?;
+    ensure!(
+        output.status.success() && written.is_ok(),
+        "failed to sign the UEFI loader: `{line}` failed with {}: {}",
+        output.status,
+        String::from_utf8_lossy(&output.stderr).trim()
+    );
+    Ok(())
 }
 
 /// The loader's own SHA-256, tested here against `sha2`.
