@@ -13,6 +13,7 @@ use std::time::Duration;
 use anyhow::{ensure, Context, Result};
 use protocol::{Firmware, Video};
 
+use crate::checks::{dump_matches_host_render, screen_matches_dump};
 use crate::prerequisites::{ensure_secure_boot_ovmf, ensure_virt_fw_vars, ovmf_microsoft_vars};
 use crate::process::output_of;
 use crate::{Adapter, Qemu, QemuOptions};
@@ -91,6 +92,16 @@ pub fn ready_in_mode_13h(qemu: &mut Qemu, adapter: Adapter) -> Result<()> {
     Ok(())
 }
 
+/// Waits for READY in mode 13h on the std card, then has page 1 drawn:
+/// the dump as the host renders it, the screen exact (saved under `name`
+/// if not).
+pub fn ready_and_page_1_exact(qemu: &mut Qemu, name: &str) -> Result<()> {
+    ready_in_mode_13h(qemu, Adapter::Std)?;
+    let page_1 = scenes::builtin::ABRASH38_1;
+    let dump = dump_matches_host_render(&mut qemu.console, page_1.name, page_1.method)?;
+    screen_matches_dump(name, &dump, &qemu.screendump()?, &qemu.ready.video)
+}
+
 /// Boots `image` with `entries` enrolled and expects `reason` on COM1,
 /// then `until` (the end of what is said, if not empty), with no READY
 /// before it, nor for a while after; returns what was said.
@@ -108,9 +119,21 @@ pub fn refused(image: &Path, entries: &[MokEntry], (reason, until): (&str, &str)
 /// picture's name, the keys (QEMU's names) that answer it.
 pub type Screen<'a> = (&'a str, &'a str, &'a [&'a str]);
 
+/// The first boot of `image` with nothing enrolled, as a user lives it:
+/// `screens` (shim's refusal, then MokManager's) answered in turn, then
+/// after the reboot READY and page 1 exact; the screens are saved as PNGs
+/// in target/secure-boot-screens/`name`. Returns READY's line.
+pub fn first_boot(image: &Path, screens: &[Screen], name: &str) -> Result<String> {
+    let dir = scratch()?;
+    let mut qemu = boot(image, &[], Adapter::Std, true, dir.path())?;
+    answer_screens(&mut qemu, screens, &crate::workspace::target_dir().join("secure-boot-screens").join(name))?;
+    ready_and_page_1_exact(&mut qemu, &format!("secure-boot.{name}.first-boot.abrash38-1"))?;
+    Ok(qemu.ready.to_string())
+}
+
 /// Answers `screens` in turn, each once its words are on COM1 (no READY
 /// before them), saving each as a PNG in `pictures`.
-pub fn answer_screens(qemu: &mut Qemu, screens: &[Screen], pictures: &Path) -> Result<()> {
+fn answer_screens(qemu: &mut Qemu, screens: &[Screen], pictures: &Path) -> Result<()> {
     std::fs::create_dir_all(pictures).with_context(|| format!("failed to create {}", pictures.display()))?;
     for (i, (words, picture, keys)) in screens.iter().enumerate() {
         let timeout = if i == 0 { FIRMWARE_TIMEOUT } else { SCREEN_TIMEOUT };

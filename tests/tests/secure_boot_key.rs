@@ -18,13 +18,11 @@ use anyhow::{ensure, Context, Result};
 use boot_image::once::once_per_process;
 use boot_image::secure_boot::key::SigningKey;
 use boot_image::secure_boot::{debian, Enrollment, CERTIFICATE_PATH, LOADER_PATH};
-use harness::checks::{dump_matches_host_render, screen_matches_dump};
 use harness::process::output_of;
 use harness::secure_boot::{
-    answer_screens, boot, ready_in_mode_13h, refused, scratch, FatImage, MokEntry, Screen, SHIM_REFUSES,
+    boot, first_boot, ready_and_page_1_exact, refused, scratch, FatImage, MokEntry, Screen, SHIM_REFUSES,
 };
 use harness::Adapter;
-use scenes::builtin;
 
 /// The passphrase of the tests' key (it signs nothing but these images).
 const PASSPHRASE: &str = "polylab Secure Boot tests";
@@ -57,10 +55,7 @@ fn with_the_keys_certificate_enrolled_the_signed_loader_boots_and_draws() -> Res
     let (image, dir) = (key_signed_image()?, scratch()?);
     let certificate = certificate_on(&image, dir.path())?;
     let mut qemu = boot(&image, &[MokEntry::Certificate(&certificate)], Adapter::Std, false, dir.path())?;
-    ready_in_mode_13h(&mut qemu, Adapter::Std)?;
-    let page_1 = builtin::ABRASH38_1;
-    let dump = dump_matches_host_render(&mut qemu.console, page_1.name, page_1.method)?;
-    screen_matches_dump("secure-boot.key.abrash38-1", &dump, &qemu.screendump()?, &qemu.ready.video)?;
+    ready_and_page_1_exact(&mut qemu, "secure-boot.key.abrash38-1")?;
     eprintln!("harness: Secure Boot, the key's certificate enrolled: {}", qemu.ready);
     Ok(())
 }
@@ -100,8 +95,7 @@ fn a_loader_without_its_signature_is_refused_by_shim() -> Result<()> {
 /// in target/secure-boot-screens/key.
 #[test]
 fn the_first_boot_enrolls_the_certificate_with_mokmanager_and_boots_after_the_reboot() -> Result<()> {
-    let (image, dir) = (key_signed_image()?, scratch()?);
-    let mut qemu = boot(&image, &[], Adapter::Std, true, dir.path())?;
+    let image = key_signed_image()?;
     let screens: [Screen; 8] = [
         (SHIM_REFUSES, "1-shim-refuses", &["ret"]),
         ("Press any key to perform MOK management", "2-press-any-key", &["ret"]),
@@ -112,11 +106,7 @@ fn the_first_boot_enrolls_the_certificate_with_mokmanager_and_boots_after_the_re
         ("Enroll the key(s)?", "7-enroll-the-keys", &["down", "ret"]),
         ("Reboot", "8-reboot", &["ret"]),
     ];
-    answer_screens(&mut qemu, &screens, &harness::workspace::target_dir().join("secure-boot-screens/key"))?;
-    ready_in_mode_13h(&mut qemu, Adapter::Std)?;
-    let page_1 = builtin::ABRASH38_1;
-    let dump = dump_matches_host_render(&mut qemu.console, page_1.name, page_1.method)?;
-    screen_matches_dump("secure-boot.key-first-boot.abrash38-1", &dump, &qemu.screendump()?, &qemu.ready.video)?;
-    eprintln!("harness: Secure Boot, the first boot: the certificate enrolled with MokManager, then {}", qemu.ready);
+    let ready = first_boot(&image, &screens, "key")?;
+    eprintln!("harness: Secure Boot, the first boot: the certificate enrolled with MokManager, then {ready}");
     Ok(())
 }

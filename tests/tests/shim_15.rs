@@ -25,11 +25,9 @@ use boot_image::secure_boot::debian::Unpacked;
 use boot_image::secure_boot::key::SigningKey;
 use boot_image::secure_boot::{shim, Enrollment, SHIM_PATH};
 use boot_image::sources::sha256_hex;
-use harness::checks::{dump_matches_host_render, screen_matches_dump};
 use harness::process::output_of;
-use harness::secure_boot::{boot, loader_hash, ready_in_mode_13h, scratch, FatImage, MokEntry};
+use harness::secure_boot::{boot, loader_hash, ready_and_page_1_exact, scratch, FatImage, MokEntry};
 use harness::Adapter;
-use scenes::builtin;
 
 /// Debian's pool, where every package version lives until it is dropped.
 const POOL: &str = "http://deb.debian.org/debian/pool/main/s";
@@ -112,10 +110,7 @@ fn with_shim_15_8_the_loader_enrolled_by_its_hash_boots_and_draws() -> Result<()
     ensure!(on_the_stick == (15, 8), "the stick carries shim {on_the_stick:?}, not 15.8");
     let hash = loader_hash(&image)?;
     let mut qemu = boot(&image, &[MokEntry::Hash(&hash)], Adapter::Std, false, dir.path())?;
-    ready_in_mode_13h(&mut qemu, Adapter::Std)?;
-    let page_1 = builtin::ABRASH38_1;
-    let dump = dump_matches_host_render(&mut qemu.console, page_1.name, page_1.method)?;
-    screen_matches_dump("secure-boot.shim-15.8.abrash38-1", &dump, &qemu.screendump()?, &qemu.ready.video)?;
+    ready_and_page_1_exact(&mut qemu, "secure-boot.shim-15.8.abrash38-1")?;
     eprintln!("harness: Secure Boot with shim 15.8, the loader's hash enrolled: {}", qemu.ready);
     Ok(())
 }

@@ -185,7 +185,8 @@ pub const LOADER_EDITS: &[Edit] = &[
         file: "src/main.rs",
         purpose: "refuse an empty file over TFTP as on the disk",
         find: "    let kernel_size = usize::try_from(file_size).expect(\"The file size should fit into usize\");\n",
-        replace: "    let kernel_size = usize::try_from(file_size).expect(\"The file size should fit into usize\");\n    \
+        replace:
+            "    let kernel_size = usize::try_from(file_size).expect(\"The file size should fit into usize\");\n    \
                   polylab_verify::check_not_empty(&name, kernel_size);\n",
     },
     Edit {

@@ -163,8 +163,7 @@ fn write_image(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Resu
             loader::sign(&debian.get(debian::SBSIGN)?, key, &unsigned, &signed)?;
             let der = key.certificate_der()?;
             let certificate = work.join(CERTIFICATE_PATH);
-            std::fs::write(&certificate, &der)
-                .with_context(|| format!("failed to write {}", certificate.display()))?;
+            std::fs::write(&certificate, &der).with_context(|| format!("failed to write {}", certificate.display()))?;
             files.extend([(LOADER_PATH, signed), (CERTIFICATE_PATH, certificate)]);
             format!(
                 "the loader is signed with your key, certificate {} (SHA-256 fingerprint {}), on the image as \

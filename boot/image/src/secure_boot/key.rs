@@ -143,7 +143,11 @@ impl SigningKey {
         eprintln!(
             "image: making your own Secure Boot key in {} (openssl, RSA 2048, encrypted under a passphrase{})",
             folder.display(),
-            if self.passphrase.is_some() { format!(" from {PASSPHRASE_ENV}") } else { ", which openssl asks for".into() }
+            if self.passphrase.is_some() {
+                format!(" from {PASSPHRASE_ENV}")
+            } else {
+                ", which openssl asks for".into()
+            }
         );
         let scratch_key = folder.join(format!("{KEY_FILE}.partial"));
         let scratch_cert = folder.join(format!("{CERT_FILE}.partial"));

@@ -12,7 +12,7 @@ use std::process::{Command, Stdio};
 use anyhow::{ensure, Context, Result};
 use object::pe::{ImageDataDirectory, ImageFileHeader, ImageOptionalHeader64, IMAGE_DIRECTORY_ENTRY_SECURITY};
 use object::read::pe::PeFile64;
-use object::{Object, ObjectSection, LittleEndian as LE};
+use object::{LittleEndian as LE, Object, ObjectSection};
 use sha2::{Digest, Sha256};
 
 use super::key::SigningKey;
@@ -80,8 +80,9 @@ pub fn authenticode_sha256(image: &[u8]) -> Result<[u8; 32]> {
     let pe = PeFile64::parse(image).context("the UEFI loader is not a PE32+ image")?;
     let optional = pe.dos_header().nt_headers_offset() as usize + 4 + size_of::<ImageFileHeader>();
     let checksum = optional + std::mem::offset_of!(ImageOptionalHeader64, check_sum);
-    let security_entry =
-        optional + size_of::<ImageOptionalHeader64>() + IMAGE_DIRECTORY_ENTRY_SECURITY * size_of::<ImageDataDirectory>();
+    let security_entry = optional
+        + size_of::<ImageOptionalHeader64>()
+        + IMAGE_DIRECTORY_ENTRY_SECURITY * size_of::<ImageDataDirectory>();
     let header = &pe.nt_headers().optional_header;
     let headers = header.size_of_headers.get(LE) as usize;
     let (table_start, table_len) = match pe.data_directory(IMAGE_DIRECTORY_ENTRY_SECURITY) {
