@@ -10,7 +10,7 @@
 use std::path::Path;
 
 use anyhow::{ensure, Context, Result};
-use boot_image::bootloader::{check_copy, PatchedBootloader, COPY_BUILD_FOLDER};
+use boot_image::patched_copy::{check_copy, PatchedBootloader, COPY_BUILD_FOLDER};
 use boot_image::process::command_line;
 use boot_image::stage_builds;
 

@@ -17,6 +17,7 @@
 pub mod bootloader;
 pub mod cargo;
 pub mod once;
+pub mod patched_copy;
 pub mod process;
 pub mod secure_boot;
 pub mod sources;
@@ -30,9 +31,9 @@ use std::sync::OnceLock;
 
 use anyhow::{ensure, Context, Result};
 
-use crate::bootloader::PatchedBootloader;
 use crate::cargo::NightlyBuild;
 use crate::once::once_per_process;
+use crate::patched_copy::PatchedBootloader;
 use crate::process::run_streaming;
 use crate::secure_boot::debian::{self, Unpacked};
 use crate::secure_boot::key::{self, SigningKey};
@@ -80,7 +81,7 @@ pub fn build_image_with(enrollment: &Enrollment, debian: &Unpacked, image: &Path
 /// no-ops when nothing changed: tests/tests/image_build.rs runs them twice.
 pub fn stage_builds() -> Result<Vec<Command>> {
     ensure_toolchain()?;
-    let patched = bootloader::prepare()?;
+    let patched = patched_copy::prepare()?;
     eprintln!("image: building the kernel and the image writer (the first build takes minutes)");
     let mut writer = NightlyBuild::IMAGE_WRITER.command();
     patched.configure(&mut writer)?;
