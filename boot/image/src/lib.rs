@@ -67,6 +67,7 @@ pub fn build_image() -> Result<PathBuf> {
 /// Builds the raw image at `image`: the loader enrolled as `enrollment`
 /// says, shim and MokManager from `debian`.
 pub fn build_image_with(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Result<PathBuf> {
+    key::warn_of_old_key();
     for mut build in stage_builds()? {
         run_streaming(&mut build).context("failed to build the kernel or the image writer")?;
     }

@@ -115,7 +115,6 @@ impl SigningKey {
 
     /// The key in `folder`, generated there first if it has none.
     pub fn in_folder(folder: &Path, passphrase: Option<String>) -> Result<Self> {
-        warn_of_old_key(folder);
         let key = Self { key: folder.join(KEY_FILE), cert: folder.join(CERT_FILE), passphrase };
         if !key.key.exists() {
             key.generate(folder)?;
@@ -262,8 +261,10 @@ fn random_id() -> Result<String> {
     Ok(bytes.iter().map(|byte| format!("{byte:02x}")).collect())
 }
 
-/// Says so if `folder` still holds the key earlier builds made.
-fn warn_of_old_key(folder: &Path) {
+/// Says so if the key folder still holds the key earlier builds made
+/// (whatever the build enrolls: that key is on disk all the same).
+pub fn warn_of_old_key() {
+    let Ok(folder) = key_folder() else { return };
     if folder.join(OLD_KEY_FILE).exists() {
         eprintln!(
             "image: {} is the key earlier builds made: a CA valid for 100 years, not encrypted. Nothing uses it \
