@@ -48,7 +48,7 @@ impl Unpacked {
     pub fn get(&self, file: DebianFile) -> Result<PathBuf> {
         let root = self.dir.join(file.package);
         if !root.is_dir() {
-            self.unpack(file.package, &root)?;
+            self.unpack(file.package)?;
         }
         let path = root.join(file.path);
         ensure!(path.is_file(), "Debian's {} has no /{} (unpacked in {})", file.package, file.path, root.display());
@@ -62,7 +62,7 @@ impl Unpacked {
         deb_version(package, &deb).with_context(|| format!("{} names no version of {package}", name.display()))
     }
 
-    fn unpack(&self, package: &str, root: &Path) -> Result<()> {
+    fn unpack(&self, package: &str) -> Result<()> {
         let downloads = self.dir.join("downloads");
         std::fs::create_dir_all(&downloads).with_context(|| format!("failed to create {}", downloads.display()))?;
         eprintln!("image: fetching Debian's {package} (apt-get download, no root needed)");
@@ -74,16 +74,24 @@ impl Unpacked {
                  {package} (on Debian or Ubuntu, `sudo apt-get update` refreshes the package lists)"
             ))
         })?;
-        let deb = newest_deb(&downloads, package)?;
+        self.unpack_deb(package, &newest_deb(&downloads, package)?)
+    }
+
+    /// Unpacks `deb`, a `.deb` of `package` named as `apt-get download`
+    /// names it, where [`Self::get`] finds it (a test builds an image from
+    /// given packages this way).
+    pub fn unpack_deb(&self, package: &str, deb: &Path) -> Result<()> {
+        let root = self.dir.join(package);
         let scratch = root.with_extension("partial");
+        std::fs::create_dir_all(&self.dir).with_context(|| format!("failed to create {}", self.dir.display()))?;
         if scratch.exists() {
             std::fs::remove_dir_all(&scratch).with_context(|| format!("failed to remove {}", scratch.display()))?;
         }
-        run_streaming(Command::new("dpkg-deb").arg("-x").arg(&deb).arg(&scratch))?;
+        run_streaming(Command::new("dpkg-deb").arg("-x").arg(deb).arg(&scratch))?;
         let deb_name = deb.file_name().and_then(|name| name.to_str()).context("a .deb name that is not UTF-8")?;
         let name_file = self.dir.join(format!("{package}.deb-name"));
         std::fs::write(&name_file, deb_name).with_context(|| format!("failed to write {}", name_file.display()))?;
-        std::fs::rename(&scratch, root)
+        std::fs::rename(&scratch, &root)
             .with_context(|| format!("failed to move {} to {}", scratch.display(), root.display()))
     }
 }
