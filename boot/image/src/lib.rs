@@ -14,6 +14,7 @@
 //! # }
 //! ```
 
+pub mod apt;
 pub mod bootloader;
 pub mod cargo;
 pub mod once;
