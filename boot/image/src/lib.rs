@@ -108,11 +108,12 @@ pub fn debian_packages() -> Unpacked {
 
 /// Writes `image`: the loader out of the writer, the digests in, signed
 /// with `key`, then the image with shim, MokManager, the signed loader and
-/// the certificate on its FAT.
+/// the certificate on its FAT. On a machine without apt (and nothing
+/// unpacked before), Debian's shim, MokManager and sbsign cannot be had:
+/// the loader goes on the FAT unsigned, where a UEFI firmware starts it
+/// without shim, and the image boots everywhere but under Secure Boot.
 fn write_image(key: &SigningKey, image: &Path) -> Result<()> {
     let debian = debian_packages();
-    let (shim, mok_manager, sbsign) =
-        (debian.get(debian::SHIM)?, debian.get(debian::MOK_MANAGER)?, debian.get(debian::SBSIGN)?);
     let work = secure_boot_dir().join("build");
     std::fs::create_dir_all(&work).with_context(|| format!("failed to create {}", work.display()))?;
     let writer = NightlyBuild::IMAGE_WRITER.artifact();
@@ -123,22 +124,44 @@ fn write_image(key: &SigningKey, image: &Path) -> Result<()> {
     let mut loader_bytes = read(&work.join("loader.efi"))?;
     loader::check_sbat(&loader_bytes)?;
     loader::write_digests(&mut loader_bytes, &read(&kernel)?, &read(&boot_json)?)?;
-    let (unsigned, signed) = (work.join("grubx64-unsigned.efi"), work.join("grubx64.efi"));
+    let unsigned = work.join("grubx64-unsigned.efi");
     std::fs::write(&unsigned, &loader_bytes).with_context(|| format!("failed to write {}", unsigned.display()))?;
-    loader::sign(&sbsign, key, &unsigned, &signed)?;
-    let der = key.certificate_der()?;
-    let certificate = work.join(CERTIFICATE_PATH);
-    std::fs::write(&certificate, &der).with_context(|| format!("failed to write {}", certificate.display()))?;
     let mut write = Command::new(&writer);
     write.arg("image").arg(&kernel).arg(&boot_json).arg(image);
-    for (fat_path, file) in
-        [(SHIM_PATH, &shim), (LOADER_PATH, &signed), (MOK_MANAGER_PATH, &mok_manager), (CERTIFICATE_PATH, &certificate)]
-    {
+    let files = if debian.obtainable() {
+        secure_boot_files(&debian, key, &work, &unsigned)?
+    } else {
+        eprintln!(
+            "image: no Secure Boot: this machine has no apt-get to take Debian's shim, MokManager and sbsign from, \
+             so the loader is on the image unsigned: it boots under a BIOS and under UEFI with Secure Boot off, not \
+             on (build the image on a Debian or Ubuntu machine for that)"
+        );
+        vec![(SHIM_PATH, unsigned)]
+    };
+    for (fat_path, file) in files {
         let mut arg = std::ffi::OsString::from(format!("{fat_path}="));
         arg.push(file);
         write.arg(arg);
     }
-    run_streaming(&mut write).context("failed to write the disk image")?;
+    run_streaming(&mut write).context("failed to write the disk image")
+}
+
+/// The files that make the image boot under Secure Boot, by their paths
+/// on the FAT: Debian's shim and MokManager, the `unsigned` loader signed
+/// with `key` (in `work`), and the certificate to enroll.
+fn secure_boot_files(
+    debian: &Unpacked,
+    key: &SigningKey,
+    work: &Path,
+    unsigned: &Path,
+) -> Result<Vec<(&'static str, PathBuf)>> {
+    let (shim, mok_manager, sbsign) =
+        (debian.get(debian::SHIM)?, debian.get(debian::MOK_MANAGER)?, debian.get(debian::SBSIGN)?);
+    let signed = work.join("grubx64.efi");
+    loader::sign(&sbsign, key, unsigned, &signed)?;
+    let der = key.certificate_der()?;
+    let certificate = work.join(CERTIFICATE_PATH);
+    std::fs::write(&certificate, &der).with_context(|| format!("failed to write {}", certificate.display()))?;
     eprintln!(
         "image: UEFI Secure Boot: shim from Debian's shim-signed {}, MokManager from shim-helpers-amd64-signed {}; \
          the loader signed with your key, certificate {} (SHA-256 fingerprint {}), on the image as {CERTIFICATE_PATH}: \
@@ -148,7 +171,7 @@ fn write_image(key: &SigningKey, image: &Path) -> Result<()> {
         key.cert.display(),
         key::fingerprint(&der)
     );
-    Ok(())
+    Ok(vec![(SHIM_PATH, shim), (LOADER_PATH, signed), (MOK_MANAGER_PATH, mok_manager), (CERTIFICATE_PATH, certificate)])
 }
 
 /// Where [`build_image`] writes the image.

@@ -20,7 +20,7 @@ use std::process::Command;
 use anyhow::{bail, ensure, Context, Result};
 
 use crate::apt::PrivateApt;
-use crate::process::run_streaming;
+use crate::process::{find_in_path, run_streaming};
 
 /// One Debian package and the file the build takes from it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -63,6 +63,13 @@ impl Unpacked {
         let path = root.join(file.path);
         ensure!(path.is_file(), "Debian's {} has no /{} (unpacked in {})", file.package, file.path, root.display());
         Ok(path)
+    }
+
+    /// Whether the packages can be had: apt-get is there to download them,
+    /// or they were unpacked before.
+    pub fn obtainable(&self) -> bool {
+        find_in_path("apt-get").is_some()
+            || [SHIM, MOK_MANAGER, SBSIGN].iter().all(|file| self.dir.join(file.package).is_dir())
     }
 
     /// The package's version, as `apt-get download` named its file.
