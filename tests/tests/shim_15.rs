@@ -55,7 +55,7 @@ fn shim_15_dir() -> PathBuf {
 /// shim 15.8 and its MokManager, fetched and checked once, then unpacked.
 fn shim_15_packages() -> Result<Unpacked> {
     let dir = shim_15_dir();
-    let unpacked = Unpacked::in_dir(dir.join("unpacked"));
+    let unpacked = Unpacked::given(dir.join("unpacked"));
     for (package, pool_path, sha256) in PACKAGES {
         let deb = dir.join(pool_path.rsplit('/').next().expect("a file name"));
         if !deb.is_file() {

@@ -14,6 +14,7 @@
 //! # }
 //! ```
 
+pub mod apt;
 pub mod bootloader;
 pub mod cargo;
 pub mod once;
@@ -119,11 +120,11 @@ pub fn debian_packages() -> Unpacked {
 /// Writes `image`: the loader out of the writer, checked, the digests in,
 /// then signed with the user's key or left for its hash to be enrolled;
 /// then the image with shim, MokManager, the loader and the certificate
-/// (or a copy of the loader to enroll) on its FAT.
+/// (or a copy of the loader to enroll) on its FAT. On a machine without
+/// apt (and nothing unpacked before), Debian's shim and MokManager cannot
+/// be had: the loader goes on the FAT alone, where a UEFI firmware starts
+/// it without shim, and the image boots everywhere but under Secure Boot.
 fn write_image(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Result<()> {
-    let (shim, mok_manager) = (debian.get(debian::SHIM)?, debian.get(debian::MOK_MANAGER)?);
-    let read = |path: &Path| std::fs::read(path).with_context(|| format!("failed to read {}", path.display()));
-    let shim_version = shim::version(&read(&shim)?)?;
     std::fs::create_dir_all(secure_boot_dir())
         .with_context(|| format!("failed to create {}", secure_boot_dir().display()))?;
     let work = tempfile::Builder::new()
@@ -139,8 +140,48 @@ fn write_image(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Resu
     loader::check_sbat(&loader_bytes)?;
     loader::check_refusals(&loader_bytes)?;
     loader::write_digests(&mut loader_bytes, &read(&kernel)?, &read(&boot_json)?)?;
-    let (unsigned, signed) = (work.join("grubx64-unsigned.efi"), work.join("grubx64.efi"));
+    let unsigned = work.join("grubx64-unsigned.efi");
     std::fs::write(&unsigned, &loader_bytes).with_context(|| format!("failed to write {}", unsigned.display()))?;
+    let (files, said) = if debian.obtainable() {
+        let (files, said) = secure_boot_files(enrollment, debian, work, &unsigned)?;
+        (files, format!("image: UEFI Secure Boot: {said}"))
+    } else {
+        let said = "image: no Secure Boot: this machine has no apt-get to take Debian's shim and MokManager from, \
+                    so the loader is on the image alone: it boots under a BIOS and under UEFI with Secure Boot off, \
+                    not on (build the image on a Debian or Ubuntu machine for that)";
+        (vec![(SHIM_PATH, unsigned)], said.to_string())
+    };
+    let mut write = Command::new(&writer);
+    write.arg("image").arg(&kernel).arg(&boot_json).arg(image);
+    for (fat_path, file) in &files {
+        let mut arg = std::ffi::OsString::from(format!("{fat_path}="));
+        arg.push(file);
+        write.arg(arg);
+    }
+    run_streaming(&mut write).context("failed to write the disk image")?;
+    eprintln!("{said}");
+    Ok(())
+}
+
+/// The bytes of `path`.
+fn read(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).with_context(|| format!("failed to read {}", path.display()))
+}
+
+/// The files that make the image boot under Secure Boot, by their paths
+/// on the FAT: Debian's shim and MokManager, and the `unsigned` loader
+/// with its copy to enroll by hash, or signed with the user's key (in
+/// `work`) with the certificate to enroll; and what the build says of
+/// them.
+fn secure_boot_files(
+    enrollment: &Enrollment,
+    debian: &Unpacked,
+    work: &Path,
+    unsigned: &Path,
+) -> Result<(Vec<(&'static str, PathBuf)>, String)> {
+    let (shim, mok_manager) = (debian.get(debian::SHIM)?, debian.get(debian::MOK_MANAGER)?);
+    let shim_bytes = read(&shim)?;
+    let shim_version = shim::version(&shim_bytes)?;
     let mut files = vec![(SHIM_PATH, shim), (MOK_MANAGER_PATH, mok_manager)];
     let source = format!(
         "shim {}.{} from Debian's shim-signed {}, MokManager from shim-helpers-amd64-signed {}",
@@ -151,8 +192,8 @@ fn write_image(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Resu
     );
     let enroll = match enrollment {
         Enrollment::Hash => {
-            files.extend([(LOADER_PATH, unsigned.clone()), (HASH_ENROLL_PATH, unsigned)]);
-            let hash = loader::authenticode_sha256(&loader_bytes)?;
+            let hash = loader::authenticode_sha256(&read(unsigned)?)?;
+            files.extend([(LOADER_PATH, unsigned.to_path_buf()), (HASH_ENROLL_PATH, unsigned.to_path_buf())]);
             format!(
                 "the loader is enrolled by its SHA-256 {}: on a PC with Secure Boot on, choose MokManager's \
                  \"Enroll hash from disk\", then {HASH_ENROLL_PATH}, and check that the hash it shows is this \
@@ -161,8 +202,9 @@ fn write_image(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Resu
             )
         }
         Enrollment::Key(key) => {
-            shim::ensure_boots_key_signed_loader(&read(&files[0].1)?, &source)?;
-            loader::sign(&debian.get(debian::SBSIGN)?, key, &unsigned, &signed)?;
+            shim::ensure_boots_key_signed_loader(&shim_bytes, &source)?;
+            let signed = work.join("grubx64.efi");
+            loader::sign(&debian.get(debian::SBSIGN)?, key, unsigned, &signed)?;
             let der = key.certificate_der()?;
             let certificate = work.join(CERTIFICATE_PATH);
             std::fs::write(&certificate, &der).with_context(|| format!("failed to write {}", certificate.display()))?;
@@ -175,16 +217,7 @@ fn write_image(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Resu
             )
         }
     };
-    let mut write = Command::new(&writer);
-    write.arg("image").arg(&kernel).arg(&boot_json).arg(image);
-    for (fat_path, file) in &files {
-        let mut arg = std::ffi::OsString::from(format!("{fat_path}="));
-        arg.push(file);
-        write.arg(arg);
-    }
-    run_streaming(&mut write).context("failed to write the disk image")?;
-    eprintln!("image: UEFI Secure Boot: {source}; {enroll}");
-    Ok(())
+    Ok((files, format!("{source}; {enroll}")))
 }
 
 /// Bytes as lowercase hex.
