@@ -13,7 +13,7 @@ use anyhow::{bail, Context, Result};
 use boot_image::apt::PrivateApt;
 
 use crate::prerequisites::{find_in_path, CHROMEDRIVER_ENV, CHROMIUM_ENV};
-use crate::process::{command_line, output_of, run_streaming};
+use crate::process::{command_line, is_root, output_of, run_streaming};
 use crate::workspace;
 
 /// How long apt-get waits for another apt or dpkg (an unattended upgrade,
@@ -114,7 +114,7 @@ pub fn ensure_debian_packages(what: &str, packages: &[&str], present: impl Fn() 
     if find_in_path("apt-get").is_none() {
         bail!("{what} is not installed, and this machine has no apt-get: install {} yourself", packages.join(" "));
     }
-    let as_root = output_of(Command::new("id").arg("-u")).is_ok_and(|uid| uid.trim() == "0");
+    let as_root = is_root();
     if as_root {
         eprintln!("harness: {what} is missing; installing the packages {} with apt-get", packages.join(" "));
         run_streaming(&mut apt_get(&InstallFrom::Machine, ["update"]))?;
@@ -379,6 +379,12 @@ mod tests {
         );
     }
 
+    /// `line` without the option that has apt download as root, which it
+    /// has only when the tests run as root.
+    fn without_sandbox(line: String) -> String {
+        line.replace(" -o APT::Sandbox::User=root", "")
+    }
+
     fn backports() -> InstallFrom {
         let suite = "bookworm-backports".to_string();
         InstallFrom::Suite { apt: PrivateApt::with_suite("/t/apt".into(), &suite), suite }
@@ -387,7 +393,11 @@ mod tests {
     #[test]
     fn a_suite_is_installed_from_with_its_own_lists_and_preferred() {
         assert_eq!(
-            command_line(&apt_install(&backports(), &names(&["qemu-system-x86"]), Some("--no-remove"))),
+            without_sandbox(command_line(&apt_install(
+                &backports(),
+                &names(&["qemu-system-x86"]),
+                Some("--no-remove")
+            ))),
             "apt-get -o Dir::Etc::sourcelist=/t/apt/sources.list -o Dir::State::Lists=/t/apt/lists \
              -o Dir::Cache=/t/apt/cache -o DPkg::Lock::Timeout=600 install -y --no-install-recommends \
              -t bookworm-backports --no-remove qemu-system-x86"
@@ -406,7 +416,7 @@ mod tests {
             "apt-get update && apt-get install --no-install-recommends bochs bochsbios"
         );
         assert_eq!(
-            by_hand(&backports(), &names(&["qemu-system-x86"]), false),
+            without_sandbox(by_hand(&backports(), &names(&["qemu-system-x86"]), false)),
             "sudo apt-get -o Dir::Etc::sourcelist=/t/apt/sources.list -o Dir::State::Lists=/t/apt/lists \
              -o Dir::Cache=/t/apt/cache install --no-install-recommends -t bookworm-backports qemu-system-x86"
         );

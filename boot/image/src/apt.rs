@@ -14,7 +14,7 @@ use std::process::Command;
 
 use anyhow::{Context, Result};
 
-use crate::process::{output_of, run_streaming};
+use crate::process::{is_root, output_of, run_streaming};
 
 /// The machine's one-line sources file; its `sources.list.d` is read by
 /// apt as usual, since only the file is replaced.
@@ -56,8 +56,14 @@ impl PrivateApt {
     }
 
     /// `program` (`apt-get`, `apt-cache`) reading these lists and sources.
+    /// As root it downloads as root: apt would otherwise hand downloads to
+    /// its `_apt` user, who cannot enter a folder under a home (and says so
+    /// in a warning on every file).
     pub fn command(&self, program: &str) -> Command {
         let mut command = Command::new(program);
+        if is_root() {
+            command.args(["-o", "APT::Sandbox::User=root"]);
+        }
         for (option, path) in [
             ("Dir::Etc::sourcelist", self.sources_file()),
             ("Dir::State::Lists", self.dir.join("lists")),
@@ -185,7 +191,7 @@ mod tests {
     fn the_lists_and_cache_are_the_folders_and_only_the_sources_file_is_replaced() {
         let apt = PrivateApt::with_suite(PathBuf::from("/t/apt"), "bookworm-backports");
         assert_eq!(
-            command_line(&apt.command("apt-get")),
+            command_line(&apt.command("apt-get")).replace(" -o APT::Sandbox::User=root", ""),
             "apt-get -o Dir::Etc::sourcelist=/t/apt/sources.list -o Dir::State::Lists=/t/apt/lists \
              -o Dir::Cache=/t/apt/cache"
         );
