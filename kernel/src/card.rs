@@ -69,11 +69,19 @@ pub fn identify(controller: &DisplayController) -> Option<Card> {
     if BOCHS_VBE_IDS.contains(&id) {
         return has_dispi().then_some(Card::BochsVbe);
     }
-    match id {
-        CIRRUS_GD5446 => Some(Card::Cirrus),
-        VMWARE_SVGA_II => Some(Card::VmwareSvga),
-        _ => None,
+    if is_cirrus(controller) {
+        return Some(Card::Cirrus);
     }
+    (id == VMWARE_SVGA_II).then_some(Card::VmwareSvga)
+}
+
+/// Whether `controller` is the VGA and a Cirrus Logic GD5446, by its PCI
+/// IDs alone (no port is touched, so it may be asked under a BIOS too):
+/// the card on which QEMU 9.0 and later redraw a changed mode-13h picture
+/// only once it has been rewritten through the latches
+/// (`vga::rewrite_through_latches`).
+pub fn is_cirrus(controller: &DisplayController) -> bool {
+    controller.is_the_vga() && (controller.id.vendor, controller.id.device) == CIRRUS_GD5446
 }
 
 impl Card {

@@ -22,6 +22,7 @@ use alloc::vec::Vec;
 use core::fmt::{self, Write};
 
 use scenes::palette::ENTRIES;
+use volatile::VolatilePtr;
 
 use crate::clock::Deadline;
 use crate::port::{io_delay, vga, IoPort};
@@ -80,6 +81,19 @@ const RETRACE_TIMEOUT_MICROS: u64 = 2 * 1_000_000 / 70;
 /// Graphics register 8, the bit mask: read and write on every VGA, and
 /// left as the kernel found it by [`responds`].
 const GRAPHICS_BIT_MASK: u8 = 0x08;
+/// Sequencer register 4, memory mode, and its chain-4 bit: set, the CPU's
+/// address picks the plane (mode 13h's linear bytes); clear, the map mask
+/// does and every plane sees the same address.
+const SEQUENCER_MEMORY_MODE: u8 = 0x04;
+const CHAIN_4: u8 = 0x08;
+/// Graphics register 5, graphics mode, and write mode 1 in its bits 0-1:
+/// a CPU write stores the four latches (loaded by the last read) into the
+/// planes, whatever the byte written.
+const GRAPHICS_MODE: u8 = 0x05;
+const WRITE_MODE_1: u8 = 0x01;
+/// The granularity of QEMU's record of written video memory: its target
+/// page, 4 KiB on x86.
+const QEMU_DIRTY_PAGE: usize = 4096;
 
 /// An index/data port pair: one register group.
 #[derive(Clone, Copy)]
@@ -208,6 +222,33 @@ fn set_mode(mode: &Mode) {
         write_attribute(index, value);
     }
     video_on();
+}
+
+/// Rewrites one doubleword in every 4 KiB of `window` (the mode-13h
+/// window, as mapped) with itself, through the latches: chain 4 off, write
+/// mode 1, a read (which loads the four latches) and a write (which stores
+/// them back, the byte written being ignored) at offsets 0, 4096, ...,
+/// then mode 13h's memory mode and graphics mode back. Video memory is
+/// left as it was on any VGA; the point is the write itself.
+///
+/// QEMU's Cirrus card since QEMU 9.0 records a chain-4 write in mode 13h
+/// (doubleword addressing) at a quarter of its address, so only the rows
+/// in the first 16 KiB are ever drawn again and the rest of the screen
+/// keeps the last picture; a write through the latches is recorded where
+/// it lands. Called after each change of the picture on that card, it
+/// marks every 4 KiB of the frame as written; docs/hardware.md has the
+/// details and the QEMU commit.
+pub fn rewrite_through_latches(window: VolatilePtr<'_, [u8]>) {
+    let memory_mode = MODE_13H.sequencer[usize::from(SEQUENCER_MEMORY_MODE)];
+    let graphics_mode = MODE_13H.graphics[usize::from(GRAPHICS_MODE)];
+    SEQUENCER.write(SEQUENCER_MEMORY_MODE, memory_mode & !CHAIN_4);
+    GRAPHICS.write(GRAPHICS_MODE, graphics_mode | WRITE_MODE_1);
+    for offset in (0..window.len()).step_by(QEMU_DIRTY_PAGE) {
+        let byte = window.index(offset);
+        byte.write(byte.read());
+    }
+    GRAPHICS.write(GRAPHICS_MODE, graphics_mode);
+    SEQUENCER.write(SEQUENCER_MEMORY_MODE, memory_mode);
 }
 
 /// Loads the DAC: 6-bit red, green, blue per entry from entry 0 on. A

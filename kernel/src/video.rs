@@ -45,8 +45,11 @@ const _: () = assert!((SCREEN.width * SCREEN.height) as usize == FRAMEBUFFER_LEN
 
 /// Where the frame is shown.
 enum Output {
-    /// The card in mode 13h; the frame is its video memory.
-    Vga,
+    /// The card in mode 13h; the frame is its video memory. `cirrus`: a
+    /// Cirrus GD5446, whose window is rewritten through the latches after
+    /// each change of the picture, for QEMU to show all of it
+    /// (`vga::rewrite_through_latches`).
+    Vga { cirrus: bool },
     /// The frame presented in the firmware's framebuffer.
     Framebuffer(Presenter),
     /// Nowhere.
@@ -129,7 +132,8 @@ impl Screen {
         }
         let (mut screen, display) = if vga_usable {
             vga::set_mode_13h();
-            (Self::on(vga_window(), Output::Vga), vga)
+            let cirrus = vga.is_some_and(|display| card::is_cirrus(&display));
+            (Self::on(vga_window(), Output::Vga { cirrus }), vga)
         } else {
             let presenter =
                 framebuffer.zip(physical).and_then(|(framebuffer, physical)| Presenter::new(framebuffer, physical));
@@ -149,7 +153,7 @@ impl Screen {
     /// default palette loaded: the BIOS's text mode leaves the DAC set up
     /// for text.
     fn on(pixels: VolatilePtr<'static, [u8]>, output: Output) -> Self {
-        if let Output::Vga = output {
+        if let Output::Vga { .. } = output {
             vga::load_dac(&VGA_DEFAULT);
         }
         Self { pixels, stray_spans: 0, palette: &VGA_DEFAULT, output, display: None, findings: Vec::new() }
@@ -172,7 +176,7 @@ impl Screen {
     /// disagree).
     pub fn memory_type(&self) -> Option<MemoryType> {
         match &self.output {
-            Output::Vga => paging::mapping(window_start(), WINDOW_LEN).and_then(|mapping| mapping.memory_type()),
+            Output::Vga { .. } => paging::mapping(window_start(), WINDOW_LEN).and_then(|mapping| mapping.memory_type()),
             Output::Framebuffer(presenter) => presenter.mapping().and_then(|mapping| mapping.memory_type()),
             Output::Nothing => None,
         }
@@ -182,7 +186,7 @@ impl Screen {
     /// registers and DAC entries that do not read back as written.
     pub fn video(&self) -> Video {
         match &self.output {
-            Output::Vga => Video::Vga13h { mismatches: vga::verify(self.palette).len() },
+            Output::Vga { .. } => Video::Vga13h { mismatches: vga::verify(self.palette).len() },
             Output::Framebuffer(presenter) => Video::Framebuffer(presenter.presentation()),
             Output::Nothing => Video::None,
         }
@@ -195,7 +199,7 @@ impl Screen {
     /// are no VGA registers in use to check.
     pub fn check(&self) -> Result<String, String> {
         match &self.output {
-            Output::Vga => {
+            Output::Vga { .. } => {
                 let mismatches = vga::verify(self.palette);
                 let end = WINDOW_PHYSICAL + WINDOW_LEN - 1;
                 let mapping = match paging::mapping(window_start(), WINDOW_LEN) {
@@ -229,7 +233,7 @@ impl Screen {
     /// or DAC entry of the VGA path that did not read back as written.
     pub fn mismatches(&self) -> Vec<vga::Mismatch> {
         match self.output {
-            Output::Vga => vga::verify(self.palette),
+            Output::Vga { .. } => vga::verify(self.palette),
             Output::Framebuffer(_) | Output::Nothing => Vec::new(),
         }
     }
@@ -238,7 +242,7 @@ impl Screen {
     /// unless it is already there.
     pub fn use_palette(&mut self, palette: &'static Palette) {
         if self.palette != palette {
-            if let Output::Vga = self.output {
+            if let Output::Vga { .. } = self.output {
                 vga::load_dac(palette);
             }
             self.palette = palette;
@@ -246,11 +250,14 @@ impl Screen {
     }
 
     /// Shows the frame as it is now where a VGA would be showing it
-    /// already: presents it in the firmware's framebuffer; nothing to do
-    /// on the other paths.
+    /// already: presents it in the firmware's framebuffer; on a Cirrus
+    /// card, rewrites the window through the latches so that QEMU redraws
+    /// all of it; nothing to do on the other paths.
     pub fn present(&mut self) {
-        if let Output::Framebuffer(presenter) = &mut self.output {
-            presenter.show(self.pixels, self.palette);
+        match &mut self.output {
+            Output::Vga { cirrus: true } => vga::rewrite_through_latches(self.pixels),
+            Output::Framebuffer(presenter) => presenter.show(self.pixels, self.palette),
+            Output::Vga { cirrus: false } | Output::Nothing => {}
         }
     }
 
@@ -258,7 +265,7 @@ impl Screen {
     /// moment to copy a whole frame in without tearing); the other paths
     /// have no retrace to wait for.
     pub fn wait_for_retrace(&self) {
-        if let Output::Vga = self.output {
+        if let Output::Vga { .. } = self.output {
             vga::wait_for_retrace();
         }
     }
@@ -306,7 +313,7 @@ impl Screen {
         let (framebuffer, dac) = dump.split_at_mut(FRAMEBUFFER_LEN);
         self.pixels.copy_into_slice(framebuffer);
         match self.output {
-            Output::Vga => dac.copy_from_slice(&vga::read_dac()),
+            Output::Vga { .. } => dac.copy_from_slice(&vga::read_dac()),
             Output::Framebuffer(_) | Output::Nothing => dac.copy_from_slice(self.palette.as_flattened()),
         }
         dump

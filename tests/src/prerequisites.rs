@@ -79,6 +79,27 @@ pub fn ensure_qemu() -> Result<()> {
     once_per_process(&DONE, || ensure_debian_packages(QEMU, &[QEMU_PACKAGE], || on_path(&[QEMU])))
 }
 
+/// QEMU's QXL card, and the package Debian's QEMU 8 and later keeps it
+/// in (a module of its own, `hw-display-qxl`; QEMU 7.2's package has it
+/// built in).
+const QXL_DEVICE: &str = "qxl-vga";
+const QXL_PACKAGE: &str = "qemu-system-modules-spice";
+
+/// Makes sure QEMU has its QXL card (`-device help` lists it), installing
+/// `qemu-system-modules-spice` as [`ensure_qemu`] installs QEMU (from the
+/// same suite as QEMU, where that is backports).
+pub fn ensure_qemu_qxl() -> Result<()> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    once_per_process(&DONE, || {
+        ensure_qemu()?;
+        let listed = || {
+            let name = format!("name \"{QXL_DEVICE}\"");
+            output_of(Command::new(QEMU).args(["-device", "help"])).is_ok_and(|help| help.contains(&name))
+        };
+        ensure_debian_packages("QEMU's QXL card (its SPICE module)", &[QXL_PACKAGE], listed)
+    })
+}
+
 /// Makes sure QEMU can open a window (its GTK display module is there, as
 /// `-display help` lists it), installing `qemu-system-gui` as
 /// [`ensure_qemu`] installs QEMU.
@@ -335,8 +356,12 @@ pub fn ovmf_microsoft_vars() -> PathBuf {
 }
 
 /// The release of virt-firmware (PyPI) whose `virt-fw-vars` writes the
-/// Secure Boot tests' MOK lists into OVMF variable stores.
-pub const VIRT_FIRMWARE_VERSION: &str = "26.10";
+/// Secure Boot tests' MOK lists into OVMF variable stores: the one Debian
+/// 13 packages, which needs only `cryptography`, `pefile` and
+/// `setuptools`; later releases also need `crypt_r` on Python 3.13 (its
+/// cloud-init helper hashes passwords), a C extension that does not build
+/// there without Python's headers.
+pub const VIRT_FIRMWARE_VERSION: &str = "24.11";
 
 /// Makes sure `virt-fw-vars` is there and returns its path: virt-firmware
 /// [`VIRT_FIRMWARE_VERSION`] installed from PyPI with pip into a Python
@@ -400,7 +425,7 @@ mod tests {
     fn virt_firmware_is_installed_at_its_pinned_version_into_the_venv() {
         assert_eq!(
             command_line(&virt_firmware_install_command(Path::new("/t/virt-firmware"))),
-            "/t/virt-firmware/bin/pip install --quiet virt-firmware==26.10"
+            "/t/virt-firmware/bin/pip install --quiet virt-firmware==24.11"
         );
     }
 

@@ -4,9 +4,13 @@
 //! build folder moved out of the folders bootloader's build script watches
 //! (and the folders it watches existed), every image build compiled
 //! bootloader and boot again, rebuilding the stages (about 30 s on a
-//! quiet machine, docs/boot.md).
+//! quiet machine, docs/boot.md). And what the build compiles the loader
+//! from is checked against its sources every time.
+
+use std::path::Path;
 
 use anyhow::{ensure, Context, Result};
+use boot_image::patched_copy::{check_copy, PatchedBootloader, COPY_BUILD_FOLDER};
 use boot_image::process::command_line;
 use boot_image::stage_builds;
 
@@ -32,5 +36,51 @@ fn a_second_image_build_compiles_nothing() -> Result<()> {
         ensure!(compiled.is_empty(), "the second build compiled again:\n{}", compiled.join("\n"));
         ensure!(stderr.contains("Finished"), "cargo did not say the build finished: {stderr}");
     }
+    Ok(())
+}
+
+/// Copies the folder `from` to `to`, without its top-level `skip`.
+fn copy_tree(from: &Path, to: &Path, skip: &str) -> Result<()> {
+    std::fs::create_dir_all(to).with_context(|| format!("failed to create {}", to.display()))?;
+    for entry in std::fs::read_dir(from).with_context(|| format!("failed to list {}", from.display()))? {
+        let entry = entry?;
+        if entry.file_name() == skip {
+            continue;
+        }
+        let target = to.join(entry.file_name());
+        if entry.file_type()?.is_dir() {
+            copy_tree(&entry.path(), &target, "")?;
+        } else {
+            std::fs::copy(entry.path(), &target).with_context(|| format!("failed to copy {}", target.display()))?;
+        }
+    }
+    Ok(())
+}
+
+/// The patched bootloader as the build made it passes its check; with the
+/// loader's call of `check_kernel` deleted by hand (the edit that once let
+/// a signed loader boot any kernel), or a build script added, it is
+/// refused, naming the file; the build makes it again only when the edits
+/// themselves change, so a hand edit can never reach a signed loader.
+#[test]
+fn a_hand_edited_patched_bootloader_is_refused_naming_the_file() -> Result<()> {
+    stage_builds()?;
+    let made = PatchedBootloader::in_target_dir().dir;
+    let dir = tempfile::tempdir()?;
+    let copy = dir.path().join("bootloader");
+    copy_tree(&made, &copy, COPY_BUILD_FOLDER)?;
+    check_copy(&copy)?;
+    let main = copy.join("uefi/src/main.rs");
+    let text = std::fs::read_to_string(&main)?;
+    let call = "    polylab_verify::check_kernel(kernel_slice);\n";
+    ensure!(text.contains(call), "the loader never calls check_kernel: {}", main.display());
+    std::fs::write(&main, text.replace(call, ""))?;
+    let error = format!("{:#}", check_copy(&copy).err().context("a copy without check_kernel passed")?);
+    ensure!(error.contains("(changed uefi/src/main.rs)"), "{error}");
+    std::fs::write(&main, text)?;
+    std::fs::write(copy.join("uefi/build.rs"), "fn main() {}\n")?;
+    let error = format!("{:#}", check_copy(&copy).err().context("a copy with a build script added passed")?);
+    ensure!(error.contains("(added uefi/build.rs)"), "{error}");
+    eprintln!("harness: {error}");
     Ok(())
 }

@@ -16,19 +16,23 @@ mod soak;
 mod test;
 
 use anyhow::Result;
-use boot_image::{build_image, build_image_signed_by, own_signing_key};
+use boot_image::secure_boot::Enrollment;
+use boot_image::{build_image_with, debian_packages, image_path, own_signing_key, users_signing_key};
 use clap::Parser;
 
-use crate::opt::{Action, Cli};
+use crate::opt::{Action, Cli, EnrollOpt};
 
 fn main() -> Result<()> {
     match Cli::parse().action {
         Action::Run(opt) => run::run(&opt),
         Action::Image(opt) => {
-            let image = match (&opt.key, &opt.cert) {
-                (Some(key), Some(cert)) => build_image_signed_by(&own_signing_key(key, cert)?)?,
-                _ => build_image()?,
+            let enrollment = match (opt.enroll, &opt.key, &opt.cert) {
+                (EnrollOpt::Key, Some(key), Some(cert)) => Enrollment::Key(own_signing_key(key, cert)?),
+                (EnrollOpt::Key, _, _) => Enrollment::Key(users_signing_key()?),
+                (EnrollOpt::Hash, None, None) => Enrollment::Hash,
+                (EnrollOpt::Hash, _, _) => anyhow::bail!("--key and --cert sign the loader: add --enroll key"),
             };
+            let image = build_image_with(&enrollment, &debian_packages(), &image_path())?;
             // The path is the last line, for scripts: `dd if="$(cargo xtask image | tail -1)" ...`.
             println!("{}", image.display());
             Ok(())

@@ -163,13 +163,27 @@ pub struct RecordOpt {
 
 #[derive(Args, Debug)]
 pub struct ImageOpt {
-    /// Sign with this private key (PEM) instead of the one made for you
-    /// in ~/.config/polylab/secure-boot (or set POLYLAB_SECURE_BOOT_KEY).
+    /// How a PC with Secure Boot on comes to trust the loader: `hash`
+    /// enrolls this build's loader by its SHA-256 (no key at all; each
+    /// build is enrolled anew), `key` signs it with your key (made for you
+    /// in ~/.config/polylab/secure-boot, encrypted under a passphrase;
+    /// enrolled once). docs/boot.md weighs the two.
+    #[arg(long, value_enum, default_value_t = EnrollOpt::Hash)]
+    pub enroll: EnrollOpt,
+    /// With `--enroll key`: sign with this private key (PEM, encrypted)
+    /// instead of the one made for you (or set POLYLAB_SECURE_BOOT_KEY).
     #[arg(long, requires = "cert")]
     pub key: Option<PathBuf>,
     /// The key's certificate, PEM or DER (or set POLYLAB_SECURE_BOOT_CERT).
     #[arg(long, requires = "key")]
     pub cert: Option<PathBuf>,
+}
+
+/// `cargo xtask image --enroll`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum EnrollOpt {
+    Hash,
+    Key,
 }
 
 #[derive(Args, Debug)]

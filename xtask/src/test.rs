@@ -8,7 +8,7 @@ use boot_image::process::run_streaming;
 use boot_image::toolchain::ensure_toolchain;
 use boot_image::{build_image, IMAGE_ENV};
 use harness::prerequisites::{
-    ensure_bochs, ensure_cairo, ensure_chromium, ensure_ovmf, ensure_peer_libraries, ensure_qemu,
+    ensure_bochs, ensure_cairo, ensure_chromium, ensure_ovmf, ensure_peer_libraries, ensure_qemu, ensure_qemu_qxl,
     ensure_secure_boot_ovmf, ensure_virt_fw_vars, ensure_wasm_target,
 };
 
@@ -21,6 +21,9 @@ pub fn test(opt: &TestOpt) -> Result<()> {
     // own, when they start QEMU, Bochs or a browser (`prerequisites`).
     if is_whole_run(&opt.cargo_args) {
         ensure_qemu()?;
+        // The adapter matrix runs QEMU's QXL card, a module of its own in
+        // Debian's QEMU 8 and later.
+        ensure_qemu_qxl()?;
         // The adapter matrix boots OVMF too, and one test boots Bochs.
         ensure_ovmf()?;
         // The Secure Boot tests boot OVMF's Secure Boot build and write MOK

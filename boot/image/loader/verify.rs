@@ -12,6 +12,16 @@
 //! into [`DIGESTS`] before it signs the loader (the signature covers them),
 //! and the loader refuses, on the screen and on COM1, any other file.
 //!
+//! It loads nothing else: a `ramdisk` on the volume (which bootloader's
+//! loader would read and map for the kernel unchecked) is refused, and so
+//! is an empty kernel, ramdisk or `boot.json` (whose zero-byte allocation
+//! would otherwise stop the loader in a panic that names nothing).
+//!
+//! The image build reads the built loader before it signs it and refuses
+//! one that lacks the words of any refusal ([`NOT_THE_KERNEL`] and the
+//! others): each is in the loader only if the code that says it can run,
+//! i.e. its check is called.
+//!
 //! The loader also carries the `.sbat` section shim 16 requires of every
 //! image it starts (see [`SBAT`]).
 
@@ -80,36 +90,66 @@ fn expected() -> ([u8; 32], [u8; 32]) {
     (kernel, config)
 }
 
+/// Words of each refusal that no other code in the loader says, one per
+/// check (consts, not an array, so that each is in the built loader only
+/// with the function that uses it); boot/image/src/secure_boot/loader.rs
+/// requires each of them in the built loader.
+const NOT_THE_KERNEL: &str = " is not the kernel this loader was signed for";
+const NOT_THE_CONFIG: &str = " is not the boot.json this loader was signed for";
+const EMPTY_FILE: &str = " is an empty file, which this loader never boots";
+const RAMDISK_FOUND: &str = "a ramdisk is on the volume, and this loader loads none";
+
 /// Returns if `kernel` is the kernel this loader was signed for; refuses
 /// otherwise.
 pub fn check_kernel(kernel: &[u8]) {
-    check("kernel-x86_64", kernel, &expected().0);
+    let (found, expected) = (sha256(kernel), expected().0);
+    if found != expected {
+        refuse(format_args!(
+            "kernel-x86_64{}: its SHA-256 is {}, the loader expects {}. {CHANGED}",
+            NOT_THE_KERNEL,
+            Hex(&found),
+            Hex(&expected)
+        ));
+    }
 }
 
 /// Returns if `config` is the `boot.json` this loader was signed for;
 /// refuses otherwise, and when there is none.
 pub fn check_config(config: Option<&[u8]>) {
     let expected = expected().1;
-    match config {
-        Some(config) => check("boot.json", config, &expected),
-        None => refuse(format_args!(
-            "boot.json is missing; this loader was signed for one with SHA-256 {}.",
-            Hex(&expected)
-        )),
-    }
-}
-
-fn check(name: &str, bytes: &[u8], expected: &[u8; 32]) {
-    let found = sha256(bytes);
-    if found != *expected {
+    let Some(config) = config else {
+        refuse(format_args!("boot.json is missing; this loader was signed for one with SHA-256 {}.", Hex(&expected)));
+    };
+    let found = sha256(config);
+    if found != expected {
         refuse(format_args!(
-            "{name} is not the file this loader was signed for: its SHA-256 is {}, the loader expects {}. \
-             The stick was changed after `cargo xtask image` signed it; write the image again.",
+            "boot.json{}: its SHA-256 is {}, the loader expects {}. {CHANGED}",
+            NOT_THE_CONFIG,
             Hex(&found),
-            Hex(expected)
+            Hex(&expected)
         ));
     }
 }
+
+/// Returns if the file `name` the loader is about to read has bytes;
+/// refuses an empty one (bootloader's loader would ask the firmware for
+/// a zero-page allocation and panic).
+pub fn check_not_empty(name: &dyn fmt::Display, size: usize) {
+    if size == 0 {
+        refuse(format_args!("{name}{} (0 bytes). {CHANGED}", EMPTY_FILE));
+    }
+}
+
+/// Returns if there was no `ramdisk` on the volume; refuses one: nothing
+/// checks a ramdisk, and bootloader's loader would map it for the kernel.
+pub fn check_no_ramdisk(found: bool) {
+    if found {
+        refuse(format_args!("{}: only kernel-x86_64 and boot.json are checked. {CHANGED}", RAMDISK_FOUND));
+    }
+}
+
+/// What every refusal of a changed stick ends with.
+const CHANGED: &str = "The stick was changed after `cargo xtask image` made it; write the image again.";
 
 /// Says why on the screen (the firmware's console, which OVMF also copies
 /// to its serial port) and on COM1, then stops the machine.

@@ -80,6 +80,10 @@ impl NightlyBuild<'_> {
             // calls: the workspace's `debug = 1` makes the kernel 16 times
             // larger and doubles the boot time under TCG. Symbols stay.
             command.args(["--config", "profile.release.strip=\"debuginfo\""]);
+            // The kernel's panic locations name its sources: cargo's
+            // trim-paths (a nightly feature) writes the toolchain's, the
+            // registry's and ours without the builder's home folder.
+            command.args(["-Ztrim-paths", "--config", "profile.release.trim-paths=\"all\""]);
         }
         command.arg("--target-dir").arg(workspace::nightly_target_dir());
         command
@@ -109,7 +113,8 @@ mod tests {
             command_line(&command),
             format!(
                 "cargo +nightly-2026-10-01 build --package kernel --release --target x86_64-unknown-none \
-                 --config 'profile.release.strip=\"debuginfo\"' --target-dir {}",
+                 --config 'profile.release.strip=\"debuginfo\"' -Ztrim-paths \
+                 --config 'profile.release.trim-paths=\"all\"' --target-dir {}",
                 nightly.display()
             )
         );

@@ -14,13 +14,16 @@
 //! # }
 //! ```
 
+pub mod apt;
 pub mod bootloader;
 pub mod cargo;
 pub mod once;
+pub mod patched_copy;
 pub mod process;
 pub mod secure_boot;
 pub mod sources;
 pub mod toolchain;
+pub mod tree;
 pub mod workspace;
 
 use std::path::{Path, PathBuf};
@@ -29,13 +32,15 @@ use std::sync::OnceLock;
 
 use anyhow::{ensure, Context, Result};
 
-use crate::bootloader::PatchedBootloader;
 use crate::cargo::NightlyBuild;
 use crate::once::once_per_process;
+use crate::patched_copy::PatchedBootloader;
 use crate::process::run_streaming;
 use crate::secure_boot::debian::{self, Unpacked};
 use crate::secure_boot::key::{self, SigningKey};
-use crate::secure_boot::{loader, CERTIFICATE_PATH, LOADER_PATH, MOK_MANAGER_PATH, SHIM_PATH};
+use crate::secure_boot::{
+    loader, shim, Enrollment, CERTIFICATE_PATH, HASH_ENROLL_PATH, LOADER_PATH, MOK_MANAGER_PATH, SHIM_PATH,
+};
 use crate::toolchain::ensure_toolchain;
 
 /// Names a prebuilt image to use instead of building one (`cargo xtask
@@ -45,8 +50,8 @@ use crate::toolchain::ensure_toolchain;
 pub const IMAGE_ENV: &str = "POLYLAB_IMAGE";
 
 /// The raw image, built once per process (or taken from [`IMAGE_ENV`]),
-/// its loader signed with the user's key ([`SigningKey::users`]).
-/// Installs the pinned nightly first when it is missing.
+/// its loader to be enrolled by its hash ([`Enrollment::Hash`]). Installs
+/// the pinned nightly first when it is missing.
 pub fn build_image() -> Result<PathBuf> {
     static IMAGE: OnceLock<Result<PathBuf, String>> = OnceLock::new();
     once_per_process(&IMAGE, || {
@@ -56,38 +61,45 @@ pub fn build_image() -> Result<PathBuf> {
             eprintln!("image: using {} from {IMAGE_ENV}", image.display());
             return Ok(image);
         }
-        build_image_signed_by(&SigningKey::users(&own_key_dir())?)
+        build_image_with(&Enrollment::Hash, &debian_packages(), &image_path())
     })
 }
 
-/// The raw image with its loader signed by `key`.
-pub fn build_image_signed_by(key: &SigningKey) -> Result<PathBuf> {
+/// Builds the raw image at `image`: the loader enrolled as `enrollment`
+/// says, shim and MokManager from `debian`.
+pub fn build_image_with(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Result<PathBuf> {
+    key::warn_of_old_key();
     for mut build in stage_builds()? {
         run_streaming(&mut build).context("failed to build the kernel or the image writer")?;
     }
     PatchedBootloader::in_target_dir().ensure_used()?;
-    let image = image_path();
-    write_image(key, &image)?;
+    write_image(enrollment, debian, image)?;
     eprintln!("image: built {}", image.display());
-    Ok(image)
+    Ok(image.to_path_buf())
 }
 
 /// The builds of the kernel and of the image writer (against the patched
-/// bootloader, made first if need be), in order. Both are no-ops when
-/// nothing changed: tests/tests/image_build.rs runs them twice.
+/// bootloader, made first if need be, else checked), in order. Both are
+/// no-ops when nothing changed: tests/tests/image_build.rs runs them twice.
 pub fn stage_builds() -> Result<Vec<Command>> {
     ensure_toolchain()?;
-    let patched = bootloader::prepare()?;
+    let patched = patched_copy::prepare()?;
     eprintln!("image: building the kernel and the image writer (the first build takes minutes)");
     let mut writer = NightlyBuild::IMAGE_WRITER.command();
     patched.configure(&mut writer)?;
     Ok(vec![NightlyBuild::KERNEL.command(), writer])
 }
 
-/// A key of one's own (`cargo xtask image --key --cert`): `key` (PEM)
-/// and `cert` (PEM or DER).
+/// The key `--enroll key` signs with ([`SigningKey::users`]).
+pub fn users_signing_key() -> Result<SigningKey> {
+    SigningKey::users(&own_key_dir())
+}
+
+/// A key of one's own (`cargo xtask image --key --cert`): `key` (PEM,
+/// encrypted) and `cert` (PEM or DER); the passphrase from
+/// [`key::PASSPHRASE_ENV`] if set, else asked for.
 pub fn own_signing_key(key: &Path, cert: &Path) -> Result<SigningKey> {
-    SigningKey::own(key, cert, &own_key_dir())
+    SigningKey::own(key, cert, std::env::var(key::PASSPHRASE_ENV).ok(), &own_key_dir())
 }
 
 /// Where a certificate of one's own given in DER is converted to PEM.
@@ -105,52 +117,115 @@ pub fn debian_packages() -> Unpacked {
     Unpacked::in_dir(secure_boot_dir().join("debian"))
 }
 
-/// Writes `image`: the loader out of the writer, the digests in, signed
-/// with `key`, then the image with shim, MokManager, the signed loader and
-/// the certificate on its FAT.
-fn write_image(key: &SigningKey, image: &Path) -> Result<()> {
-    let debian = debian_packages();
-    let (shim, mok_manager, sbsign) =
-        (debian.get(debian::SHIM)?, debian.get(debian::MOK_MANAGER)?, debian.get(debian::SBSIGN)?);
-    let work = secure_boot_dir().join("build");
-    std::fs::create_dir_all(&work).with_context(|| format!("failed to create {}", work.display()))?;
+/// Writes `image`: the loader out of the writer, checked, the digests in,
+/// then signed with the user's key or left for its hash to be enrolled;
+/// then the image with shim, MokManager, the loader and the certificate
+/// (or a copy of the loader to enroll) on its FAT. On a machine without
+/// apt (and nothing unpacked before), Debian's shim and MokManager cannot
+/// be had: the loader goes on the FAT alone, where a UEFI firmware starts
+/// it without shim, and the image boots everywhere but under Secure Boot.
+fn write_image(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Result<()> {
+    std::fs::create_dir_all(secure_boot_dir())
+        .with_context(|| format!("failed to create {}", secure_boot_dir().display()))?;
+    let work = tempfile::Builder::new()
+        .prefix("build-")
+        .tempdir_in(secure_boot_dir())
+        .with_context(|| format!("failed to create a folder in {}", secure_boot_dir().display()))?;
+    let work = work.path();
     let writer = NightlyBuild::IMAGE_WRITER.artifact();
-    run_streaming(Command::new(&writer).arg("loader").arg(&work)).context("failed to write the UEFI loader")?;
+    run_streaming(Command::new(&writer).arg("loader").arg(work)).context("failed to write the UEFI loader")?;
     let kernel = NightlyBuild::KERNEL.artifact();
     let boot_json = work.join("boot.json");
-    let read = |path: &Path| std::fs::read(path).with_context(|| format!("failed to read {}", path.display()));
     let mut loader_bytes = read(&work.join("loader.efi"))?;
     loader::check_sbat(&loader_bytes)?;
+    loader::check_refusals(&loader_bytes)?;
     loader::write_digests(&mut loader_bytes, &read(&kernel)?, &read(&boot_json)?)?;
-    let (unsigned, signed) = (work.join("grubx64-unsigned.efi"), work.join("grubx64.efi"));
+    let unsigned = work.join("grubx64-unsigned.efi");
     std::fs::write(&unsigned, &loader_bytes).with_context(|| format!("failed to write {}", unsigned.display()))?;
-    loader::sign(&sbsign, key, &unsigned, &signed)?;
-    let der = key.certificate_der()?;
-    let certificate = work.join(CERTIFICATE_PATH);
-    std::fs::write(&certificate, &der).with_context(|| format!("failed to write {}", certificate.display()))?;
+    let (files, said) = if debian.obtainable() {
+        let (files, said) = secure_boot_files(enrollment, debian, work, &unsigned)?;
+        (files, format!("image: UEFI Secure Boot: {said}"))
+    } else {
+        let said = "image: no Secure Boot: this machine has no apt-get to take Debian's shim and MokManager from, \
+                    so the loader is on the image alone: it boots under a BIOS and under UEFI with Secure Boot off, \
+                    not on (build the image on a Debian or Ubuntu machine for that)";
+        (vec![(SHIM_PATH, unsigned)], said.to_string())
+    };
     let mut write = Command::new(&writer);
     write.arg("image").arg(&kernel).arg(&boot_json).arg(image);
-    for (fat_path, file) in
-        [(SHIM_PATH, &shim), (LOADER_PATH, &signed), (MOK_MANAGER_PATH, &mok_manager), (CERTIFICATE_PATH, &certificate)]
-    {
+    for (fat_path, file) in &files {
         let mut arg = std::ffi::OsString::from(format!("{fat_path}="));
         arg.push(file);
         write.arg(arg);
     }
     run_streaming(&mut write).context("failed to write the disk image")?;
-    eprintln!(
-        "image: UEFI Secure Boot: shim from Debian's shim-signed {}, MokManager from shim-helpers-amd64-signed {}; \
-         the loader signed with your key, certificate {} (SHA-256 fingerprint {}), on the image as {CERTIFICATE_PATH}: \
-         enroll it once with MokManager (docs/boot.md)",
-        debian.version(debian::SHIM.package)?,
-        debian.version(debian::MOK_MANAGER.package)?,
-        key.cert.display(),
-        key::fingerprint(&der)
-    );
+    eprintln!("{said}");
     Ok(())
 }
 
+/// The bytes of `path`.
+fn read(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).with_context(|| format!("failed to read {}", path.display()))
+}
+
+/// The files that make the image boot under Secure Boot, by their paths
+/// on the FAT: Debian's shim and MokManager, and the `unsigned` loader
+/// with its copy to enroll by hash, or signed with the user's key (in
+/// `work`) with the certificate to enroll; and what the build says of
+/// them.
+fn secure_boot_files(
+    enrollment: &Enrollment,
+    debian: &Unpacked,
+    work: &Path,
+    unsigned: &Path,
+) -> Result<(Vec<(&'static str, PathBuf)>, String)> {
+    let (shim, mok_manager) = (debian.get(debian::SHIM)?, debian.get(debian::MOK_MANAGER)?);
+    let shim_bytes = read(&shim)?;
+    let shim_version = shim::version(&shim_bytes)?;
+    let mut files = vec![(SHIM_PATH, shim), (MOK_MANAGER_PATH, mok_manager)];
+    let source = format!(
+        "shim {}.{} from Debian's shim-signed {}, MokManager from shim-helpers-amd64-signed {}",
+        shim_version.0,
+        shim_version.1,
+        debian.version(debian::SHIM.package)?,
+        debian.version(debian::MOK_MANAGER.package)?
+    );
+    let enroll = match enrollment {
+        Enrollment::Hash => {
+            let hash = loader::authenticode_sha256(&read(unsigned)?)?;
+            files.extend([(LOADER_PATH, unsigned.to_path_buf()), (HASH_ENROLL_PATH, unsigned.to_path_buf())]);
+            format!(
+                "the loader is enrolled by its SHA-256 {}: on a PC with Secure Boot on, choose MokManager's \
+                 \"Enroll hash from disk\", then {HASH_ENROLL_PATH}, and check that the hash it shows is this \
+                 one; each build is enrolled anew (docs/boot.md)",
+                hex(&hash)
+            )
+        }
+        Enrollment::Key(key) => {
+            shim::ensure_boots_key_signed_loader(&shim_bytes, &source)?;
+            let signed = work.join("grubx64.efi");
+            loader::sign(&debian.get(debian::SBSIGN)?, key, unsigned, &signed)?;
+            let der = key.certificate_der()?;
+            let certificate = work.join(CERTIFICATE_PATH);
+            std::fs::write(&certificate, &der).with_context(|| format!("failed to write {}", certificate.display()))?;
+            files.extend([(LOADER_PATH, signed), (CERTIFICATE_PATH, certificate)]);
+            format!(
+                "the loader is signed with your key, certificate {} (SHA-256 fingerprint {}), on the image as \
+                 {CERTIFICATE_PATH}: enroll it once with MokManager's \"Enroll key from disk\" (docs/boot.md)",
+                key.cert.display(),
+                key::fingerprint(&der)
+            )
+        }
+    };
+    Ok((files, format!("{source}; {enroll}")))
+}
+
+/// Bytes as lowercase hex.
+pub fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|byte| format!("{byte:02x}")).collect()
+}
+
 /// Where [`build_image`] writes the image.
-fn image_path() -> PathBuf {
+pub fn image_path() -> PathBuf {
     workspace::nightly_target_dir().join("polylab.img")
 }

@@ -20,8 +20,8 @@ use protocol::{Firmware, PciId, Ready};
 
 use crate::picture::Image;
 use crate::prerequisites::{
-    ensure_ovmf, ensure_qemu, ensure_secure_boot_ovmf, ovmf_code, ovmf_microsoft_vars, ovmf_secure_boot_code,
-    ovmf_vars, QEMU,
+    ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_secure_boot_ovmf, ovmf_code, ovmf_microsoft_vars,
+    ovmf_secure_boot_code, ovmf_vars, QEMU,
 };
 use crate::process::command_line;
 use crate::supervisor::Supervised;
@@ -483,6 +483,9 @@ impl Qemu {
     /// firmware's variable store (the Secure Boot tests' MOK lists).
     pub fn spawn_with_variables(image: &Path, options: QemuOptions, variables: &Path) -> Result<Self> {
         ensure_qemu()?;
+        if options.adapter == Adapter::QxlVga {
+            ensure_qemu_qxl()?;
+        }
         let options = match options.serial {
             SerialLine::Telnet { port: 0 } => {
                 QemuOptions { serial: SerialLine::Telnet { port: free_port()? }, ..options }

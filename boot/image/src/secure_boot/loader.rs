@@ -1,18 +1,22 @@
-//! The signed UEFI loader: the patched loader (boot/image/loader/verify.rs)
-//! with the kernel's and `boot.json`'s SHA-256 written into its
-//! placeholder, then signed with the user's key by `sbsign`, so the
-//! signature covers the digests.
+//! The UEFI loader as it goes onto the stick: the patched loader
+//! (boot/image/loader/verify.rs) checked for its refusals, the kernel's
+//! and `boot.json`'s SHA-256 written into its placeholder, then either
+//! left as it is, for its own SHA-256 (the Authenticode digest shim and
+//! MokManager compute) to be enrolled, or signed with the user's key by
+//! `sbsign`; the digest and the signature both cover the kernel's digests.
 
+use std::io::Write;
 use std::path::Path;
-use std::process::Command;
+use std::process::{Command, Stdio};
 
 use anyhow::{ensure, Context, Result};
+use object::pe::{ImageDataDirectory, ImageFileHeader, ImageOptionalHeader64, IMAGE_DIRECTORY_ENTRY_SECURITY};
 use object::read::pe::PeFile64;
-use object::{Object, ObjectSection};
+use object::{LittleEndian as LE, Object, ObjectSection};
 use sha2::{Digest, Sha256};
 
 use super::key::SigningKey;
-use crate::process::output_of;
+use crate::process::command_line;
 
 /// The bytes that start the digest placeholder in the loader (its
 /// `MARKER`); the kernel's SHA-256 follows, then `boot.json`'s.
@@ -35,6 +39,84 @@ pub fn check_sbat(loader: &[u8]) -> Result<()> {
         "the UEFI loader's .sbat section does not hold shim's header and our line: {text:?}"
     );
     Ok(())
+}
+
+/// The words of each of the loader's refusals, as boot/image/loader/verify.rs
+/// says them, by the check that says them: each is in the built loader
+/// only if its check is called (a unit test holds them to verify.rs).
+pub const REFUSALS: [(&str, &str); 4] = [
+    ("check_kernel", " is not the kernel this loader was signed for"),
+    ("check_config", " is not the boot.json this loader was signed for"),
+    ("check_not_empty", " is an empty file, which this loader never boots"),
+    ("check_no_ramdisk", "a ramdisk is on the volume, and this loader loads none"),
+];
+
+/// Fails unless the built `loader` holds the words of every refusal in
+/// [`REFUSALS`]: a loader built without a call to one of its checks (a
+/// hand-edited copy, a stale build) would be signed and boot anything.
+pub fn check_refusals(loader: &[u8]) -> Result<()> {
+    let missing: Vec<&str> = REFUSALS
+        .iter()
+        .filter(|(_, words)| !loader.windows(words.len()).any(|window| window == words.as_bytes()))
+        .map(|(check, _)| *check)
+        .collect();
+    ensure!(
+        missing.is_empty(),
+        "refusing to sign the UEFI loader: it never calls {} (the words it would refuse with are not in it). \
+         It was not built from the patched bootloader's checked copy; remove target/nightly/patched-bootloader \
+         and build again",
+        missing.join(", ")
+    );
+    Ok(())
+}
+
+/// The loader's Authenticode SHA-256, the digest shim looks up in the MOK
+/// list and MokManager's "Enroll hash from disk" enrolls: the image's
+/// bytes without its checksum, its certificate table's directory entry
+/// and the certificate table itself (so signing does not change it), the
+/// headers first, then each section's raw data in file order, then what
+/// follows the last section.
+pub fn authenticode_sha256(image: &[u8]) -> Result<[u8; 32]> {
+    let pe = PeFile64::parse(image).context("the UEFI loader is not a PE32+ image")?;
+    let optional = pe.dos_header().nt_headers_offset() as usize + 4 + size_of::<ImageFileHeader>();
+    let checksum = optional + std::mem::offset_of!(ImageOptionalHeader64, check_sum);
+    let security_entry = optional
+        + size_of::<ImageOptionalHeader64>()
+        + IMAGE_DIRECTORY_ENTRY_SECURITY * size_of::<ImageDataDirectory>();
+    let header = &pe.nt_headers().optional_header;
+    let headers = header.size_of_headers.get(LE) as usize;
+    let (table_start, table_len) = match pe.data_directory(IMAGE_DIRECTORY_ENTRY_SECURITY) {
+        Some(entry) => (entry.virtual_address.get(LE) as usize, entry.size.get(LE) as usize),
+        None => (image.len(), 0),
+    };
+    ensure!(
+        header.number_of_rva_and_sizes.get(LE) as usize > IMAGE_DIRECTORY_ENTRY_SECURITY
+            && security_entry + 8 <= headers
+            && headers <= table_start
+            && table_start.checked_add(table_len) == Some(image.len()),
+        "the UEFI loader's headers or certificate table are not where a PE32+ image has them"
+    );
+    let mut digest = Sha256::new();
+    digest.update(&image[..checksum]);
+    digest.update(&image[checksum + 4..security_entry]);
+    digest.update(&image[security_entry + 8..headers]);
+    let mut sections: Vec<(usize, usize)> = pe
+        .section_table()
+        .iter()
+        .map(|section| (section.pointer_to_raw_data.get(LE) as usize, section.size_of_raw_data.get(LE) as usize))
+        .filter(|&(_, len)| len > 0)
+        .collect();
+    sections.sort_unstable();
+    // What follows the sections starts where as many bytes as were hashed
+    // so far end (the specification's count, not the last section's end).
+    let mut hashed = headers;
+    for (start, len) in sections {
+        let section = start.checked_add(len).filter(|&end| end <= table_start).map(|end| &image[start..end]);
+        digest.update(section.context("a section of the UEFI loader lies outside it")?);
+        hashed += len;
+    }
+    digest.update(image.get(hashed..table_start).unwrap_or_default());
+    Ok(digest.finalize().into())
 }
 
 /// Writes the SHA-256 of `kernel` and of `boot_json` after the marker,
@@ -61,11 +143,31 @@ pub fn write_digests(loader: &mut [u8], kernel: &[u8], boot_json: &[u8]) -> Resu
     Ok(())
 }
 
-/// Signs `unsigned` into `signed` with `key`, by `sbsign`.
+/// Signs `unsigned` into `signed` with `key`, by `sbsign`, which reads
+/// the key decrypted from a pipe: it is never on disk in the clear.
 pub fn sign(sbsign: &Path, key: &SigningKey, unsigned: &Path, signed: &Path) -> Result<()> {
+    key.ensure_current()?;
+    let decrypted = key.decrypted()?;
     let mut command = Command::new(sbsign);
-    command.arg("--key").arg(&key.key).arg("--cert").arg(&key.cert).arg("--output").arg(signed).arg(unsigned);
-    output_of(&mut command).map(drop).context("failed to sign the UEFI loader")
+    command.args(["--key", "/dev/stdin", "--cert"]).arg(&key.cert).arg("--output").arg(signed).arg(unsigned);
+    let line = command_line(&command);
+    let mut child = command
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .with_context(|| format!("failed to start `{line}`"))?;
+    let mut stdin = child.stdin.take().context("sbsign's standard input")?;
+    let written = stdin.write_all(&decrypted);
+    drop(stdin);
+    let output = child.wait_with_output().with_context(|| format!("failed to wait for `{line}`"))?;
+    ensure!(
+        output.status.success() && written.is_ok(),
+        "failed to sign the UEFI loader: `{line}` failed with {}: {}",
+        output.status,
+        String::from_utf8_lossy(&output.stderr).trim()
+    );
+    Ok(())
 }
 
 /// The loader's own SHA-256, tested here against `sha2`.
@@ -98,6 +200,23 @@ mod tests {
             "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad",
             "FIPS 180-2, appendix B.1"
         );
+    }
+
+    #[test]
+    fn every_refusal_required_of_the_built_loader_is_said_by_its_check() {
+        let verify = include_str!("../../loader/verify.rs");
+        for (check, words) in REFUSALS {
+            assert!(verify.contains(&format!("pub fn {check}(")), "verify.rs has no {check}");
+            assert!(verify.contains(&format!(": &str = \"{words}\";")), "verify.rs never says {words:?}");
+        }
+        let mut loader = b"MZ...".to_vec();
+        for (_, words) in REFUSALS {
+            loader.extend_from_slice(words.as_bytes());
+        }
+        check_refusals(&loader).unwrap();
+        let without_kernel_check = String::from_utf8(loader).unwrap().replace(REFUSALS[0].1, "");
+        let error = check_refusals(without_kernel_check.as_bytes()).unwrap_err().to_string();
+        assert!(error.contains("it never calls check_kernel (the words"), "{error}");
     }
 
     #[test]

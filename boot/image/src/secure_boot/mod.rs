@@ -1,17 +1,32 @@
 //! What the image needs to boot under UEFI Secure Boot: shim signed by
-//! Microsoft, MokManager, the user's own key, and the UEFI loader signed
-//! with it, each put on the FAT partition where shim looks.
+//! Microsoft, MokManager, and the UEFI loader, either to be enrolled by
+//! its own SHA-256 or signed with the user's key, each put on the FAT
+//! partition where shim looks.
 //!
 //! The chain (docs/boot.md tells it in full): the firmware trusts
 //! Microsoft's third-party UEFI CA (in its `db`), which signed Debian's
-//! shim; shim trusts the keys in the MOK list, which the user enrolls once
-//! with MokManager (the certificate is on the stick); that key signed our
-//! loader, whose signature covers the SHA-256 of the kernel and of
-//! `boot.json` it refuses to boot anything but.
+//! shim; shim trusts the hashes and keys in the MOK list, which the user
+//! enrolls with MokManager; the loader's hash (or signature) covers the
+//! SHA-256 of the kernel and of `boot.json` it refuses to boot anything
+//! but.
 
 pub mod debian;
 pub mod key;
 pub mod loader;
+pub mod shim;
+
+use key::SigningKey;
+
+/// How the user tells shim to trust the loader.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Enrollment {
+    /// The loader's own SHA-256 goes into the MOK list ("Enroll hash from
+    /// disk"): no key exists, and every build is enrolled anew.
+    Hash,
+    /// The loader is signed with the user's key, whose certificate goes
+    /// into the MOK list once.
+    Key(SigningKey),
+}
 
 /// Where a UEFI firmware starts removable media: shim (FAT names ignore case).
 pub const SHIM_PATH: &str = "efi/boot/bootx64.efi";
@@ -22,5 +37,9 @@ pub const LOADER_PATH: &str = "efi/boot/grubx64.efi";
 /// trusted yet and where the user enrolls the key.
 pub const MOK_MANAGER_PATH: &str = "efi/boot/mmx64.efi";
 /// The user's certificate (DER), at the root, where MokManager's "Enroll
-/// key from disk" shows it first (its name sorts before the others').
+/// key from disk" shows it first (its name sorts before the others'), on
+/// an image signed with a key.
 pub const CERTIFICATE_PATH: &str = "ENROLL-THIS-polylab-key.cer";
+/// A copy of the loader at the root, where MokManager's "Enroll hash from
+/// disk" shows it first, on an image whose loader is enrolled by its hash.
+pub const HASH_ENROLL_PATH: &str = "ENROLL-THIS-polylab-loader.efi";
