@@ -44,9 +44,11 @@ const SOFTWARE_ENABLE: u32 = 1 << 8;
 const IN_SERVICE: u32 = 0x100;
 const COMMAND_LOW: u32 = 0x300;
 const COMMAND_HIGH: u32 = 0x310;
-/// Interrupt command: fixed delivery, edge, to the sender itself (the
-/// "self" destination shorthand, bits 18-19 = 01), the vector in bits 0-7.
-const SELF_FIXED: u32 = 1 << 18;
+/// Interrupt command: fixed delivery, edge, level asserted (bit 14, which
+/// the manual asks for in every mode but INIT de-assert), to the sender
+/// itself (the "self" destination shorthand, bits 18-19 = 01), the vector
+/// in bits 0-7.
+const SELF_FIXED: u32 = (1 << 18) | (1 << 14);
 
 /// How the local APIC's registers are reached.
 #[derive(Clone, Copy)]
