@@ -88,6 +88,6 @@ pub use classify::classify;
 pub use coverage::{CoverageReport, CoverageSink};
 pub use geometry::{FillRule, PixelPoint, Point, Polygon, SUBPIXEL_BITS, SUBPIXEL_ONE};
 pub use method::{Class, Convention, Heap, MethodInfo, Refusal};
-pub use methods::exact::{fill_auto, fill_auto_with, Scratch};
+pub use methods::exact::{fill_auto, fill_auto_with, ExactPath, Scratch};
 pub use methods::{Method, MethodId, UnknownMethod};
 pub use sink::{Framebuffer, Size, SpanSink, SCREEN};
