@@ -25,7 +25,7 @@
 mod exact_support;
 
 use exact_support::{generate, generate_any, Kind, Seeded, TARGET};
-use raster::methods::exact::Exact;
+use raster::methods::Exact;
 use raster::{Framebuffer, Method, MethodId, Point, Polygon, Size, SpanSink, SCREEN};
 
 /// The hash of the whole corpus.

@@ -8,7 +8,7 @@ use exact_support::{
     Seeded, DIRECTIONS, PX, TARGET,
 };
 use proptest::prelude::*;
-use raster::methods::exact::Exact;
+use raster::methods::Exact;
 use raster::{
     classify, fill_auto, Class, CoverageReport, ExactPath, FillRule, Method, MethodId, Point, Polygon, Refusal,
 };

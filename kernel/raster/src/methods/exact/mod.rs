@@ -52,9 +52,9 @@ use monotone::{fill_monotone, fill_triangle};
 
 use crate::classify::{is_monotone, Shape};
 use crate::geometry::{FillRule, Point, Polygon};
-use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
 use crate::methods::interface::{Builtin, MethodId};
-use crate::sink::{Size, SpanSink};
+use crate::target::{Size, SpanSink};
 
 /// The exact method.
 pub struct Exact;
@@ -338,7 +338,7 @@ mod tests {
     use crate::geometry::Point;
     use crate::methods::interface::Method;
     use crate::methods::test_support::fill;
-    use crate::sink::Size;
+    use crate::target::Size;
 
     fn draw(polygon: &Polygon) -> alloc::string::String {
         fill(&Exact, polygon, Size { width: 8, height: 5 }).ascii()

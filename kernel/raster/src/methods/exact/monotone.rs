@@ -20,7 +20,7 @@ use core::cmp::Ordering;
 use core::ops::Range;
 
 use crate::geometry::Point;
-use crate::sink::{Size, SpanSink};
+use crate::target::{Size, SpanSink};
 
 use super::clip::{columns_fit, split_rows, visible_rows};
 use super::edge::{first_sample_at_or_after, Crossing, EdgeStepper, ShortEdge};

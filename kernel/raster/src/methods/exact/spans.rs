@@ -3,7 +3,7 @@
 
 use core::ops::Range;
 
-use crate::sink::SpanSink;
+use crate::target::SpanSink;
 
 use super::clip::visible;
 use super::edge::Crossing;

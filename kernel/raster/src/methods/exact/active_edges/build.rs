@@ -6,7 +6,7 @@
 use core::ops::Range;
 
 use crate::geometry::Polygon;
-use crate::sink::Size;
+use crate::target::Size;
 
 use super::super::clip::{right_of_target, visible_rows};
 use super::super::edge::Crossing;

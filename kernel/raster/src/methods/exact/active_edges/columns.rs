@@ -2,7 +2,7 @@
 //! thousands of edges): their crossings summed per column instead of
 //! sorted, the running sum from the left being each pixel's winding number.
 
-use crate::sink::SpanSink;
+use crate::target::SpanSink;
 
 use super::super::clip::visible_column;
 use super::super::edge::Crossing;

@@ -27,8 +27,8 @@ use core::mem::size_of;
 pub use scratch::Scratch;
 
 use crate::geometry::{FillRule, Polygon};
-use crate::method::Refusal;
-use crate::sink::{Size, SpanSink};
+use crate::methods::info::Refusal;
+use crate::target::{Size, SpanSink};
 
 use super::clip::columns_fit;
 use super::edge::{Crossing, EdgeStepper, ShortEdge};

@@ -8,7 +8,7 @@
 
 use alloc::vec::Vec;
 
-use crate::method::Refusal;
+use crate::methods::info::Refusal;
 
 use super::super::edge::{Crossing, EdgeStepper, ShortEdge};
 use super::tables::{Active, Chain, Crossings, Edge, EdgeRoom, Run, Wide};

@@ -18,7 +18,7 @@
 
 use core::ops::Range;
 
-use crate::sink::SpanSink;
+use crate::target::SpanSink;
 
 use super::super::clip::visible;
 use super::super::edge::Crossing;
