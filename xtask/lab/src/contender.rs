@@ -8,7 +8,7 @@ use raster::{fill_auto, fill_auto_with, ExactPath, Framebuffer, Method, Polygon,
 
 use crate::convention::Own;
 use crate::corpus::Family;
-use crate::peers::Peer;
+use crate::peers::{self, Peer};
 
 /// A method of `raster`, a peer library, or, only in "what modelling
 /// costs" (not one of [`Contender::all`]), one of `exact`'s paths asked
@@ -17,7 +17,7 @@ use crate::peers::Peer;
 #[derive(Clone, Copy)]
 pub enum Contender {
     Method(&'static dyn Method),
-    Peer(Peer),
+    Peer(&'static dyn Peer),
     Path(usize),
     Auto,
 }
@@ -26,7 +26,7 @@ impl Contender {
     /// Every method of `raster::methods::ALL`, then the peers.
     pub fn all() -> Vec<Contender> {
         let methods = raster::methods::ALL.iter().map(|&m| Contender::Method(m));
-        methods.chain(Peer::ALL.into_iter().map(Contender::Peer)).collect()
+        methods.chain(peers::ALL.iter().map(|&p| Contender::Peer(p))).collect()
     }
 
     pub fn name(&self) -> &'static str {

@@ -18,18 +18,71 @@
 //! buffer for the whole library, so calls are made one at a time.
 
 use std::ffi::{c_int, c_uchar};
+use std::hint::black_box;
 use std::ptr::NonNull;
 use std::slice;
 use std::sync::{Mutex, MutexGuard, OnceLock};
 
-use raster::{SpanSink, SCREEN};
+use raster::{Polygon, SpanSink, SCREEN};
 
-use super::emit_row;
-use super::integer::Reach;
+use super::integer::{inputs, takes_any, whole_pixel_contour, Contour, Reach};
+use super::rows::emit_row;
+use super::Peer;
+use crate::convention::Own;
+use crate::corpus::Family;
 
 /// What `polygon()` takes: within 2,047 px its fixed point cannot overflow.
 pub const REACH: Reach =
     Reach { pixels: 2047, beyond: "a vertex past 2,047 px, where its 14.18 fixed point overflows int" };
+
+/// Allegro's `polygon()` into an 8-bit memory bitmap.
+pub struct Allegro;
+
+impl Peer for Allegro {
+    fn name(&self) -> &'static str {
+        "allegro"
+    }
+
+    fn source(&self) -> &'static str {
+        "system Allegro 4.4 (liballeg): polygon() into create_bitmap_ex(8, 320, 200)"
+    }
+
+    fn summary(&self) -> &'static str {
+        "whole-pixel vertices (within 2,047 px); sorted active edges in 14.18 fixed point; whole-pixel points, \
+         spans inclusive, each edge's pixels drawn too; even-odd, one contour"
+    }
+
+    /// The closed polygon at whole-pixel points, its outline drawn too.
+    fn own(&self) -> Own {
+        Own::Closed { outline: true }
+    }
+
+    fn takes(&self, family: &Family) -> bool {
+        takes_any(family, contour)
+    }
+
+    fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str> {
+        let points = points(&contour(polygon)?);
+        let mut canvas = AllegroCanvas::new()?;
+        canvas.fill([points.as_slice()]);
+        canvas.emit_runs(polygon.color, sink);
+        Ok(())
+    }
+
+    fn pass<'a>(&self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a> {
+        let polygons = inputs(polygons, contour, points);
+        let mut canvas = AllegroCanvas::new().expect("Allegro makes a 320x200 bitmap");
+        Box::new(move || {
+            canvas.fill(polygons.iter().map(Vec::as_slice));
+            black_box(&mut canvas);
+        })
+    }
+}
+
+/// The polygon as Allegro is given it, or why it is declined.
+fn contour(polygon: &Polygon) -> Contour {
+    whole_pixel_contour(polygon, REACH)
+}
 
 /// The colour index it fills with (0 is the cleared bitmap).
 const INK: c_int = 255;
@@ -66,7 +119,7 @@ fn install() -> Result<(), &'static str> {
 }
 
 /// A 320x200 8-bit Allegro memory bitmap, cleared to 0.
-pub struct AllegroCanvas {
+struct AllegroCanvas {
     bitmap: NonNull<Bitmap>,
 }
 
@@ -118,6 +171,6 @@ impl Drop for AllegroCanvas {
 }
 
 /// A polygon as `polygon()` takes it: `x0, y0, x1, y1, ...`.
-pub fn points(contour: &[(i32, i32)]) -> Vec<c_int> {
+fn points(contour: &[(i32, i32)]) -> Vec<c_int> {
     contour.iter().flat_map(|&(x, y)| [x, y]).collect()
 }

@@ -17,22 +17,75 @@
 //! different threads do not meet.
 
 use std::ffi::{c_int, c_uchar};
+use std::hint::black_box;
 use std::ptr::NonNull;
 use std::slice;
 
-use raster::{SpanSink, SCREEN};
+use raster::{Polygon, SpanSink, SCREEN};
 
-use super::emit_row;
-use super::integer::Reach;
+use super::integer::{inputs, takes_any, whole_pixel_contour, Contour, Reach};
+use super::rows::emit_row;
+use super::Peer;
+use crate::convention::Own;
+use crate::corpus::Family;
 
 /// What `gdImageFilledPolygon` takes: within 23,170 px its products fit.
 pub const REACH: Reach =
     Reach { pixels: 23_170, beyond: "a vertex past 23,170 px, where its products of coordinates overflow int" };
 
+/// GD's `gdImageFilledPolygon` into a palette image.
+pub struct Gd;
+
+impl Peer for Gd {
+    fn name(&self) -> &'static str {
+        "gd"
+    }
+
+    fn source(&self) -> &'static str {
+        "system GD (libgd): gdImageFilledPolygon into gdImageCreate(320, 200), a palette image"
+    }
+
+    fn summary(&self) -> &'static str {
+        "whole-pixel vertices (within 23,170 px); each row's crossings in float, rounded, sorted; whole-pixel \
+         points, spans inclusive; even-odd, one contour"
+    }
+
+    /// The closed polygon at whole-pixel points, no outline.
+    fn own(&self) -> Own {
+        Own::Closed { outline: false }
+    }
+
+    fn takes(&self, family: &Family) -> bool {
+        takes_any(family, contour)
+    }
+
+    fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str> {
+        let points = points(&contour(polygon)?);
+        let mut canvas = GdCanvas::new()?;
+        canvas.fill([points.as_slice()]);
+        canvas.emit_runs(polygon.color, sink);
+        Ok(())
+    }
+
+    fn pass<'a>(&self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a> {
+        let polygons = inputs(polygons, contour, points);
+        let mut canvas = GdCanvas::new().expect("GD makes a 320x200 image");
+        Box::new(move || {
+            canvas.fill(polygons.iter().map(Vec::as_slice));
+            black_box(&mut canvas);
+        })
+    }
+}
+
+/// The polygon as GD is given it, or why it is declined.
+fn contour(polygon: &Polygon) -> Contour {
+    whole_pixel_contour(polygon, REACH)
+}
+
 /// GD's point: `typedef struct { int x, y; } gdPoint;`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct GdPoint {
+struct GdPoint {
     x: c_int,
     y: c_int,
 }
@@ -53,7 +106,7 @@ extern "C" {
 }
 
 /// A 320x200 GD palette image: black (index 0, the background) and white.
-pub struct GdCanvas {
+struct GdCanvas {
     image: NonNull<Image>,
     white: c_int,
 }
@@ -102,6 +155,6 @@ impl Drop for GdCanvas {
 }
 
 /// A polygon as `gdImageFilledPolygon` takes it.
-pub fn points(contour: &[(i32, i32)]) -> Vec<GdPoint> {
+fn points(contour: &[(i32, i32)]) -> Vec<GdPoint> {
     contour.iter().map(|&(x, y)| GdPoint { x, y }).collect()
 }

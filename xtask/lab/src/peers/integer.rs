@@ -14,6 +14,12 @@
 
 use raster::{classify, Class, FillRule, Polygon};
 
+use crate::corpus::Family;
+
+/// An integer peer's polygon: its one contour in whole pixels, or why the
+/// peer declines it.
+pub type Contour = Result<Vec<(i32, i32)>, &'static str>;
+
 /// How far from the origin a peer's arithmetic holds, in whole pixels on
 /// either axis, and what it declines beyond.
 #[derive(Clone, Copy, Debug)]
@@ -29,7 +35,7 @@ impl Reach {
 }
 
 /// The polygon's one contour in whole pixels, or why the peer declines it.
-pub fn whole_pixel_contour(polygon: &Polygon, reach: Reach) -> Result<Vec<(i32, i32)>, &'static str> {
+pub fn whole_pixel_contour(polygon: &Polygon, reach: Reach) -> Contour {
     let contour = match polygon.contours.as_slice() {
         [] => return Err("no contour"),
         [contour] => contour,
@@ -52,6 +58,18 @@ pub fn whole_pixel_contour(polygon: &Polygon, reach: Reach) -> Result<Vec<(i32, 
         return Err("the non-zero rule on a self-intersecting polygon (it fills by even-odd)");
     }
     Ok(pixels)
+}
+
+/// Whether a peer that takes polygons as `contour` makes them runs on
+/// `family`: where it takes at least one (declining the others).
+pub fn takes_any(family: &Family, contour: fn(&Polygon) -> Contour) -> bool {
+    family.polygons.iter().any(|p| contour(p).is_ok())
+}
+
+/// What such a peer takes of `polygons`, each converted by `convert`
+/// before a pass is timed; the ones it declines are left out.
+pub fn inputs<T>(polygons: &[&Polygon], contour: fn(&Polygon) -> Contour, convert: fn(&[(i32, i32)]) -> T) -> Vec<T> {
+    polygons.iter().filter_map(|p| contour(p).ok()).map(|c| convert(&c)).collect()
 }
 
 #[cfg(test)]

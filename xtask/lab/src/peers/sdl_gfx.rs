@@ -15,20 +15,80 @@
 //! keeps the crossings in one buffer for the whole library, so calls are
 //! made one at a time.
 
+use std::hint::black_box;
 use std::sync::{Mutex, MutexGuard};
 
-use raster::{SpanSink, SCREEN};
+use raster::{Polygon, SpanSink, SCREEN};
 use sdl2::gfx::primitives::DrawRenderer;
 use sdl2::pixels::{Color, Palette, PixelFormatEnum};
 use sdl2::render::Canvas;
 use sdl2::surface::Surface;
 
-use super::emit_rows;
-use super::integer::Reach;
+use super::integer::{inputs, takes_any, whole_pixel_contour, Contour, Reach};
+use super::rows::emit_rows;
+use super::Peer;
+use crate::convention::Own;
+use crate::corpus::Family;
 
 /// What `filledPolygonRGBA` takes: within 16,383 px its products fit.
 pub const REACH: Reach =
     Reach { pixels: 16_383, beyond: "a vertex past 16,383 px, where its 16.16 fixed point overflows int" };
+
+/// SDL2_gfx's `filledPolygonRGBA` on SDL's software renderer.
+pub struct SdlGfx;
+
+impl Peer for SdlGfx {
+    fn name(&self) -> &'static str {
+        "sdl2_gfx"
+    }
+
+    fn source(&self) -> &'static str {
+        "system SDL2_gfx through the sdl2 crate 0.38: filledPolygonRGBA on SDL's software renderer over a 320x200 \
+         INDEX8 surface"
+    }
+
+    fn summary(&self) -> &'static str {
+        "whole-pixel Sint16 vertices (within 16,383 px); each row's crossings in 16.16 fixed point, sorted; \
+         whole-pixel points, spans inclusive; even-odd, one contour"
+    }
+
+    /// The closed polygon at whole-pixel points, no outline.
+    fn own(&self) -> Own {
+        Own::Closed { outline: false }
+    }
+
+    fn takes(&self, family: &Family) -> bool {
+        takes_any(family, contour)
+    }
+
+    fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str> {
+        let vertices = vertices(&contour(polygon)?);
+        let mut canvas = SdlCanvas::new().map_err(|_| "SDL made no surface or renderer")?;
+        canvas.fill([&vertices]).map_err(|_| "filledPolygonRGBA returned an error")?;
+        canvas.emit_runs(polygon.color, sink);
+        Ok(())
+    }
+
+    fn pass<'a>(&self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a> {
+        let polygons = inputs(polygons, contour, vertices);
+        let mut canvas = SdlCanvas::new().expect("SDL makes a 320x200 surface and its renderer");
+        Box::new(move || {
+            // An error costs what it costs, as a refusal does.
+            let _ = canvas.fill(&polygons);
+            black_box(&mut canvas);
+        })
+    }
+}
+
+/// The polygon as SDL2_gfx is given it, or why it is declined: besides
+/// the reach, `filledPolygonRGBA` returns -1 for fewer than 3 vertices.
+fn contour(polygon: &Polygon) -> Contour {
+    let contour = whole_pixel_contour(polygon, REACH)?;
+    if contour.len() < 3 {
+        return Err("fewer than 3 vertices (filledPolygonRGBA returns -1)");
+    }
+    Ok(contour)
+}
 
 /// SDL2_gfx's buffer of crossings (`gfxPrimitivesPolyIntsGlobal`) is used
 /// by one thread at a time.
@@ -38,13 +98,13 @@ fn lock() -> MutexGuard<'static, ()> {
 }
 
 /// A polygon as `filledPolygonRGBA` takes it: its x and its y, apart.
-pub struct Vertices {
+struct Vertices {
     x: Vec<i16>,
     y: Vec<i16>,
 }
 
 /// The polygon's vertices as `Sint16`, which [`REACH`] keeps them within.
-pub fn vertices(contour: &[(i32, i32)]) -> Vertices {
+fn vertices(contour: &[(i32, i32)]) -> Vertices {
     let narrow = |v: i32| i16::try_from(v).expect("vertices within REACH fit in 16 bits");
     Vertices { x: contour.iter().map(|p| narrow(p.0)).collect(), y: contour.iter().map(|p| narrow(p.1)).collect() }
 }
@@ -52,7 +112,7 @@ pub fn vertices(contour: &[(i32, i32)]) -> Vertices {
 /// SDL's software renderer over a 320x200 INDEX8 surface whose palette
 /// is grey: index `i` is `(i, i, i)`, so white is 255 and black, the
 /// surface's first state, 0.
-pub struct SdlCanvas {
+struct SdlCanvas {
     canvas: Canvas<Surface<'static>>,
 }
 
