@@ -32,7 +32,7 @@ impl Contender {
     pub fn name(&self) -> &'static str {
         match self {
             Contender::Method(m) => m.info().name,
-            Contender::Peer(p) => p.name(),
+            Contender::Peer(p) => p.info().name,
             Contender::Path(which) => ExactPath::NAMES[*which],
             Contender::Auto => "fill_auto",
         }
@@ -47,7 +47,7 @@ impl Contender {
     pub fn source(&self) -> &'static str {
         match self {
             Contender::Method(m) => m.info().source,
-            Contender::Peer(p) => p.source(),
+            Contender::Peer(p) => p.info().source,
             Contender::Path(_) => "ours: one of exact's paths alone",
             Contender::Auto => "ours: exact's classification, then the path it picks",
         }
@@ -57,7 +57,7 @@ impl Contender {
     pub fn summary(&self) -> String {
         match self {
             Contender::Method(m) => format!("{}; {}", m.info().numeric, m.info().convention.summary),
-            Contender::Peer(p) => p.summary().to_string(),
+            Contender::Peer(p) => p.info().summary.to_string(),
             Contender::Path(which) => {
                 format!("exact's {} path; refuses polygons outside its class", ExactPath::NAMES[*which])
             }
@@ -70,7 +70,7 @@ impl Contender {
     pub fn own(&self) -> Own {
         match self {
             Contender::Method(m) => Own::Sample(SampleOffset::of(&m.info().convention)),
-            Contender::Peer(p) => p.own(),
+            Contender::Peer(p) => p.info().own,
             Contender::Path(_) | Contender::Auto => Own::Sample(SampleOffset::CENTRE),
         }
     }

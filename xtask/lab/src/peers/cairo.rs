@@ -12,27 +12,22 @@ use raster::reference::SampleOffset;
 use raster::{FillRule, Polygon, SpanSink, SCREEN};
 
 use super::rows::emit_rows;
-use super::Peer;
+use super::{Peer, PeerInfo};
 use crate::convention::Own;
 
 /// Cairo's aliased fill into a 320x200 A8 surface.
 pub struct Cairo;
 
+static INFO: PeerInfo = PeerInfo {
+    name: "cairo",
+    source: "system libcairo through cairo-rs 0.22: Context::fill, Antialias::None, A8 surface",
+    summary: "f64 path, 24.8 fixed-point edges; pixel centres",
+    own: Own::Sample(SampleOffset::CENTRE),
+};
+
 impl Peer for Cairo {
-    fn name(&self) -> &'static str {
-        "cairo"
-    }
-
-    fn source(&self) -> &'static str {
-        "system libcairo through cairo-rs 0.22: Context::fill, Antialias::None, A8 surface"
-    }
-
-    fn summary(&self) -> &'static str {
-        "f64 path, 24.8 fixed-point edges; pixel centres"
-    }
-
-    fn own(&self) -> Own {
-        Own::Sample(SampleOffset::CENTRE)
+    fn info(&self) -> &PeerInfo {
+        &INFO
     }
 
     fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str> {

@@ -11,29 +11,24 @@ use embedded_graphics::primitives::{PrimitiveStyle, Rectangle, Styled, Triangle}
 use raster::reference::SampleOffset;
 use raster::{Framebuffer, Polygon, SpanSink, SCREEN};
 
-use super::Peer;
+use super::{Peer, PeerInfo};
 use crate::convention::Own;
 use crate::corpus::Family;
 
 /// embedded-graphics's filled triangle.
 pub struct EmbeddedGraphics;
 
+static INFO: PeerInfo = PeerInfo {
+    name: "embedded-graphics",
+    source: "embedded-graphics 0.8 Triangle with fill style",
+    summary: "whole-pixel vertices; i32 scanline intersections, edges drawn",
+    // Pixel (x, y) at the whole-pixel point (x, y).
+    own: Own::Sample(SampleOffset { x: 0, y: 0 }),
+};
+
 impl Peer for EmbeddedGraphics {
-    fn name(&self) -> &'static str {
-        "embedded-graphics"
-    }
-
-    fn source(&self) -> &'static str {
-        "embedded-graphics 0.8 Triangle with fill style"
-    }
-
-    fn summary(&self) -> &'static str {
-        "whole-pixel vertices; i32 scanline intersections, edges drawn"
-    }
-
-    /// Pixel (x, y) at the whole-pixel point (x, y).
-    fn own(&self) -> Own {
-        Own::Sample(SampleOffset { x: 0, y: 0 })
+    fn info(&self) -> &PeerInfo {
+        &INFO
     }
 
     /// Families of triangles only.
@@ -132,7 +127,7 @@ impl<S: SpanSink + ?Sized> DrawTarget for SpanTarget<'_, S> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::peers::test_support::{square, Spans};
+    use crate::peers::test_support::{family, square, Spans};
 
     #[test]
     fn embedded_graphics_takes_only_triangles_and_clips() {
@@ -148,14 +143,6 @@ mod tests {
 
     #[test]
     fn embedded_graphics_takes_only_families_of_triangles() {
-        let family = |polygons| Family {
-            name: "f",
-            group: crate::corpus::Group::Random,
-            description: "",
-            polygons,
-            tilings: vec![],
-            sweep: None,
-        };
         let triangle = Polygon::from_pixels(&[(0, 0), (9, 0), (0, 9)], (0, 0), 1);
         assert!(EmbeddedGraphics.takes(&family(vec![triangle.clone(), triangle.clone()])));
         assert!(!EmbeddedGraphics.takes(&family(vec![triangle, square(0, 0, 10)])));

@@ -17,75 +17,34 @@
 //! different threads do not meet.
 
 use std::ffi::{c_int, c_uchar};
-use std::hint::black_box;
 use std::ptr::NonNull;
 use std::slice;
 
 use raster::{Polygon, SpanSink, SCREEN};
 
-use super::integer::{inputs, takes_any, whole_pixel_contour, Contour, Reach};
+use super::integer::{whole_pixel_contour, Canvas, Contour, IntegerPeer, Reach};
 use super::rows::emit_row;
-use super::Peer;
+use super::PeerInfo;
 use crate::convention::Own;
-use crate::corpus::Family;
 
 /// What `gdImageFilledPolygon` takes: within 23,170 px its products fit.
 pub const REACH: Reach =
     Reach { pixels: 23_170, beyond: "a vertex past 23,170 px, where its products of coordinates overflow int" };
 
 /// GD's `gdImageFilledPolygon` into a palette image.
-pub struct Gd;
-
-impl Peer for Gd {
-    fn name(&self) -> &'static str {
-        "gd"
-    }
-
-    fn source(&self) -> &'static str {
-        "system GD (libgd): gdImageFilledPolygon into gdImageCreate(320, 200), a palette image"
-    }
-
-    fn summary(&self) -> &'static str {
-        "whole-pixel vertices (within 23,170 px); each row's crossings in float, rounded, sorted; whole-pixel \
-         points, spans inclusive; even-odd, one contour"
-    }
-
-    /// The closed polygon at whole-pixel points, no outline.
-    fn own(&self) -> Own {
-        Own::Closed { outline: false }
-    }
-
-    fn takes(&self, family: &Family) -> bool {
-        takes_any(family, contour)
-    }
-
-    fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str> {
-        let points = points(&contour(polygon)?);
-        let mut canvas = GdCanvas::new()?;
-        canvas.fill([points.as_slice()]);
-        canvas.emit_runs(polygon.color, sink);
-        Ok(())
-    }
-
-    fn pass<'a>(&self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a> {
-        let polygons = inputs(polygons, contour, points);
-        let mut canvas = GdCanvas::new().expect("GD makes a 320x200 image");
-        Box::new(move || {
-            canvas.fill(polygons.iter().map(Vec::as_slice));
-            black_box(&mut canvas);
-        })
-    }
-}
-
-/// The polygon as GD is given it, or why it is declined.
-fn contour(polygon: &Polygon) -> Contour {
-    whole_pixel_contour(polygon, REACH)
-}
+pub static GD: IntegerPeer<GdCanvas> = IntegerPeer::new(PeerInfo {
+    name: "gd",
+    source: "system GD (libgd): gdImageFilledPolygon into gdImageCreate(320, 200), a palette image",
+    summary: "whole-pixel vertices (within 23,170 px); each row's crossings in float, rounded, sorted; whole-pixel \
+         points, spans inclusive; even-odd, one contour",
+    // The closed polygon at whole-pixel points, no outline.
+    own: Own::Closed { outline: false },
+});
 
 /// GD's point: `typedef struct { int x, y; } gdPoint;`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct GdPoint {
+pub struct GdPoint {
     x: c_int,
     y: c_int,
 }
@@ -106,13 +65,23 @@ extern "C" {
 }
 
 /// A 320x200 GD palette image: black (index 0, the background) and white.
-struct GdCanvas {
+pub struct GdCanvas {
     image: NonNull<Image>,
     white: c_int,
 }
 
-impl GdCanvas {
-    pub fn new() -> Result<Self, &'static str> {
+impl Canvas for GdCanvas {
+    type Input = Vec<GdPoint>;
+
+    fn contour(polygon: &Polygon) -> Contour {
+        whole_pixel_contour(polygon, REACH)
+    }
+
+    fn input(contour: &[(i32, i32)]) -> Vec<GdPoint> {
+        contour.iter().map(|&(x, y)| GdPoint { x, y }).collect()
+    }
+
+    fn new() -> Result<Self, &'static str> {
         // SAFETY: a valid size; GD allocates the image or returns null.
         let image = NonNull::new(unsafe { gdImageCreate(SCREEN.width, SCREEN.height) })
             .ok_or("gdImageCreate(320, 200) failed")?;
@@ -126,18 +95,18 @@ impl GdCanvas {
     }
 
     /// Fills each of `polygons` (whole pixels, within [`REACH`]) with
-    /// `gdImageFilledPolygon`.
-    pub fn fill<'a>(&mut self, polygons: impl IntoIterator<Item = &'a [GdPoint]>) {
+    /// `gdImageFilledPolygon`, which returns nothing.
+    fn fill(&mut self, polygons: &[Vec<GdPoint>]) -> Result<(), &'static str> {
         for points in polygons {
             // SAFETY: the image is live and ours alone; `points` holds
             // `len` points, which is all GD reads; within REACH its
             // arithmetic stays in int, and it clips to the image.
             unsafe { gdImageFilledPolygon(self.image.as_ptr(), points.as_ptr(), points.len() as c_int, self.white) };
         }
+        Ok(())
     }
 
-    /// The painted pixels, as spans into `sink`.
-    pub fn emit_runs(&self, color: u8, sink: &mut dyn SpanSink) {
+    fn emit_runs(&self, color: u8, sink: &mut dyn SpanSink) {
         for y in 0..SCREEN.height {
             // SAFETY: a 320x200 palette image has 200 rows of 320 bytes,
             // and `y` is one of them; nothing writes while the slice lives.
@@ -152,9 +121,4 @@ impl Drop for GdCanvas {
         // SAFETY: the image is live and destroyed once.
         unsafe { gdImageDestroy(self.image.as_ptr()) };
     }
-}
-
-/// A polygon as `gdImageFilledPolygon` takes it.
-fn points(contour: &[(i32, i32)]) -> Vec<GdPoint> {
-    contour.iter().map(|&(x, y)| GdPoint { x, y }).collect()
 }

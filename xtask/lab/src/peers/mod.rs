@@ -10,19 +10,23 @@
 //! - and the aliased fillers people reach for to fill a byte buffer, each
 //!   called as its users call it, each taking one contour of whole-pixel
 //!   vertices (ours rounded, halves up) and filling by even-odd; what one
-//!   cannot take is declined before it is called (`integer.rs`): Allegro
-//!   4.4's `polygon()` (`allegro.rs`), SDL2_gfx's `filledPolygonRGBA`
+//!   cannot take is declined before it is called: Allegro 4.4's
+//!   `polygon()` (`allegro.rs`), SDL2_gfx's `filledPolygonRGBA`
 //!   (`sdl_gfx.rs`), GD's `gdImageFilledPolygon` (`gd.rs`) and
 //!   imageproc's `draw_polygon_mut` (`imageproc.rs`). Each samples
 //!   whole-pixel points and includes both ends of every span, so its own
 //!   convention is the closed polygon at whole-pixel points
-//!   ([`Own::Closed`]); Allegro and imageproc draw the outline too.
+//!   ([`Own::Closed`]); Allegro and imageproc draw the outline too. These
+//!   four are driven alike (`integer.rs`): each file gives its library's
+//!   target as an `integer::Canvas`, and an `integer::IntegerPeer` over it
+//!   is the peer.
 //!
 //! Each file's own notes say how its peer is called and what it computes
 //! in. A peer's picture is read back as spans by `rows.rs`.
 //!
-//! Adding a peer: a file with a unit struct implementing [`Peer`], its
-//! `mod` line here and its place in [`ALL`].
+//! Adding a peer: a file with a value implementing [`Peer`] (a unit
+//! struct, or an `IntegerPeer` over a `Canvas` for a library taking
+//! whole-pixel contours), its `mod` line here and its place in [`ALL`].
 
 mod allegro;
 mod cairo;
@@ -42,20 +46,24 @@ use raster::{Polygon, SpanSink};
 use crate::convention::Own;
 use crate::corpus::Family;
 
-/// A peer library, as the lab runs it.
-pub trait Peer: Sync {
+/// What a peer is, as data: the peers' counterpart of a method's
+/// `raster::MethodInfo`.
+#[derive(Clone, Copy, Debug)]
+pub struct PeerInfo {
     /// Its name in the results and the charts.
-    fn name(&self) -> &'static str;
-
+    pub name: &'static str,
     /// The library, its version and the call made.
-    fn source(&self) -> &'static str;
-
+    pub source: &'static str,
     /// Arithmetic and convention, in words.
-    fn summary(&self) -> &'static str;
-
+    pub summary: &'static str,
     /// How it decides which pixels are in: what it is judged against
     /// "under its own convention".
-    fn own(&self) -> Own;
+    pub own: Own,
+}
+
+/// A peer library, as the lab runs it.
+pub trait Peer: Sync {
+    fn info(&self) -> &PeerInfo;
 
     /// Whether it runs on `family` at all; every family, unless it says
     /// otherwise.
@@ -77,20 +85,20 @@ pub static ALL: [&dyn Peer; 8] = [
     &cairo::Cairo,
     &embedded_graphics::EmbeddedGraphics,
     &vello_cpu::VelloCpu,
-    &allegro::Allegro,
-    &sdl_gfx::SdlGfx,
-    &gd::Gd,
-    &imageproc::Imageproc,
+    &allegro::ALLEGRO,
+    &sdl_gfx::SDL_GFX,
+    &gd::GD,
+    &imageproc::IMAGEPROC,
 ];
 
 #[cfg(test)]
 mod tests {
     use raster::{CoverageSink, FillRule, SCREEN};
 
-    use super::test_support::{square, Spans};
+    use super::test_support::{family, square, Spans};
     use super::*;
 
-    const INTEGER_PEERS: [&dyn Peer; 4] = [&allegro::Allegro, &sdl_gfx::SdlGfx, &gd::Gd, &imageproc::Imageproc];
+    const INTEGER_PEERS: [&dyn Peer; 4] = [&allegro::ALLEGRO, &sdl_gfx::SDL_GFX, &gd::GD, &imageproc::IMAGEPROC];
 
     /// The triangle (10,10) (100,20) (50,90), area 3,400 px, drawn by
     /// Allegro, SDL2_gfx and GD in C by hand: 3,571, 3,493 and 3,461
@@ -105,11 +113,13 @@ mod tests {
         for peer in INTEGER_PEERS {
             let mut drawn = CoverageSink::new(SCREEN);
             peer.draw(&triangle, &mut drawn).unwrap();
-            let Own::Closed { outline } = peer.own() else { panic!("{} judged by another convention", peer.name()) };
+            let Own::Closed { outline } = peer.info().own else {
+                panic!("{} judged by another convention", peer.info().name)
+            };
             let mut own = CoverageSink::new(SCREEN);
             crate::closed::fill(&triangle, outline, &mut own);
             let report = drawn.report(&own);
-            assert_eq!((report.gaps, report.overdrawn, report.out_of_bounds), (0, 0, 0), "{}", peer.name());
+            assert_eq!((report.gaps, report.overdrawn, report.out_of_bounds), (0, 0, 0), "{}", peer.info().name);
             counts.push(own.ascii().matches('#').count() + report.extras);
         }
         assert_eq!(counts, [3571, 3493, 3461, 3541]);
@@ -123,34 +133,28 @@ mod tests {
         star.rule = FillRule::NonZero;
         for peer in INTEGER_PEERS {
             for polygon in [&holed, &star] {
-                assert!(peer.draw(polygon, &mut Spans(vec![])).is_err(), "{}", peer.name());
+                assert!(peer.draw(polygon, &mut Spans(vec![])).is_err(), "{}", peer.info().name);
             }
         }
         // Each C library's reach, and one pixel past it.
         let reaches: [(&dyn Peer, _); 3] =
-            [(&allegro::Allegro, allegro::REACH), (&sdl_gfx::SdlGfx, sdl_gfx::REACH), (&gd::Gd, gd::REACH)];
+            [(&allegro::ALLEGRO, allegro::REACH), (&sdl_gfx::SDL_GFX, sdl_gfx::REACH), (&gd::GD, gd::REACH)];
         for (peer, reach) in reaches {
             let at = |x| Polygon::from_pixels(&[(x, 0), (0, 10), (10, 10)], (0, 0), 1);
-            assert!(peer.draw(&at(-reach.pixels), &mut Spans(vec![])).is_ok(), "{}", peer.name());
+            assert!(peer.draw(&at(-reach.pixels), &mut Spans(vec![])).is_ok(), "{}", peer.info().name);
             assert_eq!(peer.draw(&at(-reach.pixels - 1), &mut Spans(vec![])), Err(reach.beyond));
         }
-        assert!(imageproc::Imageproc.draw(&square(-5_000_000, 0, 9_000_000), &mut Spans(vec![])).is_ok());
-        assert!(sdl_gfx::SdlGfx.draw(&Polygon::from_pixels(&[(0, 0), (9, 9)], (0, 0), 1), &mut Spans(vec![])).is_err());
+        assert!(imageproc::IMAGEPROC.draw(&square(-5_000_000, 0, 9_000_000), &mut Spans(vec![])).is_ok());
+        assert!(sdl_gfx::SDL_GFX
+            .draw(&Polygon::from_pixels(&[(0, 0), (9, 9)], (0, 0), 1), &mut Spans(vec![]))
+            .is_err());
     }
 
     #[test]
     fn the_integer_peers_take_a_family_they_take_any_of() {
-        let family = |polygons| Family {
-            name: "f",
-            group: crate::corpus::Group::Random,
-            description: "",
-            polygons,
-            tilings: vec![],
-            sweep: None,
-        };
         let far = square(5000, 0, 10);
-        assert!(allegro::Allegro.takes(&family(vec![far.clone(), square(0, 0, 10)])));
-        assert!(!allegro::Allegro.takes(&family(vec![far.clone()])));
-        assert!(gd::Gd.takes(&family(vec![far])));
+        assert!(allegro::ALLEGRO.takes(&family(vec![far.clone(), square(0, 0, 10)])));
+        assert!(!allegro::ALLEGRO.takes(&family(vec![far.clone()])));
+        assert!(gd::GD.takes(&family(vec![far])));
     }
 }

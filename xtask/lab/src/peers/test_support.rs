@@ -1,6 +1,9 @@
-//! What the peers' tests share: a sink that records spans, and a square.
+//! What the peers' tests share: a sink that records spans, a square, and
+//! a family of given polygons.
 
 use raster::{Polygon, SpanSink, SCREEN};
+
+use crate::corpus::{Family, Group};
 
 /// Spans recorded as `(y, x_start, x_end)`.
 pub struct Spans(pub Vec<(i32, i32, i32)>);
@@ -17,4 +20,9 @@ impl SpanSink for Spans {
 /// The square of `side` px with its top-left corner at (`x`, `y`).
 pub fn square(x: i32, y: i32, side: i32) -> Polygon {
     Polygon::from_pixels(&[(x, y), (x + side, y), (x + side, y + side), (x, y + side)], (0, 0), 7)
+}
+
+/// A family of `polygons` and nothing else.
+pub fn family(polygons: Vec<Polygon>) -> Family {
+    Family { name: "f", group: Group::Random, description: "", polygons, tilings: vec![], sweep: None }
 }

@@ -9,27 +9,22 @@ use raster::{FillRule, Polygon, SpanSink, SCREEN};
 use tiny_skia::{Mask, Path, PathBuilder, Transform};
 
 use super::rows::emit_rows;
-use super::Peer;
+use super::{Peer, PeerInfo};
 use crate::convention::Own;
 
 /// tiny-skia's aliased fill into a 320x200 mask.
 pub struct TinySkia;
 
+static INFO: PeerInfo = PeerInfo {
+    name: "tiny-skia",
+    source: "tiny-skia 0.12 Mask::fill_path, anti_alias false",
+    summary: "f32 path, 26.6 fixed-point edges; pixel centres",
+    own: Own::Sample(SampleOffset::CENTRE),
+};
+
 impl Peer for TinySkia {
-    fn name(&self) -> &'static str {
-        "tiny-skia"
-    }
-
-    fn source(&self) -> &'static str {
-        "tiny-skia 0.12 Mask::fill_path, anti_alias false"
-    }
-
-    fn summary(&self) -> &'static str {
-        "f32 path, 26.6 fixed-point edges; pixel centres"
-    }
-
-    fn own(&self) -> Own {
-        Own::Sample(SampleOffset::CENTRE)
+    fn info(&self) -> &PeerInfo {
+        &INFO
     }
 
     fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str> {

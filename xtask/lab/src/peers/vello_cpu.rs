@@ -19,7 +19,7 @@ use vello_cpu::peniko::Fill;
 use vello_cpu::{Pixmap, RasterizerSettings, RenderContext, Resources, TargetInit};
 
 use super::rows::emit_rows;
-use super::Peer;
+use super::{Peer, PeerInfo};
 use crate::convention::Own;
 
 /// vello_cpu's aliasing threshold: painted above 127/255 of a pixel.
@@ -28,23 +28,19 @@ const VELLO_THRESHOLD: u8 = 127;
 /// vello_cpu's aliased fill into a 320x200 pixmap.
 pub struct VelloCpu;
 
+static INFO: PeerInfo = PeerInfo {
+    name: "vello_cpu",
+    source:
+        "vello_cpu 0.3 RenderContext::fill_path, aliasing threshold 127, rendered into a 320x200 pixmap once a pass",
+    summary: "f64 path flattened to f32 lines, sparse strips of 4-pixel tiles, analytic area coverage; thresholds \
+         area coverage (painted above 127/255 of the pixel) rather than sampling centres",
+    // By the part of the pixel covered.
+    own: Own::Coverage { threshold: VELLO_THRESHOLD },
+};
+
 impl Peer for VelloCpu {
-    fn name(&self) -> &'static str {
-        "vello_cpu"
-    }
-
-    fn source(&self) -> &'static str {
-        "vello_cpu 0.3 RenderContext::fill_path, aliasing threshold 127, rendered into a 320x200 pixmap once a pass"
-    }
-
-    fn summary(&self) -> &'static str {
-        "f64 path flattened to f32 lines, sparse strips of 4-pixel tiles, analytic area coverage; thresholds \
-         area coverage (painted above 127/255 of the pixel) rather than sampling centres"
-    }
-
-    /// By the part of the pixel covered.
-    fn own(&self) -> Own {
-        Own::Coverage { threshold: VELLO_THRESHOLD }
+    fn info(&self) -> &PeerInfo {
+        &INFO
     }
 
     fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str> {
