@@ -32,7 +32,7 @@
 mod exact_support;
 
 use exact_support::{against_reference, generate, generate_any, Draws, Kind, Seeded, TARGET};
-use raster::methods::exact::Exact;
+use raster::methods::Exact;
 use raster::{CoverageReport, Framebuffer, Method, MethodId, Point, Polygon, Size, SpanSink, SCREEN};
 
 /// The hash of the whole corpus.
