@@ -5,6 +5,7 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, ensure, Context, Result};
 use protocol::{Presentation, ShowReply, Video};
 use raster::MethodId;
+use scenes::palette::VGA_DEFAULT;
 use scenes::{builtin, show};
 
 use crate::picture::compare::{compare_images, compare_palettes};
@@ -17,8 +18,9 @@ use crate::qemu::Qemu;
 pub const SCREEN_SCALE: u32 = 2;
 
 /// Has the kernel draw built-in scene `scene` with `method` on a black
-/// screen, and checks its dump against the host render byte for byte.
-/// Returns the dump for further checks.
+/// screen, and checks its dump against the host render byte for byte, and
+/// its DAC against the palette of the render. Returns the dump for further
+/// checks.
 pub fn dump_matches_host_render(console: &mut Console, scene: &str, method: MethodId) -> Result<Dump> {
     let page = builtin::named(scene).with_context(|| format!("{:#}", builtin_scene(scene).unwrap_err()))?;
     source_matches_host_render(console, &SceneSource::Builtin(page), method)
@@ -27,8 +29,9 @@ pub fn dump_matches_host_render(console: &mut Console, scene: &str, method: Meth
 /// Has the kernel draw `source` with `method` on a black screen (a
 /// built-in page with `DRAW`; a scene file operation by operation with
 /// `CLEAR` and `POLY`, each checked before any is sent) and checks its dump
-/// against the host render of the same scene byte for byte. Returns the
-/// dump for further checks.
+/// against the host render of the same scene byte for byte, and its DAC
+/// against the render's palette (the VGA default, which the drawing
+/// commands load). Returns the dump for further checks.
 pub fn source_matches_host_render(console: &mut Console, source: &SceneSource, method: MethodId) -> Result<Dump> {
     let name = source.name();
     let expected = render(&source.scene(), method.method());
@@ -39,6 +42,7 @@ pub fn source_matches_host_render(console: &mut Console, source: &SceneSource, m
     .with_context(|| format!("kernel failed to draw {name} with {method}"))?;
     let dump = console.dump()?;
     compare_images(&format!("{name}.{method}.dump"), &expected, &dump.image())?;
+    compare_palettes(&format!("{name}.{method}.dump"), &VGA_DEFAULT, &dump.palette)?;
     Ok(dump)
 }
 

@@ -362,6 +362,10 @@ pub fn ovmf_microsoft_vars() -> PathBuf {
 /// cloud-init helper hashes passwords), a C extension that does not build
 /// there without Python's headers.
 pub const VIRT_FIRMWARE_VERSION: &str = "24.11";
+/// The setuptools it imports `pkg_resources` from: the last release that
+/// has it (82.0 removed it). Python 3.11's venv brings an older setuptools,
+/// Python 3.12's and later none, and pip would then take the newest.
+pub const SETUPTOOLS_VERSION: &str = "81.0.0";
 
 /// Makes sure `virt-fw-vars` is there and returns its path: virt-firmware
 /// [`VIRT_FIRMWARE_VERSION`] installed from PyPI with pip into a Python
@@ -372,7 +376,7 @@ pub fn ensure_virt_fw_vars() -> Result<PathBuf> {
     once_per_process(&DONE, || {
         let venv = crate::workspace::target_dir().join("virt-firmware");
         let program = venv.join("bin").join("virt-fw-vars");
-        let installed = venv.join(format!("virt-firmware-{VIRT_FIRMWARE_VERSION}"));
+        let installed = venv.join(format!("virt-firmware-{VIRT_FIRMWARE_VERSION}-setuptools-{SETUPTOOLS_VERSION}"));
         if program.is_file() && installed.is_file() {
             return Ok(program);
         }
@@ -398,6 +402,7 @@ pub fn ensure_virt_fw_vars() -> Result<PathBuf> {
 fn virt_firmware_install_command(venv: &Path) -> Command {
     let mut install = Command::new(venv.join("bin").join("pip"));
     install.args(["install", "--quiet", &format!("virt-firmware=={VIRT_FIRMWARE_VERSION}")]);
+    install.arg(format!("setuptools=={SETUPTOOLS_VERSION}"));
     install
 }
 
@@ -425,7 +430,7 @@ mod tests {
     fn virt_firmware_is_installed_at_its_pinned_version_into_the_venv() {
         assert_eq!(
             command_line(&virt_firmware_install_command(Path::new("/t/virt-firmware"))),
-            "/t/virt-firmware/bin/pip install --quiet virt-firmware==24.11"
+            "/t/virt-firmware/bin/pip install --quiet virt-firmware==24.11 setuptools==81.0.0"
         );
     }
 

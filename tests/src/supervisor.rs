@@ -60,6 +60,22 @@ if [ -n "${folder:-}" ]; then rm -rf -- "$folder" 2>/dev/null || { sleep 1; rm -
 /// Longest wait for the watchdog to finish its work once told to.
 const WATCHDOG_TIMEOUT: Duration = Duration::from_secs(10);
 
+/// Random characters in a run folder's name (62 possible each).
+const RANDOM_CHARACTERS: usize = 6;
+
+/// Creates the folder `polylab-KIND-` and `random` random characters in
+/// `parent`, exclusively (it fails if anything of that name is there, a
+/// folder or a symlink), with mode 0700 (tempfile's folders get 0777 less
+/// the umask unless told otherwise).
+fn create_run_folder(parent: &Path, kind: &str, random: usize) -> Result<TempDir> {
+    tempfile::Builder::new()
+        .prefix(&format!("polylab-{kind}-"))
+        .rand_bytes(random)
+        .permissions(Permissions::from_mode(0o700))
+        .tempdir_in(parent)
+        .with_context(|| format!("failed to create a run folder in {}", parent.display()))
+}
+
 /// One run of a child program: its watchdog, its scratch folder (if it has
 /// one) and, once started, the program in its own process group. Dropping
 /// it kills the group, reaps the program and removes the folder.
@@ -77,13 +93,7 @@ impl Supervised {
     /// system's temporary folder for the run.
     pub fn with_folder(kind: &str) -> Result<Self> {
         let mut run = Self::without_folder()?;
-        // tempfile's folders get the default mode (0777 less the umask)
-        // unless told otherwise; created with 0700, no one else may enter.
-        let folder = tempfile::Builder::new()
-            .prefix(&format!("polylab-{kind}-"))
-            .permissions(Permissions::from_mode(0o700))
-            .tempdir()
-            .with_context(|| format!("failed to create a run folder in {}", std::env::temp_dir().display()))?;
+        let folder = create_run_folder(&std::env::temp_dir(), kind, RANDOM_CHARACTERS)?;
         let path =
             folder.path().to_str().filter(|path| !path.contains('\n')).with_context(|| {
                 format!("the run folder {} is not UTF-8 without line breaks", folder.path().display())
@@ -220,6 +230,32 @@ mod tests {
         }
         drop((first, second));
         assert!(!a.exists() && !b.exists());
+    }
+
+    /// With no random characters the name is known in advance, as an
+    /// attacker's guess would be: what is planted there (a folder, a
+    /// symlink to a folder of the attacker's) makes the creation fail and
+    /// is left as it was; with the name free again it succeeds.
+    #[test]
+    fn a_run_folder_is_never_a_folder_or_symlink_that_was_there() {
+        let parent = tempfile::tempdir().unwrap();
+        let (planted, theirs) = (parent.path().join("polylab-test-"), tempfile::tempdir().unwrap());
+        std::fs::create_dir(&planted).unwrap();
+        let error = create_run_folder(parent.path(), "test", 0).unwrap_err();
+        assert!(format!("{error:#}").contains("exists"), "{error:#}");
+        assert!(planted.is_dir());
+        std::fs::remove_dir(&planted).unwrap();
+        std::os::unix::fs::symlink(theirs.path(), &planted).unwrap();
+        let mode = || std::fs::metadata(theirs.path()).unwrap().permissions().mode();
+        let their_mode = mode();
+        let error = create_run_folder(parent.path(), "test", 0).unwrap_err();
+        assert!(format!("{error:#}").contains("exists"), "{error:#}");
+        assert_eq!(std::fs::read_link(&planted).unwrap(), theirs.path());
+        assert_eq!(mode(), their_mode, "the mode of the symlink's folder changed");
+        assert_eq!(std::fs::read_dir(theirs.path()).unwrap().count(), 0, "something was made in the symlink's folder");
+        std::fs::remove_file(&planted).unwrap();
+        let folder = create_run_folder(parent.path(), "test", 0).unwrap();
+        assert_eq!(folder.path(), planted);
     }
 
     #[test]

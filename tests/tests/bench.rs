@@ -1,8 +1,11 @@
 //! `BENCH` answers for every demo scene with one cycle count per method,
 //! in the order of `raster::MethodId::ALL`, with the polygons each declined
 //! (the host's draw of the same scene declines as many), and under
-//! instruction counting its figures repeat exactly from run to run. Only
-//! the shape and the repetition are checked: speed is never asserted.
+//! instruction counting its figures repeat exactly from run to run, where
+//! without it they do not. Only the shape and the repetition are checked:
+//! speed is never asserted.
+
+use std::collections::BTreeSet;
 
 use anyhow::{bail, ensure, Context, Result};
 use harness::{BenchRow, Clock, Qemu, QemuOptions, Reply};
@@ -41,21 +44,50 @@ fn bench_answers_one_positive_cycle_count_per_method_for_every_demo_scene() -> R
     Ok(())
 }
 
+/// The scene the repetition is checked on, and the draws per method.
+const REPEATED: (&str, u8) = ("abrash38-3", 3);
+
+/// The control's `BENCH`: page 1 (two polygons), one draw per method, so
+/// the control adds little to the test's time.
+const CONTROL: (&str, u8) = ("abrash38-1", 1);
+
 /// Under instruction counting (`Clock::InstructionCount`, as `cargo xtask
 /// kbench` and `record` run) the figures count emulated instructions, so
 /// two QEMUs booted side by side, each slowing the other down, time
-/// `abrash38-3` to the same number for every method. Without it they
-/// follow the host's clock and differ.
+/// `abrash38-3` to the same number for every method, and the methods to
+/// different numbers. The control, booted beside them without counting:
+/// its figures follow the host's clock, so the same `BENCH` asked twice
+/// gives different figures.
+/// A kernel whose figures never change, or a harness that dropped the
+/// counting option, fails here.
 #[test]
 fn two_runs_under_instruction_counting_give_identical_bench_figures() -> Result<()> {
-    let options = QemuOptions { clock: Clock::InstructionCount, ..QemuOptions::default() };
-    let bench = || -> Result<Vec<BenchRow>> { Qemu::boot(options)?.console.bench("abrash38-3", 3) };
-    let (first, second) = std::thread::scope(|scope| {
-        let (first, second) = (scope.spawn(bench), scope.spawn(bench));
-        (first.join(), second.join())
+    let (scene, repeats) = REPEATED;
+    let counted = QemuOptions { clock: Clock::InstructionCount, ..QemuOptions::default() };
+    let bench = |options: QemuOptions, (scene, repeats): (&str, u8), times: usize| -> Result<Vec<Vec<BenchRow>>> {
+        let mut qemu = Qemu::boot(options)?;
+        (0..times).map(|_| qemu.console.bench(scene, repeats)).collect()
+    };
+    let (first, second, control) = std::thread::scope(|scope| {
+        let first = scope.spawn(|| bench(counted, REPEATED, 1));
+        let second = scope.spawn(|| bench(counted, REPEATED, 1));
+        let control = scope.spawn(|| bench(QemuOptions::default(), CONTROL, 2));
+        (first.join(), second.join(), control.join())
     });
-    let first = first.ok().context("the first run panicked")??;
-    let second = second.ok().context("the second run panicked")??;
-    ensure!(first == second, "BENCH abrash38-3 3 gave {first:?} in one run and {second:?} in the other");
+    let first = first.ok().context("the first run panicked")??.concat();
+    let second = second.ok().context("the second run panicked")??.concat();
+    let control = control.ok().context("the control run panicked")??;
+    let command = format!("BENCH {scene} {repeats}");
+    ensure!(first == second, "{command} gave {first:?} in one run and {second:?} in the other");
+    let counts: BTreeSet<u64> = first.iter().map(|row| row.cycles).collect();
+    ensure!(counts.len() > 1, "{command} under instruction counting gave every method the same count: {first:?}");
+    ensure!(
+        control[0] != control[1],
+        "without instruction counting, BENCH {} {} gave {:?} twice: figures that do not follow the clock prove \
+         nothing by repeating",
+        CONTROL.0,
+        CONTROL.1,
+        control[0]
+    );
     Ok(())
 }

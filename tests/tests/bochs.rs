@@ -9,6 +9,13 @@
 //! a PC, with nothing touched; and Bochs must listen on no TCP port while
 //! it does (its VNC display, which took 5900-5949 on every interface with
 //! no password, is not used).
+//!
+//! What the pictures prove here, and no more: the harness reads no
+//! screendump from Bochs, so every picture and palette is what the kernel
+//! reads back from Bochs's video memory and DAC (a `DUMP`), judged against
+//! the host render and the palette the kernel loaded. That the card puts
+//! them on its screen is not seen; QEMU's screendump shows that for
+//! QEMU's cards (`adapters.rs`).
 
 use anyhow::{bail, ensure, Context, Result};
 use harness::bochs::Bochs;
@@ -18,7 +25,7 @@ use protocol::{Command, FaultKind, Firmware, Machine, PciId, Video, EXIT_SUCCESS
 use scenes::builtin;
 
 #[test]
-fn bochs_boots_the_image_and_the_kernel_draws_what_the_host_asks() -> Result<()> {
+fn bochs_boots_the_image_and_reads_back_from_its_card_what_the_host_renders() -> Result<()> {
     let mut bochs = Bochs::boot()?;
     let ready = bochs.ready;
     eprintln!("harness: bochs: {ready}");

@@ -25,8 +25,15 @@ fn every_page_with_every_method_dumps_what_the_host_renders() -> Result<()> {
     Ok(())
 }
 
+/// What this proves, and no more: after boot the DAC, read back by the
+/// kernel's own `DUMP` (index to 0x3C7, then 0x3C9), holds the table the
+/// kernel loaded, `scenes::palette::VGA_DEFAULT`, entry for entry. Kernel
+/// and host take that table from the same source, so an error in the
+/// table itself passes here (its unit tests pin a few entries); and a
+/// read-back shows what the DAC holds, not what reaches the screen, which
+/// `adapters.rs` judges by QEMU's screendump.
 #[test]
-fn read_back_palette_is_the_vga_default() -> Result<()> {
+fn the_dac_reads_back_the_vga_default_table_the_kernel_loaded_at_boot() -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     let dump = qemu.console.dump()?;
     compare_palettes("the DAC after boot against the VGA default", &VGA_DEFAULT, &dump.palette)

@@ -95,18 +95,43 @@ fn an_animation_shows_what_the_host_renders_with_every_method_named() -> Result<
     none_failed(failures)
 }
 
+/// `exact` allocates nothing once an animation runs. The control, in the
+/// same boot: the same frames shown with each method that allocates for
+/// every polygon (`Heap::EveryPolygon`) must report at least one
+/// allocation per polygon it drew, so a count that never moves fails.
 #[test]
 fn every_animation_drawn_with_exact_allocates_nothing_after_its_first_frame() -> Result<()> {
+    let allocating: Vec<MethodId> =
+        MethodId::ALL.into_iter().filter(|method| method.method().info().heap == Heap::EveryPolygon).collect();
+    ensure!(!allocating.is_empty(), "no method allocates for every polygon, so nothing shows the count moving");
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     let mut failures = Vec::new();
-    for entry in ENTRIES_IN_ORDER.iter().filter(|entry| entry.is_animated()) {
-        for frame in [0, 1, entry.frames / 2, entry.frames - 1] {
+    let animations = || ENTRIES_IN_ORDER.iter().filter(|entry| entry.is_animated());
+    let frames = |entry: &Entry| [0, 1, entry.frames / 2, entry.frames - 1];
+    for entry in animations() {
+        for frame in frames(entry) {
             let reply = qemu.console.show(entry.name, frame, Some(MethodId::Exact))?;
             if frame > 0 && reply.allocs != 0 {
                 failures.push(format!("{} frame {frame} with exact: {} allocations", entry.name, reply.allocs));
             }
         }
     }
+    let mut controls = 0;
+    for entry in animations() {
+        for (frame, &method) in frames(entry).into_iter().flat_map(|frame| allocating.iter().map(move |m| (frame, m))) {
+            let ShowReply { allocs, polygons, refused, .. } = qemu.console.show(entry.name, frame, Some(method))?;
+            let drawn = polygons - refused;
+            if allocs < drawn as u64 || drawn == 0 {
+                failures.push(format!(
+                    "control: {} frame {frame} with {method}, which allocates for every polygon: \
+                     {allocs} allocations for {polygons} polygons ({refused} refused)",
+                    entry.name
+                ));
+            }
+            controls += 1;
+        }
+    }
+    eprintln!("harness: {controls} control frames with {allocating:?} reported their allocations");
     none_failed(failures)
 }
 

@@ -1,5 +1,5 @@
 //! Polygon classes ("model no more than a scene needs": `docs/conventions.md`).
-//! The exact method's automatic fill ([`fill_auto`](crate::methods::exact::fill_auto))
+//! The exact method's automatic fill ([`fill_auto`](crate::fill_auto))
 //! asks `Shape` (the linear-time part of [`classify`]) which path to take.
 //!
 //! Contours whose vertices all lie on one line enclose nothing and are left
@@ -12,7 +12,7 @@ use core::cmp::Ordering;
 use alloc::vec::Vec;
 
 use crate::geometry::{Point, Polygon};
-use crate::method::Class;
+use crate::methods::info::Class;
 
 /// The class of `polygon`: [`Class::Degenerate`] when no contour encloses
 /// anything (fewer than three distinct vertices, or all on one line);

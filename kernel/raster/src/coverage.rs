@@ -7,7 +7,7 @@ use alloc::string::String;
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::sink::{Size, SpanSink};
+use crate::target::{Size, SpanSink};
 
 /// Counts draws per pixel. Spans outside the target are counted in
 /// [`CoverageReport::out_of_bounds`] and their inside part is still counted,

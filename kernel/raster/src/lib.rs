@@ -42,9 +42,9 @@
 //! - **Never out of bounds**: every span it emits is inside the sink's
 //!   [`Size`], non-empty, and never a pixel twice.
 //! - **No allocation** for polygons of up to 256 edges (64 when they may
-//!   be 512 px or longer); beyond that its tables come from an
-//!   [`exact::Scratch`](methods::exact::Scratch), which a caller may keep
-//!   from fill to fill ([`methods::exact::fill_auto_with`]).
+//!   be 512 px or longer); beyond that its tables come from a
+//!   [`Scratch`], which a caller may keep from fill to fill
+//!   ([`fill_auto_with`]).
 //!
 //! The classic methods keep their originals' conventions and arithmetic
 //! (each states them in its [`MethodInfo`]); none of them panics, loops
@@ -76,18 +76,25 @@
 
 extern crate alloc;
 
-pub mod classify;
-pub mod coverage;
-pub mod geometry;
-pub mod method;
+// Every item has one path: the modules are private, and what a caller
+// uses is re-exported here, at the top, except three namespaces whose
+// items are called by their module's name: `methods` (the methods,
+// `methods::ALL`), `reference` (`reference::fill`, the judge) and `sink`
+// (`sink::clear`, `sink::set_bytes`, the stores).
+mod classify;
+mod coverage;
+mod framebuffer;
+mod geometry;
 pub mod methods;
 pub mod reference;
 pub mod sink;
+mod target;
 
 pub use classify::classify;
 pub use coverage::{CoverageReport, CoverageSink};
+pub use framebuffer::Framebuffer;
 pub use geometry::{FillRule, PixelPoint, Point, Polygon, SUBPIXEL_BITS, SUBPIXEL_ONE};
-pub use method::{Class, Convention, Heap, MethodInfo, Refusal};
-pub use methods::exact::{fill_auto, fill_auto_with, Scratch};
-pub use methods::{Method, MethodId, UnknownMethod};
-pub use sink::{Framebuffer, Size, SpanSink, SCREEN};
+pub use methods::exact::{fill_auto, fill_auto_with, ExactPath, Scratch};
+pub use methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
+pub use methods::interface::{Method, MethodId, UnknownMethod};
+pub use target::{Size, SpanSink, SCREEN};

@@ -11,8 +11,8 @@
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Point, Polygon, SUBPIXEL_ONE};
-use crate::method::Convention;
-use crate::sink::SpanSink;
+use crate::methods::info::Convention;
+use crate::target::SpanSink;
 
 /// Where each pixel is sampled, in subpixels from its top-left corner.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -151,7 +151,7 @@ fn crosses_at_or_left_of(a: Point, b: Point, sample_x: i64, sample_y: i64) -> bo
 mod tests {
     use super::*;
     use crate::coverage::CoverageSink;
-    use crate::sink::Size;
+    use crate::target::Size;
 
     fn draw(polygon: &Polygon, sample: SampleOffset) -> alloc::string::String {
         let mut sink = CoverageSink::new(Size { width: 6, height: 4 });

@@ -21,12 +21,19 @@
 //! store compiled into the fill), which must emit the same spans; the
 //! screen-sized ones are also filled into a `Framebuffer`, whose pixels
 //! must be the spans' pixels.
+//!
+//! A hash printed from `exact`'s own output is a change detector, not a
+//! judge: had `exact` been wrong when it was printed, it would pin the
+//! error. So a sample of the same corpus, picked by a seeded stream of its
+//! own ([`SAMPLE_SEED`]), is judged by `raster::reference` pixel for pixel
+//! (no pixel missing, none extra, none drawn twice), the screen-sized
+//! polygons among it, where the property tests' small target never looks.
 
 mod exact_support;
 
-use exact_support::{generate, generate_any, Kind, Seeded, TARGET};
-use raster::methods::exact::Exact;
-use raster::{Framebuffer, Method, MethodId, Point, Polygon, Size, SpanSink, SCREEN};
+use exact_support::{against_reference, generate, generate_any, Draws, Kind, Seeded, TARGET};
+use raster::methods::Exact;
+use raster::{CoverageReport, Framebuffer, Method, MethodId, Point, Polygon, Size, SpanSink, SCREEN};
 
 /// The hash of the whole corpus.
 const EXPECTED: u64 = 0x1c2a_8b66_00d8_fcc6;
@@ -41,6 +48,15 @@ const HUGE: usize = 6_000;
 /// Polygons of every kind scaled by [`SCALE`] onto the screen.
 const SCREEN_SIZED: usize = 12_000;
 const SCALE: i32 = 7;
+
+/// Where the stream that picks the judged sample starts.
+const SAMPLE_SEED: u64 = 0x5a3b_1e0f_c0de;
+
+/// The corpus's three parts, in order: how many polygons each has, and one
+/// in how many of them the sample judges (the reference visits every
+/// pixel of a polygon's box, which on the screen costs a debug build
+/// a few milliseconds a polygon).
+const PARTS: [(&str, usize, u64); 3] = [("small", SMALL, 100), ("huge", HUGE, 20), ("screen-sized", SCREEN_SIZED, 40)];
 
 /// Keeps every span as emitted.
 struct Spans {
@@ -112,22 +128,28 @@ fn assert_framebuffer_holds(polygon: &Polygon, spans: &[(i32, i32, i32)]) {
     assert!(drawn.pixels() == expected, "the framebuffer differs from the spans of {polygon:?}");
 }
 
-fn corpus_hash() -> u64 {
+/// Hands `visit` every polygon of the corpus, in order, with its part
+/// (an index into [`PARTS`]) and its target.
+fn for_each_polygon(mut visit: impl FnMut(usize, &Polygon, Size)) {
     let mut draws = Seeded::new(SEED);
-    let mut hash = Fnv(0xcbf2_9ce4_8422_2325);
     for _ in 0..SMALL {
-        add_fill(&mut hash, &generate_any(&mut draws).1, TARGET);
+        visit(0, &generate_any(&mut draws).1, TARGET);
     }
     for _ in 0..HUGE {
-        add_fill(&mut hash, &generate(&mut draws, Kind::Huge), TARGET);
+        visit(1, &generate(&mut draws, Kind::Huge), TARGET);
     }
     for _ in 0..SCREEN_SIZED {
         let mut polygon = generate_any(&mut draws).1;
         for p in polygon.contours.iter_mut().flatten() {
             *p = Point::new(p.x.saturating_mul(SCALE), p.y.saturating_mul(SCALE));
         }
-        add_fill(&mut hash, &polygon, SCREEN);
+        visit(2, &polygon, SCREEN);
     }
+}
+
+fn corpus_hash() -> u64 {
+    let mut hash = Fnv(0xcbf2_9ce4_8422_2325);
+    for_each_polygon(|_, polygon, size| add_fill(&mut hash, polygon, size));
     hash.0
 }
 
@@ -135,4 +157,33 @@ fn corpus_hash() -> u64 {
 fn exact_draws_the_recorded_pixels() {
     let hash = corpus_hash();
     assert_eq!(hash, EXPECTED, "exact's pixels changed: the corpus now hashes to {hash:#018x}");
+}
+
+#[test]
+fn a_seeded_sample_of_the_recorded_corpus_is_the_reference_s_pixels() {
+    let mut picks = Seeded::new(SAMPLE_SEED);
+    let (mut judged, mut failures) = ([0usize; PARTS.len()], Vec::new());
+    for_each_polygon(|part, polygon, size| {
+        if picks.below(PARTS[part].2) != 0 {
+            return;
+        }
+        judged[part] += 1;
+        let (result, report, picture) = against_reference(|p, s| Exact.fill(p, s), polygon, size);
+        if result.is_err() || report != CoverageReport::default() {
+            // A picture of the small target reads in a message; the
+            // screen's would not.
+            let picture = if size == SCREEN { String::new() } else { picture };
+            failures.push(format!("{} {polygon:?}: {result:?}, {report:?}\n{picture}", PARTS[part].0));
+        }
+    });
+    for ((name, count, one_in), judged) in PARTS.into_iter().zip(judged) {
+        // At least half the expected share: the sample really reaches each part.
+        assert!(judged as u64 >= count as u64 / one_in / 2, "only {judged} of the {count} {name} polygons judged");
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {judged:?} sampled polygons differ from the reference; the first:\n{}",
+        failures.len(),
+        failures.iter().take(3).cloned().collect::<Vec<_>>().join("\n")
+    );
 }

@@ -5,7 +5,7 @@
 mod exact_support;
 
 use exact_support::{against_reference, nearby_point, Draws, Seeded, PX, TARGET};
-use raster::methods::exact::Exact;
+use raster::methods::Exact;
 use raster::{CoverageReport, CoverageSink, FillRule, Method, Point, Polygon, Refusal, Size, SpanSink};
 
 fn exact(polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {

@@ -8,9 +8,9 @@ use exact_support::{
     Seeded, DIRECTIONS, PX, TARGET,
 };
 use proptest::prelude::*;
-use raster::methods::exact::{choose_path, Exact, Path};
+use raster::methods::Exact;
 use raster::{
-    classify, fill_auto, Class, CoverageReport, CoverageSink, FillRule, Method, MethodId, Point, Polygon, Refusal,
+    classify, fill_auto, Class, CoverageReport, ExactPath, FillRule, Method, MethodId, Point, Polygon, Refusal,
 };
 
 fn exact(polygon: &Polygon, sink: &mut dyn raster::SpanSink) -> Result<(), raster::Refusal> {
@@ -62,22 +62,16 @@ proptest! {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(500))]
 
-    /// Each of exact's paths, asked for alone, fills exactly what it takes
-    /// and refuses the rest without drawing; fill_auto's choice is a path
-    /// that takes the polygon.
+    /// Each of exact's paths, asked for alone, fills exactly every polygon
+    /// it takes; fill_auto's choice is a path that takes the polygon alone.
     #[test]
-    fn every_path_is_exact_on_its_class_and_refuses_the_rest((_kind, polygon) in any_polygon()) {
-        for path in Path::ALL {
-            if path.takes(&polygon) {
-                prop_assert_matches_reference(|p, s| path.fill(p, s), &polygon, TARGET)?;
-            } else {
-                let mut drawn = CoverageSink::new(TARGET);
-                prop_assert_eq!(path.fill(&polygon, &mut drawn), Err(Refusal::OutsideClass));
-                prop_assert_eq!(drawn, CoverageSink::new(TARGET), "{} drew while refusing", path.name());
-            }
+    fn every_path_is_exact_on_its_class((_kind, polygon) in any_polygon()) {
+        for path in ExactPath::every(&polygon) {
+            prop_assert_matches_reference(|_, sink| path.fill(sink), &polygon, TARGET)?;
         }
-        if let Some(path) = choose_path(&polygon) {
-            prop_assert!(path.takes(&polygon), "fill_auto chose {} for a polygon outside it", path.name());
+        if let Some(path) = ExactPath::choose(&polygon) {
+            let alone = ExactPath::alone(path.index(), &polygon);
+            prop_assert!(alone.is_ok(), "fill_auto chose {} for a polygon outside it", path.name());
         }
     }
 }
@@ -131,18 +125,23 @@ fn paths_take_their_classes() {
     let notched = Polygon::new(vec![px(0, 0), px(9, 0), px(9, 8), px(4, 3), px(0, 8)], 1);
     let mut two = triangle.clone();
     two.contours.push(vec![px(20, 0), px(29, 2), px(23, 8)]);
-    let takes = |p: &Polygon| Path::ALL.map(|path| path.takes(p));
+    let takes = |p: &Polygon| [0, 1, 2].map(|which| ExactPath::alone(which, p).is_ok());
     assert_eq!(takes(&triangle), [true, true, true]);
     assert_eq!(takes(&monotone), [false, true, true]);
     assert_eq!(takes(&notched), [false, false, true]);
     assert_eq!(takes(&two), [false, false, true]);
-    let chosen = [&triangle, &monotone, &notched, &two].map(choose_path);
-    assert_eq!(chosen, [Some(Path::Triangle), Some(Path::Monotone), Some(Path::ActiveEdges), Some(Path::ActiveEdges)]);
+    let chosen = |p: &Polygon| ExactPath::choose(p).map(|path| path.name());
+    assert_eq!(
+        [&triangle, &monotone, &notched, &two].map(chosen),
+        [Some("triangle"), Some("monotone"), Some("active edges"), Some("active edges")]
+    );
+    // No fourth path.
+    assert_eq!(ExactPath::alone(3, &triangle).map(|path| path.name()), Err(Refusal::OutsideClass));
     // A collinear contour that doubles back: nothing to draw, but telling
     // that needs the collinearity test, which the common case skips.
     let zigzag = Polygon::new(vec![px(0, 0), px(5, 5), px(2, 2), px(9, 9), px(1, 1)], 1);
-    assert_eq!(choose_path(&zigzag), Some(Path::ActiveEdges));
-    assert_eq!(choose_path(&Polygon::default()), None);
+    assert_eq!(chosen(&zigzag), Some("active edges"));
+    assert_eq!(chosen(&Polygon::default()), None);
 }
 
 /// The generators feed the dispatch test every class.

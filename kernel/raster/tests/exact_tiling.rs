@@ -6,7 +6,7 @@ mod exact_support;
 
 use exact_support::PX;
 use proptest::prelude::*;
-use raster::methods::exact::Exact;
+use raster::methods::Exact;
 use raster::reference::{self, SampleOffset};
 use raster::{sink, CoverageReport, CoverageSink, Method, Point, Polygon, Size, SCREEN};
 

@@ -6,24 +6,25 @@
 //! debug build's run time down, each saying why); a case fails when a
 //! method panics (caught, so the report names every method and case that
 //! did), emits a span outside the target ([`CoverageSink::out_of_bounds`]),
-//! declines it for a reason the method does not own up to, or runs longer
-//! than [`HANG_LIMIT`]: a hang guard, far above any honest fill, not a
-//! speed test.
+//! declines it for a reason the method does not own up to, or spends more
+//! than [`HANG_LIMIT`] of CPU time on one fill: a hang guard, far above any
+//! honest fill, not a speed test. CPU time, not the wall clock, so that a
+//! fill kept waiting by a busy machine is not taken for a hang.
 //!
 //! What each method draws is pinned elsewhere (its unit tests,
 //! `deviations.rs`, and for `exact` `exact_*.rs`, which also holds it to
 //! the reference on hostile input); here only survival counts.
 
 use std::panic::{self, AssertUnwindSafe};
-use std::sync::{Arc, Mutex};
+use std::sync::{mpsc, Arc, Mutex};
 use std::thread;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use raster::methods::ALL;
 use raster::{CoverageSink, FillRule, Point, Polygon, Refusal, Size, SCREEN, SUBPIXEL_ONE};
 
-/// Longer than this for one fill, in a debug build on a busy machine, is a
-/// hang.
+/// More CPU time than this for one fill, in a debug build, is a hang (the
+/// slowest honest fills here take about a second).
 const HANG_LIMIT: Duration = Duration::from_secs(5);
 
 /// Targets of odd sizes: none, one pixel, narrow, the screen, and a
@@ -103,11 +104,33 @@ fn may_refuse(method: &str, polygon: &Polygon, refusal: Refusal) -> bool {
 /// Which fill is running, for the hang guard.
 #[derive(Clone, Copy)]
 struct Running {
+    /// Counts the fills, so that the guard knows a new one from the last.
+    fill: u64,
     case: usize,
     method: usize,
     rule: FillRule,
     size: Size,
-    since: Instant,
+}
+
+/// The calling thread's id, as `/proc/self/task` names it.
+fn this_thread() -> String {
+    let link = std::fs::read_link("/proc/thread-self").expect("the hang guard reads the CPU time from /proc (Linux)");
+    link.file_name().expect("/proc/thread-self is PID/task/TID").to_string_lossy().into_owned()
+}
+
+/// The CPU time (user and system) thread `thread` of this process has
+/// used: fields 14 and 15 of `/proc/self/task/TID/stat`, in clock ticks,
+/// a hundredth of a second each on Linux.
+fn cpu_time(thread: &str) -> Duration {
+    let path = format!("/proc/self/task/{thread}/stat");
+    let stat = std::fs::read_to_string(&path).unwrap_or_else(|error| panic!("{path}: {error}"));
+    // `TID (COMMAND) STATE ...`: the command may hold spaces, so the fields
+    // count from its end, STATE being field 3.
+    let fields: Vec<&str> = stat.rsplit_once(") ").map(|(_, rest)| rest.split(' ').collect()).unwrap_or_default();
+    let ticks = |field: usize| -> u64 {
+        fields.get(field - 3).and_then(|value| value.parse().ok()).unwrap_or_else(|| panic!("{path}: `{stat}`"))
+    };
+    Duration::from_millis((ticks(14) + ticks(15)) * 10)
 }
 
 fn describe(cases: &[Case], case: usize, method: usize, rule: FillRule, size: Size) -> String {
@@ -116,23 +139,37 @@ fn describe(cases: &[Case], case: usize, method: usize, rule: FillRule, size: Si
 }
 
 /// Fills every case with every method, with each of its rules, into each
-/// of its targets, on a worker thread this one watches for hangs.
+/// of its targets, on a worker thread this one watches for hangs: a fill
+/// seen running on two looks has used at least the worker's CPU time
+/// between them.
 fn survive(cases: Vec<Case>) {
     let cases = Arc::new(cases);
     let running = Arc::new(Mutex::new(None::<Running>));
+    let (sender, receiver) = mpsc::channel();
     let worker = {
         let (cases, running) = (Arc::clone(&cases), Arc::clone(&running));
-        thread::spawn(move || fill_all(&cases, &running))
+        thread::spawn(move || {
+            sender.send(this_thread()).expect("the guard waits for the worker's id");
+            fill_all(&cases, &running)
+        })
     };
+    let worker_thread = receiver.recv().expect("the worker says who it is");
+    // The fill last seen running, and the worker's CPU time then.
+    let mut watched: Option<(u64, Duration)> = None;
     while !worker.is_finished() {
         thread::sleep(Duration::from_millis(20));
-        if let Some(r) = *running.lock().unwrap() {
-            let elapsed = r.since.elapsed();
-            assert!(
-                elapsed < HANG_LIMIT,
-                "{} still running after {elapsed:?}",
-                describe(&cases, r.case, r.method, r.rule, r.size)
-            );
+        let Some(r) = *running.lock().unwrap() else { continue };
+        let used = cpu_time(&worker_thread);
+        match watched {
+            Some((fill, since)) if fill == r.fill => {
+                let spent = used.saturating_sub(since);
+                assert!(
+                    spent < HANG_LIMIT,
+                    "{} still running after {spent:?} of CPU time",
+                    describe(&cases, r.case, r.method, r.rule, r.size)
+                );
+            }
+            _ => watched = Some((r.fill, used)),
         }
     }
     let failures = worker.join().expect("the worker catches every panic");
@@ -141,13 +178,15 @@ fn survive(cases: Vec<Case>) {
 
 fn fill_all(cases: &[Case], running: &Mutex<Option<Running>>) -> Vec<String> {
     let mut failures = Vec::new();
+    let mut fill = 0;
     for (case_index, case) in cases.iter().enumerate() {
         for &rule in case.rules {
             let polygon = Polygon { rule, ..case.polygon.clone() };
             for (method_index, method) in ALL.iter().enumerate() {
                 for &size in case.targets {
+                    fill += 1;
                     *running.lock().unwrap() =
-                        Some(Running { case: case_index, method: method_index, rule, size, since: Instant::now() });
+                        Some(Running { fill, case: case_index, method: method_index, rule, size });
                     let mut sink = CoverageSink::new(size);
                     let outcome = panic::catch_unwind(AssertUnwindSafe(|| method.fill(&polygon, &mut sink)));
                     let failure = match outcome {

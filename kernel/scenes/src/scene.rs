@@ -3,8 +3,8 @@
 use alloc::string::String;
 use alloc::vec::Vec;
 
-use raster::sink::{self, SpanSink};
-use raster::{Method, MethodId, Polygon, Refusal};
+use raster::sink;
+use raster::{Method, MethodId, Polygon, Refusal, SpanSink};
 
 /// One drawing step.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -25,14 +25,7 @@
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 
-use raster::methods::abrash_aet::AbrashAet;
-use raster::methods::abrash_float::AbrashFloat;
-use raster::methods::abrash_int::AbrashInt;
-use raster::methods::exact::Exact;
-use raster::methods::lamothe::{Lamothe, LamotheFixed};
-use raster::methods::pendleton::Pendleton;
-use raster::methods::wgt::Wgt;
-use raster::methods::ALL;
+use raster::methods::{AbrashAet, AbrashFloat, AbrashInt, Exact, Lamothe, LamotheFixed, Pendleton, Wgt, ALL};
 use raster::reference::{self, SampleOffset};
 use raster::{CoverageSink, Method, Polygon, Size, SpanSink, SCREEN, SUBPIXEL_ONE};
 use scenes::{builtin, Op};

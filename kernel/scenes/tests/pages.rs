@@ -2,10 +2,7 @@
 //! book's own fillers do on them, and `exact` against the reference on
 //! every polygon they hold.
 
-use raster::methods::abrash_aet::AbrashAet;
-use raster::methods::abrash_float::AbrashFloat;
-use raster::methods::abrash_int::AbrashInt;
-use raster::methods::exact::Exact;
+use raster::methods::{AbrashAet, AbrashFloat, AbrashInt, Exact};
 use raster::reference::{self, SampleOffset};
 use raster::{CoverageReport, CoverageSink, Framebuffer, Method, Polygon, SCREEN};
 use scenes::{builtin, Op};

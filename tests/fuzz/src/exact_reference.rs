@@ -5,9 +5,8 @@
 //! pixel drawn twice, is a bug in one of the two
 //! (`docs/conventions.md#what-exact-means`).
 
-use raster::methods::exact::Path;
 use raster::reference::{self, SampleOffset};
-use raster::{fill_auto, CoverageReport, CoverageSink, Size};
+use raster::{fill_auto, CoverageReport, CoverageSink, ExactPath, Size};
 
 use crate::polygon::{decode, Fill};
 
@@ -36,9 +35,9 @@ pub fn check(data: &[u8]) {
     let mut sink = CoverageSink::new(size);
     assert_eq!(fill_auto(&polygon, &mut sink), Ok(()));
     compare("fill_auto", &sink);
-    for path in Path::ALL.into_iter().filter(|path| path.takes(&polygon)) {
+    for path in ExactPath::every(&polygon) {
         let mut sink = CoverageSink::new(size);
-        assert_eq!(path.fill(&polygon, &mut sink), Ok(()));
+        assert_eq!(path.fill(&mut sink), Ok(()));
         compare(path.name(), &sink);
     }
 }

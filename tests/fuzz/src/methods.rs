@@ -5,8 +5,7 @@
 //! `Method`, [`fill_auto`] and each of its paths that takes the polygon)
 //! may not refuse it and may not draw a pixel twice, as its docs promise.
 
-use raster::methods::exact::Path;
-use raster::{fill_auto, MethodId, Size, SpanSink, SCREEN};
+use raster::{fill_auto, ExactPath, MethodId, Size, SpanSink, SCREEN};
 
 use crate::polygon::{decode, Fill};
 
@@ -85,9 +84,9 @@ pub fn check(data: &[u8]) {
     let mut log = SpanLog::new(size);
     assert_eq!(fill_auto(&polygon, &mut log), Ok(()), "{}", what("fill_auto"));
     assert_clean(&mut log, &|| what("fill_auto"), true);
-    for path in Path::ALL.into_iter().filter(|path| path.takes(&polygon)) {
+    for path in ExactPath::every(&polygon) {
         let mut log = SpanLog::new(size);
-        assert_eq!(path.fill(&polygon, &mut log), Ok(()), "{}", what(path.name()));
+        assert_eq!(path.fill(&mut log), Ok(()), "{}", what(path.name()));
         assert_clean(&mut log, &|| what(path.name()), true);
     }
 }

@@ -208,16 +208,26 @@ mod tests {
     use super::*;
     use std::time::Instant;
 
-    /// Reads from `port` until `len` bytes came or two seconds passed.
-    fn read_some(port: &mut TTYPort, len: usize) -> Vec<u8> {
-        let (mut bytes, give_up) = (Vec::new(), Instant::now() + Duration::from_secs(2));
+    /// How long a read may wait for bytes that must come: only a relay
+    /// that lost them, or hangs, takes this long.
+    const PATIENCE: Duration = Duration::from_secs(30);
+
+    /// Reads from `port` until `enough` says the bytes read are all that
+    /// should come, or [`PATIENCE`] passed.
+    fn read_until(port: &mut TTYPort, mut enough: impl FnMut(&[u8]) -> bool) -> Vec<u8> {
+        let (mut bytes, give_up) = (Vec::new(), Instant::now() + PATIENCE);
         let mut chunk = [0; 4096];
-        while bytes.len() < len && Instant::now() < give_up {
+        while !enough(&bytes) && Instant::now() < give_up {
             if let Ok(n) = port.read(&mut chunk) {
                 bytes.extend_from_slice(&chunk[..n]);
             }
         }
         bytes
+    }
+
+    /// Reads from `port` until `len` bytes came, or [`PATIENCE`] passed.
+    fn read_some(port: &mut TTYPort, len: usize) -> Vec<u8> {
+        read_until(port, |bytes| bytes.len() >= len)
     }
 
     /// A relay between two pseudo-terminals of the test's: the kernel's
@@ -248,7 +258,12 @@ mod tests {
         let (relay, mut kernel, mut host) = relay(FaultRates::one_in(100.0, 1e12), FaultRates::NONE);
         let bytes: Vec<u8> = (0..=255).cycle().take(20_000).collect();
         kernel.write_all(&bytes).unwrap();
-        let received = read_some(&mut host, usize::MAX);
+        // Once the relay has carried every byte, its counts say how many
+        // it sends on: read until that many came.
+        let received = read_until(&mut host, |received| {
+            let to_host = relay.counts().0;
+            to_host.carried == 20_000 && received.len() as u64 >= 20_000 - to_host.dropped + to_host.inserted
+        });
         let (to_host, to_kernel) = relay.counts();
         assert_eq!(to_host.carried, 20_000);
         // 20,000 bytes at 1 in 100: about 200 of each, and certainly not 0.

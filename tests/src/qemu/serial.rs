@@ -317,9 +317,17 @@ impl FrameReader {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::sync::atomic::{AtomicBool, Ordering};
     use std::sync::mpsc::Sender;
+    use std::sync::Arc;
 
+    /// For a wait that must end for want of bytes: those it looks at were
+    /// all sent before.
     const SHORT: Duration = Duration::from_millis(50);
+    /// For a wait that must end with what the bytes sent make (a frame, an
+    /// error), or sooner than its deadline: only a reader that hangs, or
+    /// lost the bytes, takes this long.
+    const PATIENCE: Duration = Duration::from_secs(30);
 
     fn frame_bytes(kind: FrameKind, payload: &[u8]) -> Vec<u8> {
         let mut bytes = format!("{}\n", FrameHeader::for_payload(kind, payload)).into_bytes();
@@ -347,7 +355,7 @@ mod tests {
         let bytes = frame_bytes(FrameKind::Ok, b"pong");
         let chunks: Vec<&[u8]> = bytes.chunks(3).collect();
         let (mut reader, _sender) = open_reader(&chunks);
-        assert_eq!(reader.next_frame(SHORT).unwrap(), frame(FrameKind::Ok, b"pong"));
+        assert_eq!(reader.next_frame(PATIENCE).unwrap(), frame(FrameKind::Ok, b"pong"));
     }
 
     #[test]
@@ -357,9 +365,9 @@ mod tests {
         stream.extend(b"more noise @@");
         stream.extend(frame_bytes(FrameKind::Err, b"unknown command `FROB`\n@OK 0 00000000\n"));
         let (mut reader, _sender) = open_reader(&[&stream]);
-        assert_eq!(reader.next_frame(SHORT).unwrap(), frame(FrameKind::Ready, b"vga: 0 mismatches"));
+        assert_eq!(reader.next_frame(PATIENCE).unwrap(), frame(FrameKind::Ready, b"vga: 0 mismatches"));
         assert_eq!(
-            reader.next_frame(SHORT).unwrap(),
+            reader.next_frame(PATIENCE).unwrap(),
             frame(FrameKind::Err, b"unknown command `FROB`\n@OK 0 00000000\n")
         );
     }
@@ -368,7 +376,7 @@ mod tests {
     fn binary_payloads_with_newlines_and_marks_survive() {
         let payload: Vec<u8> = (0..=255u8).cycle().take(DUMP_LEN).collect();
         let (mut reader, _sender) = open_reader(&[&frame_bytes(FrameKind::Dump, &payload)]);
-        assert_eq!(reader.next_frame(SHORT).unwrap(), frame(FrameKind::Dump, &payload));
+        assert_eq!(reader.next_frame(PATIENCE).unwrap(), frame(FrameKind::Dump, &payload));
     }
 
     #[test]
@@ -378,10 +386,10 @@ mod tests {
         corrupt[last] = b'G';
         corrupt.extend(frame_bytes(FrameKind::Ok, b"again"));
         let (mut reader, _sender) = open_reader(&[&corrupt]);
-        let error = reader.next_frame(SHORT).unwrap_err().to_string();
+        let error = reader.next_frame(PATIENCE).unwrap_err().to_string();
         assert!(error.starts_with("OK frame of 4 bytes fails its CRC32 check"), "{error}");
         assert!(error.contains("ponG"), "{error}");
-        assert_eq!(reader.next_frame(SHORT).unwrap(), frame(FrameKind::Ok, b"again"));
+        assert_eq!(reader.next_frame(PATIENCE).unwrap(), frame(FrameKind::Ok, b"again"));
     }
 
     #[test]
@@ -389,14 +397,14 @@ mod tests {
         let mut bytes = frame_bytes(FrameKind::Ok, b"pong");
         *bytes.last_mut().unwrap() = b'X';
         let (mut reader, _sender) = open_reader(&[&bytes]);
-        let error = reader.next_frame(SHORT).unwrap_err().to_string();
+        let error = reader.next_frame(PATIENCE).unwrap_err().to_string();
         assert!(error.contains("not followed by a newline"), "{error}");
     }
 
     #[test]
     fn an_absurd_length_is_garbage() {
         let (mut reader, _sender) = open_reader(&[b"@DUMP 999999999 00000000\n"]);
-        let error = reader.next_frame(SHORT).unwrap_err().to_string();
+        let error = reader.next_frame(PATIENCE).unwrap_err().to_string();
         assert!(error.starts_with("garbage frame header `@DUMP 999999999 00000000`"), "{error}");
     }
 
@@ -415,9 +423,9 @@ mod tests {
         let (mut reader, sender) = open_reader(&[b"@OK 4 0"]);
         drop(sender);
         let started = Instant::now();
-        let error = reader.next_frame(Duration::from_secs(10)).unwrap_err().to_string();
+        let error = reader.next_frame(PATIENCE).unwrap_err().to_string();
         assert!(error.starts_with("the serial stream ended"), "{error}");
-        assert!(started.elapsed() < Duration::from_secs(1));
+        assert!(started.elapsed() < PATIENCE / 2, "{:?}", started.elapsed());
     }
 
     #[test]
@@ -425,8 +433,8 @@ mod tests {
         let bytes = frame_bytes(FrameKind::Dump, &[7; 100]);
         let (mut reader, _sender) = open_reader(&[&bytes[..60]]);
         let started = Instant::now();
-        let error = reader.next_frame_until(started + Duration::from_secs(10), Some(SHORT)).unwrap_err();
-        assert!(started.elapsed() < Duration::from_secs(5), "the stall bound, not the deadline, ended the wait");
+        let error = reader.next_frame_until(started + PATIENCE, Some(SHORT)).unwrap_err();
+        assert!(started.elapsed() < PATIENCE / 2, "the stall bound, not the deadline, ended the wait");
         assert_eq!(error.downcast_ref::<ReadError>().map(|error| error.kind), Some(ReadErrorKind::Stalled));
         assert!(error.to_string().starts_with("a frame stopped half way: no byte for 0.1 s after 60 bytes of it"));
     }
@@ -436,28 +444,33 @@ mod tests {
         let (sender, receiver) = mpsc::channel();
         let mut reader = FrameReader::new(receiver);
         sender.send(b"rest of a damaged reply".to_vec()).unwrap();
-        let ticker = std::thread::spawn(move || {
-            for _ in 0..150 {
-                if sender.send(Vec::new()).is_err() {
-                    break;
+        // Empty chunks every 10 ms until the wait is over: were they taken
+        // for bytes, it would last until its limit.
+        let over = Arc::new(AtomicBool::new(false));
+        let ticker = {
+            let over = Arc::clone(&over);
+            std::thread::spawn(move || {
+                while !over.load(Ordering::Relaxed) && sender.send(Vec::new()).is_ok() {
+                    std::thread::sleep(Duration::from_millis(10));
                 }
-                std::thread::sleep(Duration::from_millis(10));
-            }
-        });
+            })
+        };
         let started = Instant::now();
-        reader.discard_until_quiet(Duration::from_millis(100), Duration::from_secs(5));
-        assert!(started.elapsed() < Duration::from_secs(1), "{:?}", started.elapsed());
-        assert_eq!(reader.received(), 23);
+        reader.discard_until_quiet(Duration::from_millis(100), PATIENCE);
+        let waited = started.elapsed();
+        over.store(true, Ordering::Relaxed);
         ticker.join().unwrap();
+        assert!(waited < PATIENCE / 2, "{waited:?}");
+        assert_eq!(reader.received(), 23);
     }
 
     #[test]
     fn text_is_found_across_chunks_and_what_came_before_is_returned() {
         let (mut reader, _sender) =
             open_reader(&[b"\x1b[01;01HVerification fai", b"led: (0x1A) Security Violation\r\n@RE"]);
-        let seen = reader.skip_to_first(&["@READY", "Verification failed"], SHORT).unwrap();
+        let seen = reader.skip_to_first(&["@READY", "Verification failed"], PATIENCE).unwrap();
         assert_eq!(seen, (1, "\x1b[01;01HVerification failed".to_string()));
-        let violation = reader.skip_to_first(&["Violation", "Security"], SHORT).unwrap();
+        let violation = reader.skip_to_first(&["Violation", "Security"], PATIENCE).unwrap();
         assert_eq!(violation, (1, ": (0x1A) Security".to_string()), "the first to end wins");
         let error = reader.skip_to_first(&["READY", "MokManager"], SHORT).unwrap_err().to_string();
         assert!(error.starts_with("no `READY` or `MokManager` within "), "{error}");
@@ -466,7 +479,7 @@ mod tests {
     #[test]
     fn forwarded_bytes_arrive_and_the_channel_closes_at_the_end() {
         let mut reader = FrameReader::new(forward_bytes(std::io::Cursor::new(frame_bytes(FrameKind::Ok, b""))));
-        assert_eq!(reader.next_frame(SHORT).unwrap(), frame(FrameKind::Ok, b""));
-        assert!(reader.next_frame(SHORT).unwrap_err().to_string().starts_with("the serial stream ended"));
+        assert_eq!(reader.next_frame(PATIENCE).unwrap(), frame(FrameKind::Ok, b""));
+        assert!(reader.next_frame(PATIENCE).unwrap_err().to_string().starts_with("the serial stream ended"));
     }
 }

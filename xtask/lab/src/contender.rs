@@ -3,23 +3,22 @@
 
 use std::hint::black_box;
 
-use raster::methods::exact::{fill_auto_with, Path, Scratch};
 use raster::reference::SampleOffset;
-use raster::{fill_auto, Framebuffer, Method, Polygon, SpanSink, SCREEN};
+use raster::{fill_auto, fill_auto_with, ExactPath, Framebuffer, Method, Polygon, Scratch, SpanSink, SCREEN};
 
 use crate::convention::Own;
 use crate::corpus::Family;
-use crate::peers::Peer;
+use crate::peers::{self, Peer};
 
 /// A method of `raster`, a peer library, or, only in "what modelling
 /// costs" (not one of [`Contender::all`]), one of `exact`'s paths asked
-/// for alone or `fill_auto`; those two fill with a [`Scratch`] kept from
+/// for alone (by its place in [`ExactPath::NAMES`]) or `fill_auto`; those two fill with a [`Scratch`] kept from
 /// polygon to polygon, as a program drawing frame after frame would.
 #[derive(Clone, Copy)]
 pub enum Contender {
     Method(&'static dyn Method),
-    Peer(Peer),
-    Path(Path),
+    Peer(&'static dyn Peer),
+    Path(usize),
     Auto,
 }
 
@@ -27,14 +26,14 @@ impl Contender {
     /// Every method of `raster::methods::ALL`, then the peers.
     pub fn all() -> Vec<Contender> {
         let methods = raster::methods::ALL.iter().map(|&m| Contender::Method(m));
-        methods.chain(Peer::ALL.into_iter().map(Contender::Peer)).collect()
+        methods.chain(peers::ALL.iter().map(|&p| Contender::Peer(p))).collect()
     }
 
     pub fn name(&self) -> &'static str {
         match self {
             Contender::Method(m) => m.info().name,
-            Contender::Peer(p) => p.name(),
-            Contender::Path(path) => path.name(),
+            Contender::Peer(p) => p.info().name,
+            Contender::Path(which) => ExactPath::NAMES[*which],
             Contender::Auto => "fill_auto",
         }
     }
@@ -48,7 +47,7 @@ impl Contender {
     pub fn source(&self) -> &'static str {
         match self {
             Contender::Method(m) => m.info().source,
-            Contender::Peer(p) => p.source(),
+            Contender::Peer(p) => p.info().source,
             Contender::Path(_) => "ours: one of exact's paths alone",
             Contender::Auto => "ours: exact's classification, then the path it picks",
         }
@@ -58,8 +57,10 @@ impl Contender {
     pub fn summary(&self) -> String {
         match self {
             Contender::Method(m) => format!("{}; {}", m.info().numeric, m.info().convention.summary),
-            Contender::Peer(p) => p.summary().to_string(),
-            Contender::Path(path) => format!("exact's {} path; refuses polygons outside its class", path.name()),
+            Contender::Peer(p) => p.info().summary.to_string(),
+            Contender::Path(which) => {
+                format!("exact's {} path; refuses polygons outside its class", ExactPath::NAMES[*which])
+            }
             Contender::Auto => "exact's fill_auto, with a scratch kept between polygons".to_string(),
         }
     }
@@ -69,7 +70,7 @@ impl Contender {
     pub fn own(&self) -> Own {
         match self {
             Contender::Method(m) => Own::Sample(SampleOffset::of(&m.info().convention)),
-            Contender::Peer(p) => p.own(),
+            Contender::Peer(p) => p.info().own,
             Contender::Path(_) | Contender::Auto => Own::Sample(SampleOffset::CENTRE),
         }
     }
@@ -88,7 +89,9 @@ impl Contender {
         match self {
             Contender::Method(m) => m.fill(polygon, sink).map_err(|refusal| refusal.describe()),
             Contender::Peer(p) => p.draw(polygon, sink),
-            Contender::Path(path) => path.fill(polygon, sink).map_err(|refusal| refusal.describe()),
+            Contender::Path(which) => {
+                ExactPath::alone(*which, polygon).and_then(|path| path.fill(sink)).map_err(|refusal| refusal.describe())
+            }
             Contender::Auto => fill_auto(polygon, sink).map_err(|refusal| refusal.describe()),
         }
     }
@@ -119,12 +122,13 @@ impl Contender {
                 }
             }
             Contender::Peer(p) => p.pass(polygons),
-            Contender::Path(path) => {
+            Contender::Path(which) => {
                 let polygons = polygons.to_vec();
                 let (mut screen, mut scratch) = (Framebuffer::new(SCREEN), Scratch::new());
                 Box::new(move || {
                     for polygon in &polygons {
-                        let _ = path.fill_with(polygon, &mut screen, &mut scratch);
+                        let _ =
+                            ExactPath::alone(which, polygon).and_then(|path| path.fill_with(&mut screen, &mut scratch));
                     }
                     black_box(&mut screen);
                 })

@@ -1,6 +1,6 @@
 //! How a contender decides which pixels are in, which is what the lab
 //! judges it against "under its own convention": the peers name theirs
-//! ([`crate::peers::Peer::own`]), measuring judges by it, and the results
+//! ([`crate::peers::PeerInfo::own`]), measuring judges by it, and the results
 //! record it.
 
 use raster::reference::SampleOffset;

@@ -117,10 +117,10 @@ fn write(path: &Path, contents: &str) -> Result<()> {
 /// `gaps` is `null` only on families that do not); unless every path of
 /// `exact` and `fill_auto` in "what modelling costs" drew no wrong pixel,
 /// no overdraw, no gap and never failed (a path may refuse); and unless
-/// `fill_auto` allocated nothing per polygon on every family, where
-/// allocations were counted (the lab binary counts them; a unit test's
-/// results may not). A missing row or field fails: a gate that passes on
-/// what it cannot see is no gate.
+/// `fill_auto` allocated nothing per polygon on every family, in a number
+/// (the lab binary counts allocations; results from a build that did not,
+/// where the figure is `null`, cannot show that). A missing row or field
+/// fails: a gate that passes on what it cannot see is no gate.
 pub fn check(results_json: &Path) -> Result<()> {
     let text = fs::read_to_string(results_json).with_context(|| format!("{} is missing", results_json.display()))?;
     let results: serde_json::Value =
@@ -150,9 +150,11 @@ pub fn check(results_json: &Path) -> Result<()> {
         match modelling.iter().find(|row| row["family"] == name && row["lane"] == "fill_auto") {
             None => faults.push(format!("{name}: no fill_auto row")),
             Some(row) => match (&row["allocations_per_polygon"], row["allocations_per_polygon"].as_f64()) {
-                (_, Some(0.0)) | (serde_json::Value::Null, _) => {}
+                (_, Some(0.0)) => {}
                 (_, Some(n)) => faults.push(format!("{name}, fill_auto: {n} allocations per polygon")),
-                (value, None) => faults.push(format!("{name}, fill_auto: allocations_per_polygon is {value}")),
+                (value, None) => {
+                    faults.push(format!("{name}, fill_auto: allocations_per_polygon is {value}, not a number"))
+                }
             },
         }
     }
@@ -253,10 +255,18 @@ mod tests {
             results_file(&json.replace(r#""allocations_per_polygon": 0.0"#, r#""allocations_per_polygon": 1.5"#));
         let error = check(&path).unwrap_err().to_string();
         assert!(error.contains("f, fill_auto: 1.5 allocations per polygon"), "{error}");
-        // Not counted (no counting allocator): no fault.
-        let (_dir, path) =
-            results_file(&json.replace(r#""allocations_per_polygon": 0.0"#, r#""allocations_per_polygon": null"#));
-        check(&path).unwrap();
+    }
+
+    #[test]
+    fn an_uncounted_or_missing_allocation_figure_fails() {
+        let json = exact_row(CLEAN);
+        let uncounted = json.replace(r#""allocations_per_polygon": 0.0"#, r#""allocations_per_polygon": null"#);
+        let missing = json.replace(r#", "allocations_per_polygon": 0.0"#, "");
+        for json in [uncounted, missing] {
+            let (_dir, path) = results_file(&json);
+            let error = check(&path).unwrap_err().to_string();
+            assert!(error.contains("f, fill_auto: allocations_per_polygon is null, not a number"), "{error}");
+        }
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! What modelling costs: "model no more than a scene needs", measured.
 //!
 //! `exact` fills a polygon by the narrowest of its paths that takes it
-//! ([`raster::methods::exact::Path`]: triangle, monotone, active edges),
+//! ([`raster::ExactPath`]: triangle, monotone, active edges),
 //! chosen by `fill_auto`'s linear-time classification. Here every family is
 //! drawn through each path alone (a path refuses what is outside its class,
 //! and must never draw it wrong), through `fill_auto`, and classified alone
@@ -13,8 +13,7 @@
 
 use std::hint::black_box;
 
-use raster::methods::exact::{choose_path, fill_auto_with, Path, Scratch};
-use raster::{classify, MethodId, Polygon, Size, SpanSink, SCREEN};
+use raster::{classify, fill_auto_with, ExactPath, MethodId, Polygon, Scratch, Size, SpanSink, SCREEN};
 use scenes::show::{Modelling, Stage, ENTRIES_IN_ORDER};
 use serde::Serialize;
 
@@ -27,11 +26,11 @@ use crate::timing::Timing;
 /// One way through a family's polygons.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Lane {
-    /// One of exact's paths alone.
-    Path(Path),
+    /// One of exact's paths alone, by its place in [`ExactPath::NAMES`].
+    Path(usize),
     /// `fill_auto`: the classification, then the path it picks.
     Auto,
-    /// `fill_auto`'s classification alone (`exact::choose_path`).
+    /// `fill_auto`'s classification alone ([`ExactPath::choose`]).
     Dispatch,
     /// `raster::classify`: every class, simplicity included (quadratic).
     Classify,
@@ -41,19 +40,12 @@ pub enum Lane {
 }
 
 impl Lane {
-    pub const ALL: [Lane; 7] = [
-        Lane::Path(Path::Triangle),
-        Lane::Path(Path::Monotone),
-        Lane::Path(Path::ActiveEdges),
-        Lane::Auto,
-        Lane::Dispatch,
-        Lane::Classify,
-        Lane::Walk,
-    ];
+    pub const ALL: [Lane; 7] =
+        [Lane::Path(0), Lane::Path(1), Lane::Path(2), Lane::Auto, Lane::Dispatch, Lane::Classify, Lane::Walk];
 
     pub const fn name(self) -> &'static str {
         match self {
-            Lane::Path(path) => path.name(),
+            Lane::Path(which) => ExactPath::NAMES[which],
             Lane::Auto => "fill_auto",
             Lane::Dispatch => "dispatch",
             Lane::Classify => "classify",
@@ -64,7 +56,7 @@ impl Lane {
     /// The lane as a contender, for the lanes that draw.
     fn contender(self) -> Option<Contender> {
         match self {
-            Lane::Path(path) => Some(Contender::Path(path)),
+            Lane::Path(which) => Some(Contender::Path(which)),
             Lane::Auto => Some(Contender::Auto),
             Lane::Dispatch | Lane::Classify | Lane::Walk => None,
         }
@@ -75,7 +67,7 @@ impl Lane {
         match (self, contender) {
             (Lane::Dispatch, _) => Box::new(move || {
                 for polygon in polygons {
-                    black_box(choose_path(black_box(polygon)));
+                    black_box(ExactPath::choose(black_box(polygon)));
                 }
             }),
             (Lane::Classify, _) => Box::new(move || {
@@ -151,9 +143,9 @@ pub fn measure(family: &Family, timing: Timing, progress: &(dyn Fn() + Sync)) ->
     let judged = measure::quietly(|| measure::judge(family, &contenders, progress));
     let tiled = !family.tilings.is_empty();
     let polygons: Vec<&Polygon> = family.polygons.iter().collect();
-    let mut chosen = [0u64; Path::ALL.len()];
-    for path in polygons.iter().filter_map(|p| choose_path(p)) {
-        chosen[path as usize] += 1;
+    let mut chosen = [0u64; ExactPath::NAMES.len()];
+    for path in polygons.iter().filter_map(|p| ExactPath::choose(p)) {
+        chosen[path.index()] += 1;
     }
     let lanes: Vec<(Lane, Option<&Contender>, Option<&Tally>)> = Lane::ALL
         .iter()
@@ -200,7 +192,7 @@ pub fn measure(family: &Family, timing: Timing, progress: &(dyn Fn() + Sync)) ->
                 ns_per_polygon: ns,
                 allocations_per_polygon: if takes { allocations } else { None },
                 chosen_by_fill_auto: match lane {
-                    Lane::Path(path) => Some(chosen[path as usize]),
+                    Lane::Path(which) => Some(chosen[which]),
                     _ => None,
                 },
                 time_vs_cheapest: None,
@@ -209,7 +201,7 @@ pub fn measure(family: &Family, timing: Timing, progress: &(dyn Fn() + Sync)) ->
         .collect();
     let cheapest = rows
         .iter()
-        .filter(|r| Path::ALL.iter().any(|p| p.name() == r.lane))
+        .filter(|r| ExactPath::NAMES.contains(&r.lane))
         .filter_map(|r| r.ns_per_polygon)
         .min_by(f64::total_cmp);
     for row in rows.iter_mut().filter(|r| r.refusals.is_some()) {

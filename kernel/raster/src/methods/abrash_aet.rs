@@ -45,9 +45,9 @@ use alloc::vec::Vec;
 
 use super::abrash_int::ErrorTermStep;
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
 use crate::methods::interface::{Builtin, MethodId};
-use crate::sink::SpanSink;
+use crate::target::SpanSink;
 
 /// Listing 40.1.
 pub struct AbrashAet;

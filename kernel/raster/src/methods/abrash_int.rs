@@ -28,9 +28,9 @@ use core::ops::Range;
 
 use super::abrash_float::{fill_with, Segment, CONVENTION};
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Class, Heap, MethodInfo, Refusal};
+use crate::methods::info::{Class, Heap, MethodInfo, Refusal};
 use crate::methods::interface::{Builtin, MethodId};
-use crate::sink::SpanSink;
+use crate::target::SpanSink;
 
 /// Listings 38.1, 39.1 and 39.2.
 pub struct AbrashInt;

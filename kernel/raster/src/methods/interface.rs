@@ -7,8 +7,8 @@ use core::fmt;
 use core::str::FromStr;
 
 use crate::geometry::Polygon;
-use crate::method::{MethodInfo, Refusal};
-use crate::sink::SpanSink;
+use crate::methods::info::{MethodInfo, Refusal};
+use crate::target::SpanSink;
 
 /// A fill method. Implementations never panic, never loop without bound
 /// (their work is bounded by the clipped area and the edge count) and

@@ -1,36 +1,51 @@
-//! Every fill method, one module each, named after its source, each named
-//! by a [`MethodId`]; the interface they share is in `interface.rs`.
+//! Every fill method, one file or folder each, named after its source,
+//! each named by a [`MethodId`]: this module is where a caller finds them
+//! ([`ALL`], and each by its type). What they share lives beside them:
+//! the interface, [`Method`], and the typed names in `interface.rs`; what
+//! a method says of itself ([`MethodInfo`]) and why it declines a polygon
+//! ([`Refusal`]) in `info.rs`.
+//!
+//! [`Method`]: crate::Method
+//! [`MethodInfo`]: crate::MethodInfo
+//! [`Refusal`]: crate::Refusal
 
-use crate::geometry::Polygon;
-use crate::method::Refusal;
-use crate::sink::SpanSink;
-
-pub mod abrash_aet;
-pub mod abrash_float;
-pub mod abrash_int;
-pub mod exact;
-mod interface;
-pub mod lamothe;
-pub mod pendleton;
+mod abrash_aet;
+mod abrash_float;
+mod abrash_int;
+pub(crate) mod exact;
+pub(crate) mod info;
+pub(crate) mod interface;
+mod lamothe;
+mod pendleton;
 #[cfg(test)]
 pub(crate) mod test_support;
-pub mod wgt;
+mod wgt;
 
-pub(crate) use interface::Builtin;
-pub use interface::{Method, MethodId, UnknownMethod};
+pub use abrash_aet::AbrashAet;
+pub use abrash_float::AbrashFloat;
+pub use abrash_int::AbrashInt;
+pub use exact::Exact;
+pub use lamothe::{Lamothe, LamotheFixed};
+pub use pendleton::Pendleton;
+pub use wgt::Wgt;
+
+use crate::geometry::Polygon;
+use crate::methods::info::Refusal;
+use crate::methods::interface::{Builtin, Method, MethodId};
+use crate::target::SpanSink;
 
 impl MethodId {
     /// The method itself.
     pub const fn method(self) -> &'static dyn Method {
         match self {
-            MethodId::AbrashFloat => &abrash_float::AbrashFloat,
-            MethodId::AbrashInt => &abrash_int::AbrashInt,
-            MethodId::AbrashAet => &abrash_aet::AbrashAet,
-            MethodId::Pendleton => &pendleton::Pendleton,
-            MethodId::Lamothe => &lamothe::Lamothe,
-            MethodId::LamotheFixed => &lamothe::LamotheFixed,
-            MethodId::Wgt => &wgt::Wgt,
-            MethodId::Exact => &exact::Exact,
+            MethodId::AbrashFloat => &AbrashFloat,
+            MethodId::AbrashInt => &AbrashInt,
+            MethodId::AbrashAet => &AbrashAet,
+            MethodId::Pendleton => &Pendleton,
+            MethodId::Lamothe => &Lamothe,
+            MethodId::LamotheFixed => &LamotheFixed,
+            MethodId::Wgt => &Wgt,
+            MethodId::Exact => &Exact,
         }
     }
 
@@ -40,14 +55,14 @@ impl MethodId {
     /// `self.method().fill(polygon, sink)`.
     pub fn fill<S: SpanSink + ?Sized>(self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
         match self {
-            MethodId::AbrashFloat => abrash_float::AbrashFloat.fill_into(polygon, sink),
-            MethodId::AbrashInt => abrash_int::AbrashInt.fill_into(polygon, sink),
-            MethodId::AbrashAet => abrash_aet::AbrashAet.fill_into(polygon, sink),
-            MethodId::Pendleton => pendleton::Pendleton.fill_into(polygon, sink),
-            MethodId::Lamothe => lamothe::Lamothe.fill_into(polygon, sink),
-            MethodId::LamotheFixed => lamothe::LamotheFixed.fill_into(polygon, sink),
-            MethodId::Wgt => wgt::Wgt.fill_into(polygon, sink),
-            MethodId::Exact => exact::Exact.fill_into(polygon, sink),
+            MethodId::AbrashFloat => AbrashFloat.fill_into(polygon, sink),
+            MethodId::AbrashInt => AbrashInt.fill_into(polygon, sink),
+            MethodId::AbrashAet => AbrashAet.fill_into(polygon, sink),
+            MethodId::Pendleton => Pendleton.fill_into(polygon, sink),
+            MethodId::Lamothe => Lamothe.fill_into(polygon, sink),
+            MethodId::LamotheFixed => LamotheFixed.fill_into(polygon, sink),
+            MethodId::Wgt => Wgt.fill_into(polygon, sink),
+            MethodId::Exact => Exact.fill_into(polygon, sink),
         }
     }
 
@@ -59,7 +74,7 @@ impl MethodId {
 
 /// All methods, in [`MethodId::ALL`]'s order.
 pub static ALL: &[&dyn Method] = &{
-    let mut all: [&dyn Method; MethodId::ALL.len()] = [&exact::Exact; MethodId::ALL.len()];
+    let mut all: [&dyn Method; MethodId::ALL.len()] = [&Exact; MethodId::ALL.len()];
     let mut i = 0;
     while i < all.len() {
         all[i] = MethodId::ALL[i].method();
@@ -71,6 +86,7 @@ pub static ALL: &[&dyn Method] = &{
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::methods::interface::UnknownMethod;
 
     #[test]
     fn every_name_parses_back_to_its_method() {

@@ -50,9 +50,9 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Point, Polygon, SUBPIXEL_BITS};
-use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
 use crate::methods::interface::{Builtin, MethodId};
-use crate::sink::SpanSink;
+use crate::target::SpanSink;
 
 /// `poly()` and its helpers.
 pub struct Pendleton;

@@ -9,7 +9,7 @@ use alloc::string::String;
 use crate::coverage::CoverageSink;
 use crate::geometry::{Point, Polygon, SUBPIXEL_ONE};
 use crate::methods::interface::Method;
-use crate::sink::{Size, SCREEN};
+use crate::target::{Size, SCREEN};
 
 /// The target of the small pictures.
 pub(crate) const SMALL: Size = Size { width: 8, height: 6 };

@@ -48,9 +48,9 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Polygon};
-use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
 use crate::methods::interface::{Builtin, MethodId};
-use crate::sink::SpanSink;
+use crate::target::SpanSink;
 
 /// The tutorial's `fillpoly`.
 pub struct Wgt;
@@ -183,7 +183,7 @@ mod tests {
     use crate::geometry::Point;
     use crate::methods::interface::Method;
     use crate::methods::test_support::{draw, fill, full, SMALL};
-    use crate::sink::SCREEN;
+    use crate::target::SCREEN;
 
     /// The first and last pixel drawn on row `y`, checking the row is one
     /// run drawn once.

@@ -26,9 +26,7 @@
 use super::scratch::Scratch;
 use super::trig::div_round;
 use crate::scene::DrawReport;
-use raster::geometry::{Point, SUBPIXEL_BITS, SUBPIXEL_ONE};
-use raster::sink::{Framebuffer, Size, SpanSink};
-use raster::{Method, Refusal};
+use raster::{Framebuffer, Method, Point, Refusal, Size, SpanSink, SUBPIXEL_BITS, SUBPIXEL_ONE};
 
 /// Bound on vertex coordinates (in subpixels, so 2048 px) and on
 /// attribute values: both lie in `-LIMIT..=LIMIT`.
@@ -208,10 +206,8 @@ mod tests {
     use alloc::vec::Vec;
 
     use super::*;
-    use raster::geometry::Polygon;
-    use raster::method::MethodInfo;
-    use raster::methods::{self, exact::Exact};
-    use raster::sink::SCREEN;
+    use raster::methods::{self, Exact};
+    use raster::{MethodInfo, Polygon, SCREEN};
 
     fn px(x: i32, y: i32) -> Point {
         Point::from_pixels(x, y)

@@ -13,7 +13,7 @@ use core::fmt::{self, Write};
 use font8x8::legacy::BASIC_LEGACY;
 
 use super::entries::Entry;
-use raster::sink::SpanSink;
+use raster::SpanSink;
 
 /// A glyph's width and height in pixels.
 const GLYPH: i32 = 8;
@@ -121,7 +121,8 @@ fn put(target: &mut dyn SpanSink, x_start: i32, y: i32, x_end: i32, color: u8) {
 mod tests {
     use super::*;
     use crate::show::entries::{entry, ENTRIES_IN_ORDER};
-    use raster::sink::{self, Framebuffer, SCREEN};
+    use raster::sink;
+    use raster::{Framebuffer, SCREEN};
 
     const BACKGROUND: u8 = 3;
 

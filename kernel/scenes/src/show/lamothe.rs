@@ -19,9 +19,7 @@
 use super::scratch::Scratch;
 use super::trig::{angle_at, offset, polar, rotate, TURN};
 use crate::scene::DrawReport;
-use raster::geometry::Point;
-use raster::sink::Framebuffer;
-use raster::Method;
+use raster::{Framebuffer, Method, Point};
 
 /// Frames in one full turn of the big square (7.3 s at 35 frames a second).
 pub(super) const FRAMES: u32 = 256;
@@ -92,7 +90,7 @@ mod tests {
     use super::*;
     use alloc::vec::Vec;
     use raster::methods;
-    use raster::sink::SCREEN;
+    use raster::SCREEN;
 
     fn frame(frame: u32, method: &dyn Method) -> (Framebuffer, DrawReport) {
         super::super::scratch::drawn_alone(draw, frame, method)
@@ -101,7 +99,7 @@ mod tests {
     #[test]
     fn shapes_stay_clear_of_the_label_rows() {
         for f in 0..FRAMES {
-            let (target, _) = frame(f, &methods::exact::Exact);
+            let (target, _) = frame(f, &methods::Exact);
             let rows = target.pixels().chunks(SCREEN.width as usize);
             for (y, row) in rows.enumerate().filter(|(y, _)| !(12..188).contains(y)) {
                 assert!(row.iter().all(|&p| p == 0), "frame {f} draws on row {y}");

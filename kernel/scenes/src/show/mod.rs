@@ -29,8 +29,8 @@ use alloc::vec::Vec;
 
 use crate::scene::{DrawReport, Scene};
 use entries::Kind;
-use raster::sink::{self, Framebuffer, SpanSink, SCREEN};
-use raster::Method;
+use raster::sink;
+use raster::{Framebuffer, Method, SpanSink, SCREEN};
 use scratch::Scratch;
 
 pub use entries::{entry, Entry, ENTRIES_IN_ORDER};
@@ -152,7 +152,7 @@ mod tests {
     use alloc::vec::Vec;
 
     use super::*;
-    use raster::methods::exact::Exact;
+    use raster::methods::Exact;
 
     fn animations() -> impl Iterator<Item = &'static Entry> {
         ENTRIES_IN_ORDER.iter().filter(|entry| entry.is_animated())

@@ -17,10 +17,7 @@ use super::ramp::Ramp;
 use super::scratch::Scratch;
 use super::trig::{angle_at, offset, polar, TURN};
 use crate::scene::DrawReport;
-use raster::geometry::Point;
-use raster::sink::Framebuffer;
-use raster::SUBPIXEL_ONE;
-use raster::{Method, MethodId};
+use raster::{Framebuffer, Method, MethodId, Point, SUBPIXEL_ONE};
 
 /// How long each method is on: 2 seconds.
 const FRAMES_PER_METHOD: u32 = 2 * FRAMES_PER_SECOND;
@@ -96,7 +93,7 @@ mod tests {
     fn the_exact_wheel_has_no_gaps() {
         // Every pixel whose centre is well inside the rim is drawn.
         for f in (0..FRAMES).step_by(10) {
-            let (target, _) = frame(f, &raster::methods::exact::Exact);
+            let (target, _) = frame(f, &raster::methods::Exact);
             let r = WHEEL_RADIUS - 2;
             for y in -r..=r {
                 for x in -r..=r {
@@ -111,8 +108,8 @@ mod tests {
 
     #[test]
     fn methods_differ_on_the_same_frame() {
-        let exact = frame(100, &raster::methods::exact::Exact).0;
-        let lamothe = frame(100, &raster::methods::lamothe::Lamothe).0;
+        let exact = frame(100, &raster::methods::Exact).0;
+        let lamothe = frame(100, &raster::methods::Lamothe).0;
         assert_ne!(exact, lamothe);
     }
 }

@@ -3,7 +3,7 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use raster::geometry::{Point, Polygon};
+use raster::{Point, Polygon};
 
 /// Reusable polygon storage: filled in place each frame, so that after the
 /// first frame no vertex list is allocated again.
@@ -27,7 +27,7 @@ impl Scratch {
         contour.clear();
         contour.extend(points);
         self.polygon.color = color;
-        self.polygon.rule = raster::geometry::FillRule::EvenOdd;
+        self.polygon.rule = raster::FillRule::EvenOdd;
         &self.polygon
     }
 }
@@ -35,11 +35,11 @@ impl Scratch {
 /// What one animation's `draw` puts on a fresh screen with fresh scratch.
 #[cfg(test)]
 pub(super) fn drawn_alone(
-    draw: fn(u32, &dyn raster::Method, &mut Scratch, &mut raster::sink::Framebuffer) -> crate::DrawReport,
+    draw: fn(u32, &dyn raster::Method, &mut Scratch, &mut raster::Framebuffer) -> crate::DrawReport,
     frame: u32,
     method: &dyn raster::Method,
-) -> (raster::sink::Framebuffer, crate::DrawReport) {
-    let mut target = raster::sink::Framebuffer::new(raster::sink::SCREEN);
+) -> (raster::Framebuffer, crate::DrawReport) {
+    let mut target = raster::Framebuffer::new(raster::SCREEN);
     let report = draw(frame, method, &mut Scratch::new(), &mut target);
     (target, report)
 }

@@ -23,9 +23,7 @@ use super::ramp::Ramp;
 use super::scratch::Scratch;
 use super::trig::{angle_at, div_round, offset, rotate, sin_cos, unscale, TURN};
 use crate::scene::DrawReport;
-use raster::geometry::{Point, SUBPIXEL_BITS};
-use raster::sink::{Framebuffer, SpanSink};
-use raster::Method;
+use raster::{Framebuffer, Method, Point, SpanSink, SUBPIXEL_BITS};
 
 /// How much a shaded frame models ("model no more than a scene needs",
 /// measured by the lab).
@@ -319,10 +317,8 @@ mod tests {
     use crate::show::entries::{entry, Entry};
     use crate::show::ramp::{RAMP_BASE, RAMP_LEVELS};
     use crate::show::Stage;
-    use raster::coverage::CoverageSink;
-    use raster::geometry::Polygon;
-    use raster::methods::exact::Exact;
-    use raster::sink::SCREEN;
+    use raster::methods::Exact;
+    use raster::{CoverageSink, Polygon, SCREEN};
 
     /// The three entries drawn here.
     fn entries() -> [&'static Entry; 3] {

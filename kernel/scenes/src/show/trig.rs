@@ -14,7 +14,7 @@
 //! The small integer helpers the animations share live here too:
 //! [`div_round`] and [`offset`].
 
-use raster::geometry::Point;
+use raster::Point;
 
 /// Angle units in a full turn.
 pub(super) const TURN: u32 = 4096;

@@ -22,14 +22,26 @@ use std::ptr::NonNull;
 use std::slice;
 use std::sync::{Mutex, MutexGuard, OnceLock};
 
-use raster::{SpanSink, SCREEN};
+use raster::{Polygon, SpanSink, SCREEN};
 
-use super::emit_row;
-use super::integer::Reach;
+use super::integer::{whole_pixel_contour, Canvas, Contour, IntegerPeer, Reach};
+use super::rows::emit_row;
+use super::PeerInfo;
+use crate::convention::Own;
 
 /// What `polygon()` takes: within 2,047 px its fixed point cannot overflow.
 pub const REACH: Reach =
     Reach { pixels: 2047, beyond: "a vertex past 2,047 px, where its 14.18 fixed point overflows int" };
+
+/// Allegro's `polygon()` into an 8-bit memory bitmap.
+pub static ALLEGRO: IntegerPeer<AllegroCanvas> = IntegerPeer::new(PeerInfo {
+    name: "allegro",
+    source: "system Allegro 4.4 (liballeg): polygon() into create_bitmap_ex(8, 320, 200)",
+    summary: "whole-pixel vertices (within 2,047 px); sorted active edges in 14.18 fixed point; whole-pixel points, \
+         spans inclusive, each edge's pixels drawn too; even-odd, one contour",
+    // The closed polygon at whole-pixel points, its outline drawn too.
+    own: Own::Closed { outline: true },
+});
 
 /// The colour index it fills with (0 is the cleared bitmap).
 const INK: c_int = 255;
@@ -70,8 +82,19 @@ pub struct AllegroCanvas {
     bitmap: NonNull<Bitmap>,
 }
 
-impl AllegroCanvas {
-    pub fn new() -> Result<Self, &'static str> {
+impl Canvas for AllegroCanvas {
+    /// `x0, y0, x1, y1, ...` in whole pixels.
+    type Input = Vec<c_int>;
+
+    fn contour(polygon: &Polygon) -> Contour {
+        whole_pixel_contour(polygon, REACH)
+    }
+
+    fn input(contour: &[(i32, i32)]) -> Vec<c_int> {
+        contour.iter().flat_map(|&(x, y)| [x, y]).collect()
+    }
+
+    fn new() -> Result<Self, &'static str> {
         let _allegro = lock();
         install()?;
         // SAFETY: Allegro is installed; the arguments are a valid depth and size.
@@ -82,9 +105,9 @@ impl AllegroCanvas {
         Ok(Self { bitmap })
     }
 
-    /// Fills each of `polygons` (`x0, y0, x1, y1, ...` in whole pixels,
-    /// within [`REACH`], at least one vertex each) with `polygon()`.
-    pub fn fill<'a>(&mut self, polygons: impl IntoIterator<Item = &'a [c_int]>) {
+    /// Fills each of `polygons` (within [`REACH`], at least one vertex
+    /// each) with `polygon()`, which returns nothing.
+    fn fill(&mut self, polygons: &[Vec<c_int>]) -> Result<(), &'static str> {
         let _allegro = lock();
         for points in polygons {
             debug_assert!(points.len() >= 2 && points.len() % 2 == 0);
@@ -94,10 +117,10 @@ impl AllegroCanvas {
             // the bitmap.
             unsafe { polygon(self.bitmap.as_ptr(), (points.len() / 2) as c_int, points.as_ptr(), INK) };
         }
+        Ok(())
     }
 
-    /// The painted pixels, as spans into `sink`.
-    pub fn emit_runs(&self, color: u8, sink: &mut dyn SpanSink) {
+    fn emit_runs(&self, color: u8, sink: &mut dyn SpanSink) {
         let _allegro = lock();
         for y in 0..SCREEN.height {
             // SAFETY: a memory bitmap of 320x200 at 8 bits has 200 rows of
@@ -115,9 +138,4 @@ impl Drop for AllegroCanvas {
         // SAFETY: the bitmap is live and dropped once.
         unsafe { destroy_bitmap(self.bitmap.as_ptr()) };
     }
-}
-
-/// A polygon as `polygon()` takes it: `x0, y0, x1, y1, ...`.
-pub fn points(contour: &[(i32, i32)]) -> Vec<c_int> {
-    contour.iter().flat_map(|&(x, y)| [x, y]).collect()
 }

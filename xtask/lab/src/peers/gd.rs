@@ -20,14 +20,26 @@ use std::ffi::{c_int, c_uchar};
 use std::ptr::NonNull;
 use std::slice;
 
-use raster::{SpanSink, SCREEN};
+use raster::{Polygon, SpanSink, SCREEN};
 
-use super::emit_row;
-use super::integer::Reach;
+use super::integer::{whole_pixel_contour, Canvas, Contour, IntegerPeer, Reach};
+use super::rows::emit_row;
+use super::PeerInfo;
+use crate::convention::Own;
 
 /// What `gdImageFilledPolygon` takes: within 23,170 px its products fit.
 pub const REACH: Reach =
     Reach { pixels: 23_170, beyond: "a vertex past 23,170 px, where its products of coordinates overflow int" };
+
+/// GD's `gdImageFilledPolygon` into a palette image.
+pub static GD: IntegerPeer<GdCanvas> = IntegerPeer::new(PeerInfo {
+    name: "gd",
+    source: "system GD (libgd): gdImageFilledPolygon into gdImageCreate(320, 200), a palette image",
+    summary: "whole-pixel vertices (within 23,170 px); each row's crossings in float, rounded, sorted; whole-pixel \
+         points, spans inclusive; even-odd, one contour",
+    // The closed polygon at whole-pixel points, no outline.
+    own: Own::Closed { outline: false },
+});
 
 /// GD's point: `typedef struct { int x, y; } gdPoint;`.
 #[repr(C)]
@@ -58,8 +70,18 @@ pub struct GdCanvas {
     white: c_int,
 }
 
-impl GdCanvas {
-    pub fn new() -> Result<Self, &'static str> {
+impl Canvas for GdCanvas {
+    type Input = Vec<GdPoint>;
+
+    fn contour(polygon: &Polygon) -> Contour {
+        whole_pixel_contour(polygon, REACH)
+    }
+
+    fn input(contour: &[(i32, i32)]) -> Vec<GdPoint> {
+        contour.iter().map(|&(x, y)| GdPoint { x, y }).collect()
+    }
+
+    fn new() -> Result<Self, &'static str> {
         // SAFETY: a valid size; GD allocates the image or returns null.
         let image = NonNull::new(unsafe { gdImageCreate(SCREEN.width, SCREEN.height) })
             .ok_or("gdImageCreate(320, 200) failed")?;
@@ -73,18 +95,18 @@ impl GdCanvas {
     }
 
     /// Fills each of `polygons` (whole pixels, within [`REACH`]) with
-    /// `gdImageFilledPolygon`.
-    pub fn fill<'a>(&mut self, polygons: impl IntoIterator<Item = &'a [GdPoint]>) {
+    /// `gdImageFilledPolygon`, which returns nothing.
+    fn fill(&mut self, polygons: &[Vec<GdPoint>]) -> Result<(), &'static str> {
         for points in polygons {
             // SAFETY: the image is live and ours alone; `points` holds
             // `len` points, which is all GD reads; within REACH its
             // arithmetic stays in int, and it clips to the image.
             unsafe { gdImageFilledPolygon(self.image.as_ptr(), points.as_ptr(), points.len() as c_int, self.white) };
         }
+        Ok(())
     }
 
-    /// The painted pixels, as spans into `sink`.
-    pub fn emit_runs(&self, color: u8, sink: &mut dyn SpanSink) {
+    fn emit_runs(&self, color: u8, sink: &mut dyn SpanSink) {
         for y in 0..SCREEN.height {
             // SAFETY: a 320x200 palette image has 200 rows of 320 bytes,
             // and `y` is one of them; nothing writes while the slice lives.
@@ -99,9 +121,4 @@ impl Drop for GdCanvas {
         // SAFETY: the image is live and destroyed once.
         unsafe { gdImageDestroy(self.image.as_ptr()) };
     }
-}
-
-/// A polygon as `gdImageFilledPolygon` takes it.
-pub fn points(contour: &[(i32, i32)]) -> Vec<GdPoint> {
-    contour.iter().map(|&(x, y)| GdPoint { x, y }).collect()
 }

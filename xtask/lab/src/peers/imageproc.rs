@@ -12,28 +12,53 @@
 use imageproc::drawing::draw_polygon_mut;
 use imageproc::image::{GrayImage, Luma};
 use imageproc::point::Point;
-use raster::{SpanSink, SCREEN};
+use raster::{Polygon, SpanSink, SCREEN};
 
-use super::emit_rows;
+use super::integer::{whole_pixel_contour, Canvas, Contour, IntegerPeer, Reach};
+use super::rows::emit_rows;
+use super::PeerInfo;
+use crate::convention::Own;
 
-/// A polygon as `draw_polygon_mut` takes it.
-pub fn points(contour: &[(i32, i32)]) -> Vec<Point<i32>> {
-    contour.iter().map(|&(x, y)| Point::new(x, y)).collect()
-}
+/// imageproc's `draw_polygon_mut` into a grey image.
+pub static IMAGEPROC: IntegerPeer<GrayCanvas> = IntegerPeer::new(PeerInfo {
+    name: "imageproc",
+    source: "imageproc 0.27 draw_polygon_mut into a 320x200 GrayImage",
+    summary:
+        "whole-pixel vertices; each row's crossings in f32, rounded, sorted; whole-pixel points, spans inclusive, \
+         the outline drawn too; even-odd, one contour",
+    // The closed polygon at whole-pixel points, its outline drawn too.
+    own: Own::Closed { outline: true },
+});
 
 /// A 320x200 grey image, black at first.
-pub fn new_image() -> GrayImage {
-    GrayImage::new(SCREEN.width as u32, SCREEN.height as u32)
-}
+pub struct GrayCanvas(GrayImage);
 
-/// Fills each of `polygons` in white.
-pub fn fill<'a>(image: &mut GrayImage, polygons: impl IntoIterator<Item = &'a [Point<i32>]>) {
-    for points in polygons {
-        draw_polygon_mut(image, points, Luma([255]));
+impl Canvas for GrayCanvas {
+    type Input = Vec<Point<i32>>;
+
+    /// No reach of its own.
+    fn contour(polygon: &Polygon) -> Contour {
+        whole_pixel_contour(polygon, Reach::ANY)
     }
-}
 
-/// The painted pixels, as spans into `sink`.
-pub fn emit_runs(image: &GrayImage, color: u8, sink: &mut dyn SpanSink) {
-    emit_rows(image.as_raw(), image.width() as usize, image.width() as usize, color, sink);
+    fn input(contour: &[(i32, i32)]) -> Vec<Point<i32>> {
+        contour.iter().map(|&(x, y)| Point::new(x, y)).collect()
+    }
+
+    fn new() -> Result<Self, &'static str> {
+        Ok(Self(GrayImage::new(SCREEN.width as u32, SCREEN.height as u32)))
+    }
+
+    /// Fills each of `polygons` in white.
+    fn fill(&mut self, polygons: &[Vec<Point<i32>>]) -> Result<(), &'static str> {
+        for points in polygons {
+            draw_polygon_mut(&mut self.0, points, Luma([255]));
+        }
+        Ok(())
+    }
+
+    fn emit_runs(&self, color: u8, sink: &mut dyn SpanSink) {
+        let image = &self.0;
+        emit_rows(image.as_raw(), image.width() as usize, image.width() as usize, color, sink);
+    }
 }

@@ -1,5 +1,6 @@
 //! What the integer peers (Allegro 4, SDL2_gfx, GD, imageproc) are given,
-//! and what they decline before they are called.
+//! what they decline before they are called, and how the lab drives them
+//! ([`IntegerPeer`], over each one's [`Canvas`]).
 //!
 //! Each takes one list of whole-pixel vertices (one contour) and fills it
 //! by the parity of a row's sorted crossings (even-odd): our vertices are
@@ -12,7 +13,18 @@
 //! peer says why its reach is what it is): the C libraries compute in
 //! `int` and overflow past it, which C leaves undefined.
 
-use raster::{classify, Class, FillRule, Polygon};
+use std::hint::black_box;
+use std::marker::PhantomData;
+use std::slice;
+
+use raster::{classify, Class, FillRule, Polygon, SpanSink};
+
+use super::{Peer, PeerInfo};
+use crate::corpus::Family;
+
+/// An integer peer's polygon: its one contour in whole pixels, or why the
+/// peer declines it.
+pub type Contour = Result<Vec<(i32, i32)>, &'static str>;
 
 /// How far from the origin a peer's arithmetic holds, in whole pixels on
 /// either axis, and what it declines beyond.
@@ -29,7 +41,7 @@ impl Reach {
 }
 
 /// The polygon's one contour in whole pixels, or why the peer declines it.
-pub fn whole_pixel_contour(polygon: &Polygon, reach: Reach) -> Result<Vec<(i32, i32)>, &'static str> {
+pub fn whole_pixel_contour(polygon: &Polygon, reach: Reach) -> Contour {
     let contour = match polygon.contours.as_slice() {
         [] => return Err("no contour"),
         [contour] => contour,
@@ -52,6 +64,75 @@ pub fn whole_pixel_contour(polygon: &Polygon, reach: Reach) -> Result<Vec<(i32, 
         return Err("the non-zero rule on a self-intersecting polygon (it fills by even-odd)");
     }
     Ok(pixels)
+}
+
+/// An integer peer's target, as the lab drives every one of them: made
+/// empty, filled with polygons converted from whole-pixel contours, read
+/// back as spans. Each peer's file implements it over its library.
+pub trait Canvas: Sized + 'static {
+    /// A polygon as the library takes it.
+    type Input: 'static;
+
+    /// The polygon as the peer is given it, or why it is declined:
+    /// [`whole_pixel_contour`] within the library's reach, and whatever
+    /// else the library refuses.
+    fn contour(polygon: &Polygon) -> Contour;
+
+    /// The contour as the library takes it.
+    fn input(contour: &[(i32, i32)]) -> Self::Input;
+
+    /// An empty 320x200 target.
+    fn new() -> Result<Self, &'static str>;
+
+    /// Fills each of `polygons`; the first error the library returns, if
+    /// it returns any.
+    fn fill(&mut self, polygons: &[Self::Input]) -> Result<(), &'static str>;
+
+    /// The painted pixels, as spans into `sink`.
+    fn emit_runs(&self, color: u8, sink: &mut dyn SpanSink);
+}
+
+/// An integer peer: what it is, and the canvas it fills.
+pub struct IntegerPeer<C> {
+    info: PeerInfo,
+    canvas: PhantomData<fn() -> C>,
+}
+
+impl<C> IntegerPeer<C> {
+    pub const fn new(info: PeerInfo) -> Self {
+        Self { info, canvas: PhantomData }
+    }
+}
+
+impl<C: Canvas> Peer for IntegerPeer<C> {
+    fn info(&self) -> &PeerInfo {
+        &self.info
+    }
+
+    /// Where it takes at least one polygon (declining the others).
+    fn takes(&self, family: &Family) -> bool {
+        family.polygons.iter().any(|p| C::contour(p).is_ok())
+    }
+
+    fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str> {
+        let input = C::input(&C::contour(polygon)?);
+        let mut canvas = C::new()?;
+        canvas.fill(slice::from_ref(&input))?;
+        canvas.emit_runs(polygon.color, sink);
+        Ok(())
+    }
+
+    /// What it takes of `polygons`, converted before the pass; the ones it
+    /// declines are left out.
+    fn pass<'a>(&self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a> {
+        let inputs: Vec<C::Input> = polygons.iter().filter_map(|p| C::contour(p).ok()).map(|c| C::input(&c)).collect();
+        let mut canvas = C::new().unwrap_or_else(|why| panic!("{}: {why}", self.info.name));
+        Box::new(move || {
+            // An error costs what it costs, as a refusal does.
+            let _ = canvas.fill(&inputs);
+            black_box(&mut canvas);
+        })
+    }
 }
 
 #[cfg(test)]

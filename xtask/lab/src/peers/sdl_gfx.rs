@@ -17,18 +17,31 @@
 
 use std::sync::{Mutex, MutexGuard};
 
-use raster::{SpanSink, SCREEN};
+use raster::{Polygon, SpanSink, SCREEN};
 use sdl2::gfx::primitives::DrawRenderer;
 use sdl2::pixels::{Color, Palette, PixelFormatEnum};
 use sdl2::render::Canvas;
 use sdl2::surface::Surface;
 
-use super::emit_rows;
-use super::integer::Reach;
+use super::integer::{whole_pixel_contour, Contour, IntegerPeer, Reach};
+use super::rows::emit_rows;
+use super::PeerInfo;
+use crate::convention::Own;
 
 /// What `filledPolygonRGBA` takes: within 16,383 px its products fit.
 pub const REACH: Reach =
     Reach { pixels: 16_383, beyond: "a vertex past 16,383 px, where its 16.16 fixed point overflows int" };
+
+/// SDL2_gfx's `filledPolygonRGBA` on SDL's software renderer.
+pub static SDL_GFX: IntegerPeer<SdlCanvas> = IntegerPeer::new(PeerInfo {
+    name: "sdl2_gfx",
+    source: "system SDL2_gfx through the sdl2 crate 0.38: filledPolygonRGBA on SDL's software renderer over a 320x200 \
+         INDEX8 surface",
+    summary: "whole-pixel Sint16 vertices (within 16,383 px); each row's crossings in 16.16 fixed point, sorted; \
+         whole-pixel points, spans inclusive; even-odd, one contour",
+    // The closed polygon at whole-pixel points, no outline.
+    own: Own::Closed { outline: false },
+});
 
 /// SDL2_gfx's buffer of crossings (`gfxPrimitivesPolyIntsGlobal`) is used
 /// by one thread at a time.
@@ -43,12 +56,6 @@ pub struct Vertices {
     y: Vec<i16>,
 }
 
-/// The polygon's vertices as `Sint16`, which [`REACH`] keeps them within.
-pub fn vertices(contour: &[(i32, i32)]) -> Vertices {
-    let narrow = |v: i32| i16::try_from(v).expect("vertices within REACH fit in 16 bits");
-    Vertices { x: contour.iter().map(|p| narrow(p.0)).collect(), y: contour.iter().map(|p| narrow(p.1)).collect() }
-}
-
 /// SDL's software renderer over a 320x200 INDEX8 surface whose palette
 /// is grey: index `i` is `(i, i, i)`, so white is 255 and black, the
 /// surface's first state, 0.
@@ -56,28 +63,47 @@ pub struct SdlCanvas {
     canvas: Canvas<Surface<'static>>,
 }
 
-impl SdlCanvas {
-    pub fn new() -> Result<Self, String> {
-        let mut surface = Surface::new(SCREEN.width as u32, SCREEN.height as u32, PixelFormatEnum::Index8)?;
-        let greys: Vec<Color> = (0..=255).map(|i| Color::RGB(i, i, i)).collect();
-        surface.set_palette(&Palette::with_colors(&greys)?)?;
-        Ok(Self { canvas: surface.into_canvas()? })
+impl super::integer::Canvas for SdlCanvas {
+    type Input = Vertices;
+
+    /// Besides the reach, `filledPolygonRGBA` returns -1 for fewer than 3
+    /// vertices.
+    fn contour(polygon: &Polygon) -> Contour {
+        let contour = whole_pixel_contour(polygon, REACH)?;
+        if contour.len() < 3 {
+            return Err("fewer than 3 vertices (filledPolygonRGBA returns -1)");
+        }
+        Ok(contour)
     }
 
-    /// Fills each of `polygons` in white; the first error it returns
-    /// (fewer than 3 vertices), if any.
-    pub fn fill<'a>(&mut self, polygons: impl IntoIterator<Item = &'a Vertices>) -> Result<(), String> {
+    /// The vertices as `Sint16`, which [`REACH`] keeps them within.
+    fn input(contour: &[(i32, i32)]) -> Vertices {
+        let narrow = |v: i32| i16::try_from(v).expect("vertices within REACH fit in 16 bits");
+        Vertices { x: contour.iter().map(|p| narrow(p.0)).collect(), y: contour.iter().map(|p| narrow(p.1)).collect() }
+    }
+
+    fn new() -> Result<Self, &'static str> {
+        let made = || -> Result<Self, String> {
+            let mut surface = Surface::new(SCREEN.width as u32, SCREEN.height as u32, PixelFormatEnum::Index8)?;
+            let greys: Vec<Color> = (0..=255).map(|i| Color::RGB(i, i, i)).collect();
+            surface.set_palette(&Palette::with_colors(&greys)?)?;
+            Ok(Self { canvas: surface.into_canvas()? })
+        };
+        made().map_err(|_| "SDL made no surface or renderer")
+    }
+
+    /// Fills each of `polygons` in white; an error if any call returned one.
+    fn fill(&mut self, polygons: &[Vertices]) -> Result<(), &'static str> {
         let _sdl_gfx = lock();
         let mut result = Ok(());
         for polygon in polygons {
             let filled = self.canvas.filled_polygon(&polygon.x, &polygon.y, Color::RGB(255, 255, 255));
             result = result.and(filled);
         }
-        result
+        result.map_err(|_| "filledPolygonRGBA returned an error")
     }
 
-    /// The painted pixels, as spans into `sink`.
-    pub fn emit_runs(&self, color: u8, sink: &mut dyn SpanSink) {
+    fn emit_runs(&self, color: u8, sink: &mut dyn SpanSink) {
         let surface = self.canvas.surface();
         let stride = surface.pitch() as usize;
         surface.with_lock(|rows| emit_rows(rows, stride, SCREEN.width as usize, color, sink));

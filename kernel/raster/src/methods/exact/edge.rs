@@ -1,10 +1,10 @@
-//! Edges as the exact method steps them: which scan lines an edge meets and,
-//! on each, the first pixel column whose centre lies at or right of it, kept
-//! exact from row to row by an integer error term (a DDA in the manner of
-//! Abrash's chapter 39 `ScanEdge`, with a denominator wide enough for any
-//! `i32` vertex).
-
-use core::ops::Range;
+//! Edges as the exact method steps them, the first stage of its every path:
+//! where pixels are sampled, and on each scan line an edge meets the first
+//! pixel column whose centre lies at or right of it, kept exact from row to
+//! row by an integer error term (a DDA in the manner of Abrash's chapter 39
+//! `ScanEdge`, with a denominator wide enough for any `i32` vertex) or, for
+//! short edges, a fixed-point crossing. Nothing here knows the target:
+//! that is `clip.rs`'s.
 
 use crate::geometry::{Point, SUBPIXEL_BITS, SUBPIXEL_ONE};
 
@@ -19,26 +19,6 @@ pub(super) const SAMPLE_OFFSET: i32 = SUBPIXEL_ONE / 2;
 #[inline(always)]
 pub(super) fn first_sample_at_or_after(v: i64) -> i64 {
     (v - i64::from(SAMPLE_OFFSET) + i64::from(SUBPIXEL_ONE) - 1) >> SUBPIXEL_BITS
-}
-
-/// The scan lines an edge from `top_y` down to `bottom_y` meets
-/// (`top_y <= ys < bottom_y`), limited to the target's rows `0..height`.
-/// Empty for horizontal and upward edges.
-#[inline(always)]
-pub(super) fn visible_rows(top_y: i32, bottom_y: i32, height: i32) -> Range<i64> {
-    let first = first_sample_at_or_after(top_y.into()).max(0);
-    let end = first_sample_at_or_after(bottom_y.into()).min(height.into());
-    first..end.max(first)
-}
-
-/// A pixel column clamped to the target's `0..=width`. Clamping every
-/// crossing keeps the inside test of each visible pixel unchanged: a
-/// crossing left of the target still counts for all of it, one right of it
-/// for none. (Not `clamp`, whose check that the bounds are in order
-/// would be made on every row: `width` is never negative here.)
-#[inline(always)]
-pub(super) fn visible_column(column: i64, width: i32) -> i32 {
-    column.max(0).min(width.into()) as i32
 }
 
 /// An edge walking down the scan lines it meets.
@@ -325,6 +305,8 @@ fn ceil_div(n: i128, d: i128) -> i128 {
 
 #[cfg(test)]
 mod tests {
+    use core::ops::Range;
+
     use super::*;
 
     #[test]
@@ -333,16 +315,6 @@ mod tests {
         for (v, first) in [(128, 0), (129, 1), (127, 0), (-128, -1), (-129, -1), (-127, 0), (384, 1)] {
             assert_eq!(first_sample_at_or_after(v), first, "v = {v}");
         }
-    }
-
-    #[test]
-    fn rows_are_half_open_and_clipped() {
-        assert_eq!(visible_rows(128, 384, 10), 0..1);
-        assert_eq!(visible_rows(129, 385, 10), 1..2);
-        assert_eq!(visible_rows(200, 200, 10), 1..1);
-        assert_eq!(visible_rows(i32::MIN, i32::MAX, 10), 0..10);
-        assert!(visible_rows(i32::MAX - 1, i32::MAX, 10).is_empty());
-        assert!(visible_rows(300, 100, 10).is_empty());
     }
 
     /// The stepped column equals the column computed afresh on every row.
@@ -356,7 +328,8 @@ mod tests {
             (Point::new(i32::MAX, -5000), Point::new(i32::MIN, 5000)),
         ];
         for (top, bottom) in edges {
-            let rows = visible_rows(top.y, bottom.y, 40);
+            // The rows it meets, in the first 40.
+            let rows = first_sample_at_or_after(top.y.into()).max(0)..first_sample_at_or_after(bottom.y.into()).min(40);
             let mut stepper = EdgeStepper::at_row(top, bottom, rows.start);
             for row in rows {
                 let fresh = EdgeStepper::at_row(top, bottom, row);

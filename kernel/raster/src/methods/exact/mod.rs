@@ -14,7 +14,7 @@
 //!   with one addition to a fixed-point crossing, exact for edges that
 //!   short (`edge.rs` gives the bounds).
 //! - Range: exact for every `i32` vertex coordinate and every target
-//!   [`Size`](crate::Size), so nothing is refused as out of range; the only
+//!   [`Size`], so nothing is refused as out of range; the only
 //!   refusal is [`Refusal::OutOfMemory`] when the edge tables of a polygon
 //!   too large for the stack cannot be allocated.
 //! - Classes: all ([`Class::Complex`]): several contours, holes,
@@ -32,27 +32,29 @@
 //!   when they may be 512 px or longer); a larger one takes its tables from
 //!   a [`Scratch`], which the caller may keep ([`fill_auto_with`]).
 //!
-//! Stages, one file each: `edge` (scan lines and exact crossing columns),
-//! `monotone` (the triangle fill and the two-chain path for monotone
-//! polygons), `active_edges` (the edge-table path for the rest) over
-//! `tables` (where its tables live, and how they are built and sorted).
-//! Each path is a [`Path`] that can be asked for alone; the choice between
-//! them is [`fill_auto`]'s ([`choose_path`]).
+//! Every fill goes one way through its stages, no file calling back into
+//! one it was called from: [`fill_auto`] chooses an [`ExactPath`] (the one
+//! enum of the paths, carrying what each takes of the polygon) and
+//! [`ExactPath::fill`] dispatches it (the one dispatcher): to `monotone.rs`
+//! (the triangle fill and the two-side walk) or `active_edges/` (the edge
+//! table, for the rest). Both cut the polygon to the target in `clip.rs`,
+//! step its edges with `edge.rs` and hand their spans to the sink in
+//! `spans.rs`.
 
 mod active_edges;
+mod clip;
 mod edge;
 mod monotone;
-mod tables;
+mod spans;
 
-use active_edges::fill_active_edges;
+pub use active_edges::Scratch;
 use monotone::{fill_monotone, fill_triangle};
-pub use tables::Scratch;
 
 use crate::classify::{is_monotone, Shape};
 use crate::geometry::{FillRule, Point, Polygon};
-use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
 use crate::methods::interface::{Builtin, MethodId};
-use crate::sink::SpanSink;
+use crate::target::{Size, SpanSink};
 
 /// The exact method.
 pub struct Exact;
@@ -82,149 +84,164 @@ impl Builtin for Exact {
     }
 }
 
-/// The paths `exact` fills by, from the narrowest class of polygon to the
-/// widest. Each is exact on the polygons of its class and refuses the rest
-/// ([`Refusal::OutsideClass`]); [`fill_auto`] picks one per polygon.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Path {
-    /// One contour of three vertices: its long edge and the short edge
-    /// meeting each row, one span per row, no allocation.
-    Triangle,
-    /// One contour monotone in y (triangles included): two chains from the
-    /// top vertex down, one span per row, no allocation.
-    Monotone,
+/// One of the paths `exact` fills by, with what it takes of a polygon:
+/// from the narrowest class of polygon to the widest, each exact on the
+/// polygons of its class. [`ExactPath::choose`] picks the cheapest for a
+/// polygon, as [`fill_auto`] does; [`ExactPath::alone`] asks for one path
+/// by its place in [`ExactPath::NAMES`], refusing a polygon outside its
+/// class; [`ExactPath::fill`] fills by it. Only those two make one, so a
+/// path never holds a polygon outside its class.
+///
+/// ```
+/// use raster::{CoverageSink, ExactPath, Polygon, Refusal, Size};
+///
+/// let square = Polygon::from_pixels(&[(0, 0), (3, 0), (3, 3), (0, 3)], (0, 0), 1);
+/// assert_eq!(ExactPath::alone(0, &square).map(|path| path.name()), Err(Refusal::OutsideClass));
+/// let monotone = ExactPath::alone(1, &square).unwrap();
+/// assert_eq!(monotone.name(), "monotone");
+/// let mut drawn = CoverageSink::new(Size { width: 4, height: 4 });
+/// assert_eq!(monotone.fill(&mut drawn), Ok(()));
+/// assert_eq!(drawn.ascii(), "###.\n###.\n###.\n....\n");
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub enum ExactPath<'a> {
+    /// One contour of three vertices, its `corners`: its long edge and
+    /// the short edge meeting each row, one span per row, no allocation.
+    #[non_exhaustive]
+    Triangle { corners: [Point; 3], polygon: &'a Polygon },
+    /// The one contour of `polygon` that encloses anything, monotone in y:
+    /// two sides from the top vertex down, one span per row, no allocation.
+    #[non_exhaustive]
+    Monotone { contour: &'a [Point], polygon: &'a Polygon },
     /// Any polygon: the active edge table, on the stack or in a [`Scratch`].
-    ActiveEdges,
+    #[non_exhaustive]
+    ActiveEdges { polygon: &'a Polygon },
 }
 
-impl Path {
-    pub const ALL: [Path; 3] = [Path::Triangle, Path::Monotone, Path::ActiveEdges];
+impl<'a> ExactPath<'a> {
+    /// The paths' names, from the narrowest class to the widest: the
+    /// places [`ExactPath::alone`] asks for them by.
+    pub const NAMES: [&'static str; 3] = ["triangle", "monotone", "active edges"];
 
-    pub const fn name(self) -> &'static str {
-        match self {
-            Path::Triangle => "triangle",
-            Path::Monotone => "monotone",
-            Path::ActiveEdges => "active edges",
-        }
-    }
-
-    /// Whether `polygon` is of this path's class, so that [`Path::fill`]
-    /// fills it rather than refusing it.
-    pub fn takes(self, polygon: &Polygon) -> bool {
-        match (self, polygon.contours.as_slice()) {
-            (Path::ActiveEdges, _) => true,
-            (Path::Triangle, [contour]) => contour.len() == 3,
-            (Path::Monotone, [contour]) => contour.len() == 3 || is_monotone(contour),
-            _ => false,
-        }
-    }
-
-    /// Fills `polygon` exactly by this path, or refuses it with
-    /// [`Refusal::OutsideClass`] if it is not of the path's class.
+    /// The path [`fill_auto`] fills `polygon` by, or `None` when it draws
+    /// nothing at all: its classification, in linear time.
     ///
-    /// ```
-    /// use raster::methods::exact::Path;
-    /// use raster::{CoverageSink, Polygon, Refusal, Size};
-    ///
-    /// let square = Polygon::from_pixels(&[(0, 0), (3, 0), (3, 3), (0, 3)], (0, 0), 1);
-    /// let mut drawn = CoverageSink::new(Size { width: 4, height: 4 });
-    /// assert_eq!(Path::Triangle.fill(&square, &mut drawn), Err(Refusal::OutsideClass));
-    /// assert_eq!(Path::Monotone.fill(&square, &mut drawn), Ok(()));
-    /// assert_eq!(drawn.ascii(), "###.\n###.\n###.\n....\n");
-    /// ```
-    pub fn fill<S: SpanSink + ?Sized>(self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
-        self.fill_in(polygon, sink, None)
-    }
-
-    /// [`Path::fill`] with the caller's [`Scratch`] for polygons too large
-    /// for the tables the active-edge path keeps on the stack.
-    pub fn fill_with<S: SpanSink + ?Sized>(
-        self,
-        polygon: &Polygon,
-        sink: &mut S,
-        scratch: &mut Scratch,
-    ) -> Result<(), Refusal> {
-        self.fill_in(polygon, sink, Some(scratch))
-    }
-
-    /// [`Path::fill_with`], with or without a caller's scratch.
-    fn fill_in<S: SpanSink + ?Sized>(
-        self,
-        polygon: &Polygon,
-        sink: &mut S,
-        scratch: Option<&mut Scratch>,
-    ) -> Result<(), Refusal> {
-        if !self.takes(polygon) {
-            return Err(Refusal::OutsideClass);
-        }
-        let size = sink.size();
-        match (self, polygon.contours.as_slice()) {
-            (Path::Triangle, [contour]) => {
-                fill_triangle([contour[0], contour[1], contour[2]], polygon.color, size, sink);
-                Ok(())
-            }
-            (Path::Monotone, [contour]) => {
-                fill_monotone(contour, polygon.color, size, sink);
-                Ok(())
-            }
-            _ => fill_active_edges(polygon, size, sink, scratch),
-        }
-    }
-}
-
-/// Where [`fill_auto`] sends a polygon, with what that path needs of it.
-enum Route<'a> {
-    /// Nothing to draw: no contour encloses anything.
-    Nothing,
-    Triangle([Point; 3]),
-    /// The one enclosing contour, monotone in y.
-    Monotone(&'a [Point]),
-    ActiveEdges,
-}
-
-impl<'a> Route<'a> {
-    /// [`fill_auto`]'s classification of `polygon`, in linear time.
-    ///
-    /// The common case, one contour, skips `Shape::of`'s collinearity test,
-    /// which there only tells drawing nothing from filling: a contour of
-    /// three vertices goes to the triangle fill, one monotone in y to the
+    /// The common case, one contour, skips the collinearity test (which
+    /// there only tells drawing nothing from filling): a contour of three
+    /// vertices goes to the triangle fill, one monotone in y to the
     /// monotone fill, any other to the active edge table, and each draws
     /// nothing for a collinear contour. All its crossings on a row are at
     /// one column, so no pixel lies between them (the edge table drops
     /// edges right of the target whole, so on a row it keeps all of them or
     /// the column is past the target).
     #[inline]
-    fn of(polygon: &'a Polygon) -> Self {
+    pub fn choose(polygon: &'a Polygon) -> Option<Self> {
         if let [contour] = polygon.contours.as_slice() {
-            return match contour.as_slice() {
-                &[a, b, c] => Route::Triangle([a, b, c]),
-                _ if is_monotone(contour) => Route::Monotone(contour),
-                _ => Route::ActiveEdges,
-            };
+            return Some(match contour.as_slice() {
+                &[a, b, c] => ExactPath::Triangle { corners: [a, b, c], polygon },
+                _ if is_monotone(contour) => ExactPath::Monotone { contour, polygon },
+                _ => ExactPath::ActiveEdges { polygon },
+            });
         }
         match Shape::of(polygon) {
-            Shape::Empty => Route::Nothing,
-            Shape::Monotone(contour) => Route::Monotone(contour),
-            Shape::Contour(_) | Shape::Contours => Route::ActiveEdges,
+            Shape::Empty => None,
+            Shape::Monotone(contour) => Some(ExactPath::Monotone { contour, polygon }),
+            Shape::Contour(_) | Shape::Contours => Some(ExactPath::ActiveEdges { polygon }),
+        }
+    }
+
+    /// The path named `NAMES[which]`, asked for alone: `polygon` as it
+    /// takes it, or [`Refusal::OutsideClass`] when the polygon is not of
+    /// its class (or `which` names no path).
+    pub fn alone(which: usize, polygon: &'a Polygon) -> Result<Self, Refusal> {
+        match (which, polygon.contours.as_slice()) {
+            (0, [contour]) if contour.len() == 3 => {
+                Ok(ExactPath::Triangle { corners: [contour[0], contour[1], contour[2]], polygon })
+            }
+            (1, [contour]) if contour.len() == 3 || is_monotone(contour) => {
+                Ok(ExactPath::Monotone { contour, polygon })
+            }
+            (2, _) => Ok(ExactPath::ActiveEdges { polygon }),
+            _ => Err(Refusal::OutsideClass),
+        }
+    }
+
+    /// Every path that takes `polygon` alone ([`ExactPath::alone`]),
+    /// narrowest first.
+    pub fn every(polygon: &'a Polygon) -> impl Iterator<Item = Self> + 'a {
+        (0..Self::NAMES.len()).filter_map(move |which| Self::alone(which, polygon).ok())
+    }
+
+    /// Its place in [`ExactPath::NAMES`].
+    pub const fn index(&self) -> usize {
+        match self {
+            ExactPath::Triangle { .. } => 0,
+            ExactPath::Monotone { .. } => 1,
+            ExactPath::ActiveEdges { .. } => 2,
+        }
+    }
+
+    pub const fn name(&self) -> &'static str {
+        Self::NAMES[self.index()]
+    }
+
+    /// Fills what the path holds exactly into `sink`. Only the active edge
+    /// table may refuse, and only when a polygon too large for the stack
+    /// meets a failed allocation ([`Refusal::OutOfMemory`]).
+    pub fn fill<S: SpanSink + ?Sized>(self, sink: &mut S) -> Result<(), Refusal> {
+        self.fill_in(sink, None)
+    }
+
+    /// [`ExactPath::fill`] with the caller's [`Scratch`] for polygons too
+    /// large for the tables the active-edge path keeps on the stack.
+    pub fn fill_with<S: SpanSink + ?Sized>(self, sink: &mut S, scratch: &mut Scratch) -> Result<(), Refusal> {
+        self.fill_in(sink, Some(scratch))
+    }
+
+    /// [`ExactPath::fill_with`], with or without a caller's scratch.
+    #[inline(always)]
+    fn fill_in<S: SpanSink + ?Sized>(self, sink: &mut S, scratch: Option<&mut Scratch>) -> Result<(), Refusal> {
+        match drawable(sink) {
+            Some(size) => self.dispatch(size, sink, scratch),
+            None => Ok(()),
+        }
+    }
+
+    /// The one dispatcher: fills by this path into `sink`, of `size`,
+    /// with or without a caller's scratch.
+    #[inline(always)]
+    fn dispatch<S: SpanSink + ?Sized>(
+        self,
+        size: Size,
+        sink: &mut S,
+        scratch: Option<&mut Scratch>,
+    ) -> Result<(), Refusal> {
+        match self {
+            ExactPath::Triangle { corners, polygon } => {
+                fill_triangle(corners, polygon.color, size, sink);
+                Ok(())
+            }
+            ExactPath::Monotone { contour, polygon } => {
+                fill_monotone(contour, polygon.color, size, sink);
+                Ok(())
+            }
+            ExactPath::ActiveEdges { polygon } => active_edges::fill(polygon, size, sink, scratch),
         }
     }
 }
 
-/// The path [`fill_auto`] fills `polygon` by, or `None` when it draws
-/// nothing at all: the classification it runs, alone.
-pub fn choose_path(polygon: &Polygon) -> Option<Path> {
-    match Route::of(polygon) {
-        Route::Nothing => None,
-        Route::Triangle(_) => Some(Path::Triangle),
-        Route::Monotone(_) => Some(Path::Monotone),
-        Route::ActiveEdges => Some(Path::ActiveEdges),
-    }
+/// The size of `sink`'s target, if it has pixels: one without draws
+/// nothing, whatever the path.
+#[inline(always)]
+fn drawable<S: SpanSink + ?Sized>(sink: &S) -> Option<Size> {
+    let size = sink.size();
+    (size.width > 0 && size.height > 0).then_some(size)
 }
 
 /// Fills `polygon` exactly (`docs/conventions.md`) by the cheapest path correct for
-/// its class ([`choose_path`]): degenerate polygons (and targets without
+/// its class ([`ExactPath::choose`]): degenerate polygons (and targets without
 /// pixels) draw nothing, triangles take the triangle path, monotone
-/// contours the two-chain path, everything else the active edge table.
+/// contours the two-side path, everything else the active edge table.
 /// Simple and complex polygons share that path, so telling them apart would
 /// cost without saving anything.
 ///
@@ -236,8 +253,7 @@ pub fn choose_path(polygon: &Polygon) -> Option<Path> {
 /// contours), so it takes the active edge table:
 ///
 /// ```
-/// use raster::methods::exact::{choose_path, Path};
-/// use raster::{classify, fill_auto, Class, FillRule, Framebuffer, Point, Polygon, Size};
+/// use raster::{classify, fill_auto, Class, ExactPath, FillRule, Framebuffer, Point, Polygon, Size};
 ///
 /// let square = |from: i32, to: i32| -> Vec<Point> {
 ///     [(from, from), (to, from), (to, to), (from, to)].map(|(x, y)| Point::from_pixels(x, y)).to_vec()
@@ -246,7 +262,8 @@ pub fn choose_path(polygon: &Polygon) -> Option<Path> {
 /// hole.reverse();
 /// let framed = Polygon { contours: vec![square(0, 6), hole], color: 1, rule: FillRule::NonZero };
 /// assert_eq!(classify(&framed), Class::Complex);
-/// assert_eq!(choose_path(&framed), Some(Path::ActiveEdges));
+/// let path = |polygon: &Polygon| ExactPath::choose(polygon).map(|path| path.name());
+/// assert_eq!(path(&framed), Some("active edges"));
 ///
 /// let mut target = Framebuffer::new(Size { width: 6, height: 6 });
 /// fill_auto(&framed, &mut target).unwrap();
@@ -254,9 +271,9 @@ pub fn choose_path(polygon: &Polygon) -> Option<Path> {
 /// assert_eq!(row(1), [1, 1, 1, 1, 1, 1]);
 /// assert_eq!(row(3), [1, 1, 0, 0, 1, 1]);
 ///
-/// // A triangle takes the triangle path, a convex polygon the two chains.
-/// assert_eq!(choose_path(&Polygon::from_pixels(&[(0, 0), (4, 1), (1, 4)], (0, 0), 1)), Some(Path::Triangle));
-/// assert_eq!(choose_path(&Polygon::new(square(0, 3), 1)), Some(Path::Monotone));
+/// // A triangle takes the triangle path, a convex polygon the two sides.
+/// assert_eq!(path(&Polygon::from_pixels(&[(0, 0), (4, 1), (1, 4)], (0, 0), 1)), Some("triangle"));
+/// assert_eq!(path(&Polygon::new(square(0, 3), 1)), Some("monotone"));
 /// ```
 pub fn fill_auto<S: SpanSink + ?Sized>(polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
     fill_auto_in(polygon, sink, None)
@@ -300,28 +317,18 @@ pub fn fill_auto_with<S: SpanSink + ?Sized>(
     fill_auto_in(polygon, sink, Some(scratch))
 }
 
-/// [`fill_auto_with`], with or without a caller's scratch.
+/// [`fill_auto_with`], with or without a caller's scratch. The target is
+/// looked at first, so that the path chosen goes straight to its fill.
 #[inline(always)]
 fn fill_auto_in<S: SpanSink + ?Sized>(
     polygon: &Polygon,
     sink: &mut S,
     scratch: Option<&mut Scratch>,
 ) -> Result<(), Refusal> {
-    let size = sink.size();
-    if size.width <= 0 || size.height <= 0 {
-        return Ok(());
-    }
-    match Route::of(polygon) {
-        Route::Nothing => Ok(()),
-        Route::Triangle(triangle) => {
-            fill_triangle(triangle, polygon.color, size, sink);
-            Ok(())
-        }
-        Route::Monotone(contour) => {
-            fill_monotone(contour, polygon.color, size, sink);
-            Ok(())
-        }
-        Route::ActiveEdges => fill_active_edges(polygon, size, sink, scratch),
+    let Some(size) = drawable(sink) else { return Ok(()) };
+    match ExactPath::choose(polygon) {
+        Some(path) => path.dispatch(size, sink, scratch),
+        None => Ok(()),
     }
 }
 
@@ -331,7 +338,7 @@ mod tests {
     use crate::geometry::Point;
     use crate::methods::interface::Method;
     use crate::methods::test_support::fill;
-    use crate::sink::Size;
+    use crate::target::Size;
 
     fn draw(polygon: &Polygon) -> alloc::string::String {
         fill(&Exact, polygon, Size { width: 8, height: 5 }).ascii()

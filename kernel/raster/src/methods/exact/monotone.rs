@@ -1,25 +1,30 @@
 //! The exact method's fast path: one contour that is monotone in y
 //! (Abrash's "convex", Black Book ch. 41), triangles included.
 //!
-//! The boundary of such a contour is two chains from its top vertex down to
-//! its bottom one, each meeting every scan line between them exactly once
-//! (half-open, horizontal edges never), with opposite directions. So every
-//! row has exactly two crossings and the inside is the span between them
-//! under either fill rule, even where the chains cross each other. This is
-//! chapter 39's two-chain walk, done with the exact steppers of [`super::edge`].
+//! The boundary of such a contour is two sides (chains, in chapter 39's
+//! words) from its top vertex down to its bottom one, each meeting every
+//! scan line between them exactly once (half-open, horizontal edges never),
+//! with opposite directions. So every row has exactly two crossings and the
+//! inside is the span between them under either fill rule, even where the
+//! sides cross each other. This is chapter 39's two-chain walk, done with
+//! the exact steppers of [`super::edge`].
 //!
 //! Nothing here allocates. The rows are walked in runs between vertices:
-//! within a run both chains keep their edge, so a row costs two steps and
+//! within a run both sides keep their edge, so a row costs two steps and
 //! the span, with no test for the next vertex; clamping to the target is
-//! only done for polygons that reach outside it on x.
+//! only done for polygons that reach outside it on x. Each fill goes one
+//! way: the target's cut (`clip.rs`), the edges (`edge.rs`), the spans
+//! (`spans.rs`).
 
 use core::cmp::Ordering;
 use core::ops::Range;
 
 use crate::geometry::Point;
-use crate::sink::{Size, SpanSink};
+use crate::target::{Size, SpanSink};
 
-use super::edge::{first_sample_at_or_after, visible_column, visible_rows, Crossing, EdgeStepper, ShortEdge};
+use super::clip::{columns_fit, split_rows, visible_rows};
+use super::edge::{first_sample_at_or_after, Crossing, EdgeStepper, ShortEdge};
+use super::spans::{span_rows, Target};
 
 /// Fills the triangle `a b c` with one span per row. Any three points are
 /// taken, so no test of the class is needed first: on every row the long
@@ -62,12 +67,12 @@ pub(crate) fn fill_triangle<S: SpanSink + ?Sized>([a, b, c]: [Point; 3], color: 
         Ordering::Equal => return,
     };
     let clip = !columns_fit(min_x, max_x, size.width);
-    let middle_row = first_sample_at_or_after(middle.y.into()).clamp(rows.start, rows.end);
-    let parts = (rows.start..middle_row, middle_row..rows.end);
+    let parts = split_rows(rows, middle.y);
+    let target = Target { color, width: size.width };
     if short {
-        triangle_rows::<ShortEdge, _>([top, middle, bottom], parts, long_is_left, clip, color, size.width, sink);
+        triangle_rows::<ShortEdge, _>([top, middle, bottom], parts, long_is_left, clip, target, sink);
     } else {
-        triangle_rows::<EdgeStepper, _>([top, middle, bottom], parts, long_is_left, clip, color, size.width, sink);
+        triangle_rows::<EdgeStepper, _>([top, middle, bottom], parts, long_is_left, clip, target, sink);
     }
 }
 
@@ -76,14 +81,12 @@ pub(crate) fn fill_triangle<S: SpanSink + ?Sized>([a, b, c]: [Point; 3], color: 
 /// All three edges are set up before any row is walked, so that their
 /// divisions overlap.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 fn triangle_rows<E: Crossing, S: SpanSink + ?Sized>(
     [top, middle, bottom]: [Point; 3],
     (upper_rows, lower_rows): (Range<i64>, Range<i64>),
     long_is_left: bool,
     clip: bool,
-    color: u8,
-    width: i32,
+    target: Target,
     sink: &mut S,
 ) {
     let mut long = E::at_row(top, bottom, upper_rows.start);
@@ -92,11 +95,11 @@ fn triangle_rows<E: Crossing, S: SpanSink + ?Sized>(
     let lower = (!lower_rows.is_empty()).then(|| E::at_row(middle, bottom, lower_rows.start));
     if let Some(mut upper) = upper {
         let (left, right) = if long_is_left { (&mut long, &mut upper) } else { (&mut upper, &mut long) };
-        emit_ordered(upper_rows, left, right, clip, color, width, sink);
+        emit_ordered(upper_rows, left, right, clip, target, sink);
     }
     if let Some(mut lower) = lower {
         let (left, right) = if long_is_left { (&mut long, &mut lower) } else { (&mut lower, &mut long) };
-        emit_ordered(lower_rows, left, right, clip, color, width, sink);
+        emit_ordered(lower_rows, left, right, clip, target, sink);
     }
 }
 
@@ -115,37 +118,37 @@ pub(crate) fn fill_monotone<S: SpanSink + ?Sized>(contour: &[Point], color: u8, 
     }
     let clip = !columns_fit(min_x, max_x, size.width);
     let rows = visible_rows(top_y, bottom_y, size.height);
+    let target = Target { color, width: size.width };
     if ShortEdge::fits((min_x, max_x), (top_y, bottom_y)) {
-        chain_rows::<ShortEdge, _>(contour, top, rows, clip, color, size.width, sink);
+        side_rows::<ShortEdge, _>(contour, top, rows, clip, target, sink);
     } else {
-        chain_rows::<EdgeStepper, _>(contour, top, rows, clip, color, size.width, sink);
+        side_rows::<EdgeStepper, _>(contour, top, rows, clip, target, sink);
     }
 }
 
 /// The visible `rows` of the monotone `contour` whose top vertex is
-/// `contour[top]`, down both chains at once, with edges walked as `E`.
+/// `contour[top]`, down both sides at once, with edges walked as `E`.
 #[inline(always)]
-fn chain_rows<E: Crossing, S: SpanSink + ?Sized>(
+fn side_rows<E: Crossing, S: SpanSink + ?Sized>(
     contour: &[Point],
     top: usize,
     rows: Range<i64>,
     clip: bool,
-    color: u8,
-    width: i32,
+    target: Target,
     sink: &mut S,
 ) {
-    let mut forward = Chain { contour, walk: Walk::Forward, vertex: top, edges_left: contour.len() };
-    let mut backward = Chain { contour, walk: Walk::Backward, vertex: top, edges_left: contour.len() };
+    let mut forward = Side { contour, walk: Walk::Forward, vertex: top, edges_left: contour.len() };
+    let mut backward = Side { contour, walk: Walk::Backward, vertex: top, edges_left: contour.len() };
     let mut row = rows.start;
     if row >= rows.end {
         return;
     }
-    // A chain that runs out of edges above the bottom row (which a monotone
+    // A side that runs out of edges above the bottom row (which a monotone
     // contour never does) ends the fill.
     let (Some(mut a), Some(mut b)) = (forward.seek::<E>(row), backward.seek::<E>(row)) else {
         return;
     };
-    // Each chain's next edge is set up (its division issued) before the
+    // Each side's next edge is set up (its division issued) before the
     // rows of the current one are walked, so that it is ready when they
     // end: the same seeks at the same rows, one run early.
     let mut next_a = forward.seek_after::<E>(&a, rows.end);
@@ -153,11 +156,11 @@ fn chain_rows<E: Crossing, S: SpanSink + ?Sized>(
     loop {
         // Both edges meet every row up to the first one either leaves.
         let run_end = a.end_row.min(b.end_row).min(rows.end);
-        // The chains may cross: the left crossing is the smaller column.
+        // The sides may cross: the left crossing is the smaller column.
         if clip {
-            span_rows::<false, true, _, _>(row..run_end, &mut a.stepper, &mut b.stepper, color, width, sink);
+            span_rows::<false, true, _, _>(row..run_end, &mut a.stepper, &mut b.stepper, target, sink);
         } else {
-            span_rows::<false, false, _, _>(row..run_end, &mut a.stepper, &mut b.stepper, color, width, sink);
+            span_rows::<false, false, _, _>(row..run_end, &mut a.stepper, &mut b.stepper, target, sink);
         }
         row = run_end;
         if row >= rows.end {
@@ -176,14 +179,6 @@ fn chain_rows<E: Crossing, S: SpanSink + ?Sized>(
     }
 }
 
-/// Whether every crossing column of edges with x in `min_x..=max_x` lies in
-/// the target's `0..=width`, so that no column needs clamping: a crossing
-/// lies on its edge, and [`first_sample_at_or_after`] keeps order.
-#[inline(always)]
-pub(super) fn columns_fit(min_x: i32, max_x: i32, width: i32) -> bool {
-    first_sample_at_or_after(min_x.into()) >= 0 && first_sample_at_or_after(max_x.into()) <= i64::from(width)
-}
-
 /// [`span_rows`] for `left` never right of `right`.
 #[inline(always)]
 fn emit_ordered<E: Crossing, S: SpanSink + ?Sized>(
@@ -191,60 +186,26 @@ fn emit_ordered<E: Crossing, S: SpanSink + ?Sized>(
     left: &mut E,
     right: &mut E,
     clip: bool,
-    color: u8,
-    width: i32,
+    target: Target,
     sink: &mut S,
 ) {
     if clip {
-        span_rows::<true, true, _, _>(rows, left, right, color, width, sink);
+        span_rows::<true, true, _, _>(rows, left, right, target, sink);
     } else {
-        span_rows::<true, false, _, _>(rows, left, right, color, width, sink);
+        span_rows::<true, false, _, _>(rows, left, right, target, sink);
     }
 }
 
-/// Emits the span between two crossings on each of `rows`, stepping both
-/// edges after each row; the edges must meet every row of `rows`.
-/// `ORDERED`: `a` is never right of `b`, so no comparison is needed.
-/// `CLIP`: columns may lie outside `0..=width` and are clamped to it.
-/// Clamping every crossing keeps the inside test of each visible pixel
-/// unchanged (see [`visible_column`]).
-#[inline(always)]
-pub(super) fn span_rows<const ORDERED: bool, const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(
-    rows: Range<i64>,
-    a: &mut E,
-    b: &mut E,
-    color: u8,
-    width: i32,
-    sink: &mut S,
-) {
-    // Local copies: the steppers then need not be stored on every row.
-    let (mut a_, mut b_) = (*a, *b);
-    for row in rows {
-        let (a_column, b_column) = (a_.column(), b_.column());
-        let (start, end) =
-            if ORDERED { (a_column, b_column) } else { (a_column.min(b_column), a_column.max(b_column)) };
-        // Without `CLIP` both are in `0..=width`, so they fit an `i32`.
-        let (start, end) =
-            if CLIP { (visible_column(start, width), visible_column(end, width)) } else { (start as i32, end as i32) };
-        if start < end {
-            // `row` is in `0..height`, an `i32`.
-            sink.span(row as i32, start, end, color);
-        }
-        a_.step();
-        b_.step();
-    }
-    (*a, *b) = (a_, b_);
-}
-
-/// Which way round the contour a chain goes from the top vertex.
+/// Which way round the contour a side goes from the top vertex.
 #[derive(Clone, Copy)]
 enum Walk {
     Forward,
     Backward,
 }
 
-/// One boundary chain, walked down from the top vertex an edge at a time.
-struct Chain<'a> {
+/// One side of the contour (the vertices one way round from the top to
+/// the bottom), walked down from the top vertex an edge at a time.
+struct Side<'a> {
     contour: &'a [Point],
     walk: Walk,
     /// The upper vertex of the next edge to take.
@@ -253,17 +214,17 @@ struct Chain<'a> {
     edges_left: usize,
 }
 
-/// A chain's edge on the current row, and the row it ends before.
-struct ChainEdge<E> {
+/// A side's edge on the current row, and the row it ends before.
+struct SideEdge<E> {
     stepper: E,
     end_row: i64,
 }
 
-impl Chain<'_> {
-    /// The edge [`Chain::seek`] takes where `edge` ends, if that is above
-    /// `end`; `None` otherwise, or if the chain runs out of edges.
+impl Side<'_> {
+    /// The edge [`Side::seek`] takes where `edge` ends, if that is above
+    /// `end`; `None` otherwise, or if the side runs out of edges.
     #[inline(always)]
-    fn seek_after<E: Crossing>(&mut self, edge: &ChainEdge<E>, end: i64) -> Option<ChainEdge<E>> {
+    fn seek_after<E: Crossing>(&mut self, edge: &SideEdge<E>, end: i64) -> Option<SideEdge<E>> {
         if edge.end_row < end {
             self.seek(edge.end_row)
         } else {
@@ -272,8 +233,8 @@ impl Chain<'_> {
     }
 
     /// Takes edges until one meets `row`, and puts its stepper on that row.
-    /// `None` only if the chain runs out of edges.
-    fn seek<E: Crossing>(&mut self, row: i64) -> Option<ChainEdge<E>> {
+    /// `None` only if the side runs out of edges.
+    fn seek<E: Crossing>(&mut self, row: i64) -> Option<SideEdge<E>> {
         let last = self.contour.len() - 1;
         while self.edges_left > 0 {
             self.edges_left -= 1;
@@ -289,7 +250,7 @@ impl Chain<'_> {
             if first_sample_at_or_after(top.y.into()) <= row && row < end_row {
                 let stepper =
                     if end_row - row == 1 { E::at_last_row(top, bottom, row) } else { E::at_row(top, bottom, row) };
-                return Some(ChainEdge { stepper, end_row });
+                return Some(SideEdge { stepper, end_row });
             }
         }
         None

@@ -24,9 +24,9 @@
 //!   module's split and fan.
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::method::{Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
 use crate::methods::interface::{Builtin, MethodId};
-use crate::sink::SpanSink;
+use crate::target::SpanSink;
 
 use super::halves::{fill_polygon, EdgePair, FlatHalves};
 

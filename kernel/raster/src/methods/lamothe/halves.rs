@@ -4,8 +4,8 @@
 //! supplies ([`EdgePair`]).
 
 use crate::geometry::{PixelPoint, Polygon};
-use crate::method::Refusal;
-use crate::sink::{Size, SpanSink};
+use crate::methods::info::Refusal;
+use crate::target::{Size, SpanSink};
 
 /// His clipping globals `min_clip_x` .. `max_clip_y`, inclusive.
 #[derive(Clone, Copy, Debug)]

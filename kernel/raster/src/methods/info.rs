@@ -107,7 +107,7 @@ pub enum Refusal {
     /// failure path).
     OutOfMemory,
     /// The polygon is not of the class a path of a method fills (one of
-    /// `exact`'s [`Path`](crate::methods::exact::Path)s asked for alone).
+    /// `exact`'s [`ExactPath`](crate::ExactPath)s asked for alone).
     OutsideClass,
 }
 

@@ -1,0 +1,138 @@
+//! The exact method's general path: any number of contours, crossing or
+//! not, under either fill rule. An edge table sorted by first scan line
+//! feeds an active edge table (Black Book ch. 40's global and active edge
+//! tables), kept sorted by visible column; the directions summed from the
+//! left decide which crossings open and close the runs the fill rule calls
+//! inside.
+//!
+//! A fill goes one way through its stages, each handing its data to the
+//! next and none calling back: this driver finds the polygon's box, the
+//! kind of edge that steps it exactly and where its tables live (on the
+//! stack for up to 256 edges, else in a [`Scratch`]); `build.rs` turns the
+//! polygon into the edge table (`tables.rs`); `walk.rs` walks it row by
+//! row, with the crossings kept in order (`order.rs`), paired into runs
+//! (`runs.rs`) or summed per column (`columns.rs`), into spans
+//! (`../spans.rs`).
+
+mod build;
+mod columns;
+mod order;
+mod runs;
+mod scratch;
+mod tables;
+mod walk;
+
+use core::mem::size_of;
+
+pub use scratch::Scratch;
+
+use crate::geometry::{FillRule, Polygon};
+use crate::methods::info::Refusal;
+use crate::target::{Size, SpanSink};
+
+use super::clip::columns_fit;
+use super::edge::{Crossing, EdgeStepper, ShortEdge};
+use super::spans::Target;
+use build::build;
+use scratch::Stepper;
+use tables::{Active, Chain, Crossings, Edge, EdgeRoom, Run};
+use walk::walk;
+
+/// Fills `polygon` by its fill rule, with tables on the stack or in
+/// `scratch` (a new one when there is none). Refuses only when the
+/// scratch must grow and memory cannot be had.
+pub(super) fn fill<S: SpanSink + ?Sized>(
+    polygon: &Polygon,
+    size: Size,
+    sink: &mut S,
+    scratch: Option<&mut Scratch>,
+) -> Result<(), Refusal> {
+    // The box of every vertex: whether columns may leave the target, and
+    // whether every edge may be a `ShortEdge`.
+    let mut vertices = polygon.contours.iter().flatten();
+    let Some(&first) = vertices.next() else { return Ok(()) };
+    let (mut min_x, mut max_x, mut min_y, mut max_y) = (first.x, first.x, first.y, first.y);
+    for p in vertices {
+        (min_x, max_x, min_y, max_y) = (min_x.min(p.x), max_x.max(p.x), min_y.min(p.y), max_y.max(p.y));
+    }
+    let fill = Fill { polygon, clip: !columns_fit(min_x, max_x, size.width), size };
+    if ShortEdge::fits((min_x, max_x), (min_y, max_y)) {
+        fill.with_tables::<ShortEdge, _>(sink, scratch)
+    } else {
+        fill.with_tables::<EdgeStepper, _>(sink, scratch)
+    }
+}
+
+/// One fill of the general path: the polygon, whether its columns need
+/// clamping, and the target's size.
+#[derive(Clone, Copy)]
+struct Fill<'a> {
+    polygon: &'a Polygon,
+    clip: bool,
+    size: Size,
+}
+
+impl Fill<'_> {
+    /// Fills on tables for the polygon's edges: on the stack when they
+    /// fit ([`Fill::on_stack`]), else in `scratch` (a new one when there
+    /// is none).
+    fn with_tables<E: Stepper, S: SpanSink + ?Sized>(
+        self,
+        sink: &mut S,
+        scratch: Option<&mut Scratch>,
+    ) -> Result<(), Refusal> {
+        let edges = self.polygon.vertex_count();
+        // The wide stepper's tables are three times the size: fewer fit.
+        let most = if size_of::<E>() <= size_of::<ShortEdge>() { 256 } else { 64 };
+        match edges {
+            0..=8 => self.on_stack::<8, E, S>(sink),
+            9..=16 => self.on_stack::<16, E, S>(sink),
+            17..=32 => self.on_stack::<32, E, S>(sink),
+            33..=64 => self.on_stack::<64, E, S>(sink),
+            _ if edges <= most.min(128) => self.on_stack::<128, E, S>(sink),
+            _ if edges <= most => self.on_stack::<256, E, S>(sink),
+            _ => {
+                let mut fresh = Scratch::new();
+                let (room, crossings) = E::in_scratch(scratch.unwrap_or(&mut fresh), edges, self.size.width)?;
+                self.run(room, crossings, sink);
+            }
+        }
+        Ok(())
+    }
+
+    /// Fills on cleared tables for up to `N` edges, on the stack (one more
+    /// place in the last two). Each is a local of its own, cleared in
+    /// place: built as fields of one value, the tables of the larger
+    /// classes were cleared, then copied into it. Never inlined, so that
+    /// the caller's frame holds only the class of tables it uses.
+    #[inline(never)]
+    fn on_stack<const N: usize, E: Crossing, S: SpanSink + ?Sized>(self, sink: &mut S) {
+        let mut edges = [Edge::<E>::default(); N];
+        let mut chains = [Chain::default(); N];
+        let mut starts = [0; N];
+        let mut active = [Active::<E>::default(); N];
+        let mut runs = [[Run::default(); N]; 2];
+        let mut columns = [[0; N]; 2];
+        let room = EdgeRoom { edges: &mut edges, chains: &mut chains, starts: &mut starts };
+        let crossings = Crossings {
+            active: &mut active,
+            columns: &mut columns.as_flattened_mut()[..=N],
+            runs: &mut runs.as_flattened_mut()[..=N],
+            wide: None,
+        };
+        self.run(room, crossings, sink);
+    }
+
+    /// Builds the edge table in `room`, then walks it in `crossings`.
+    fn run<E: Crossing, S: SpanSink + ?Sized>(self, room: EdgeRoom<'_, E>, crossings: Crossings<'_, E>, sink: &mut S) {
+        let table = build(self.polygon, self.size, room);
+        let target = Target { color: self.polygon.color, width: self.size.width };
+        let walk = match (self.polygon.rule, self.clip) {
+            (FillRule::EvenOdd, false) => walk::<false, false, E, S>,
+            (FillRule::EvenOdd, true) => walk::<false, true, E, S>,
+            (FillRule::NonZero, false) => walk::<true, false, E, S>,
+            (FillRule::NonZero, true) => walk::<true, true, E, S>,
+        };
+        walk(table, crossings, target, sink);
+    }
+}
