@@ -47,13 +47,22 @@ fn main() -> Result<()> {
 /// the framebuffer by default; COM1 is our protocol channel, and log text
 /// on the screen would only slow the boot (and under UEFI stay on the
 /// firmware's framebuffer, which the kernel may present its frame in), so
-/// both stay quiet.
+/// both stay quiet. Under UEFI the loader sets the smallest graphics mode
+/// of at least 640x400 (its patched mode choice,
+/// boot/image/src/bootloader.rs): the kernel's 320x200 frame at scale 2
+/// at least, and no more pixels to write a frame than that needs.
 fn boot_config() -> BootConfig {
     let mut config = BootConfig::default();
     config.serial_logging = false;
     config.frame_buffer_logging = false;
+    config.frame_buffer.minimum_framebuffer_width = Some(MINIMUM_FRAMEBUFFER.0);
+    config.frame_buffer.minimum_framebuffer_height = Some(MINIMUM_FRAMEBUFFER.1);
     config
 }
+
+/// The smallest framebuffer the loader picks under UEFI: twice the
+/// kernel's 320x200 frame each way.
+const MINIMUM_FRAMEBUFFER: (u64, u64) = (640, 400);
 
 /// Writes `loader.efi` and `boot.json` into `out_dir`. The crate hands its
 /// UEFI loader out only inside an image or in its network-boot (PXE/TFTP)

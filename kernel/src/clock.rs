@@ -1,62 +1,98 @@
-//! Time: the CPU's time-stamp counter, its rate measured once at boot.
+//! Time: the CPU's time-stamp counter, its rate measured at boot.
 //! Every wait in the kernel ends by this clock ([`Deadline`]), never after
 //! a count of port reads: what a port read costs differs from machine to
 //! machine by orders of magnitude (a few nanoseconds of virtual time under
 //! an emulator such as Bochs, about a microsecond on a real ISA bus).
 //!
-//! The rate comes from the first source that has it:
-//! 1. the PIT (channel 0 counted for 10 ms), found on every PC and
-//!    emulator this was tried on, and the clock QEMU's and Bochs's virtual
-//!    time runs the TSC against;
-//! 2. CPUID leaf 0x15 (TSC to crystal ratio and the crystal frequency) or
-//!    0x16 (base frequency), on the newer Intel CPUs whose platforms may
-//!    gate the PIT off;
-//! 3. else [`ASSUMED_HZ`]: the show then runs at the wrong pace, but every
-//!    wait still ends.
+//! The rate is measured against every timer the machine has (`timers.rs`):
+//! the PIT, the ACPI PM timer (its port from the FADT, through the RSDP the
+//! bootloader hands over) and the HPET (from its ACPI table). The first of
+//! them in that order that gives a rate is the clock's; the others, and
+//! what CPUID leaf 0x15 or 0x16 states, are kept as cross-checks for
+//! `CLOCK`. Only where no timer measures it is CPUID's figure taken, and
+//! only where the CPU states none is [`ASSUMED_HZ`]: the show then runs at
+//! the wrong pace, but every wait still ends. Many new PCs are
+//! "legacy-free": the 8254 gated off, or reachable only through the HPET.
 //!
-//! Under QEMU the TSC follows QEMU's virtual clock: host time, or one tick
-//! per emulated instruction with `-icount shift=0`; the PIT follows the
-//! same clock, so the rate measured is the one the guest sees either way.
+//! Each measurement counts TSC cycles over [`WINDOW_MICROS`] of the
+//! timer, from one reading of it to another; [`MEASUREMENTS`] are made and
+//! the median kept, so one disturbed by a system management interrupt
+//! (SMI: the firmware takes the CPU away, for tens of microseconds or
+//! more, invisibly) does not decide the rate. Each reading is guarded
+//! too: the TSC read just before and just after it must be at most
+//! [`SMI_GUARD_CYCLES`] apart, else it is read again, so the moment it
+//! stands for is known (Linux guards its calibration the same way).
+//!
+//! Under QEMU the TSC follows the host's (or, with `-icount shift=0`, one
+//! tick per emulated instruction); the timers follow QEMU's virtual clock,
+//! so the rate measured is the one the guest sees either way.
 
+use core::arch::x86_64::__cpuid;
 use core::sync::atomic::{AtomicU64, AtomicU8, Ordering};
 
-use protocol::{ClockSource, TscRate};
+use protocol::{ClockReadings, ClockSource, TscRate};
+use spin::Once;
 
-use crate::pit::{self, Stopwatch};
+use crate::pit::Stopwatch;
+use crate::timers::{Hpet, PmTimer, Timer};
 
-/// PIT ticks the calibration spans: 10 ms.
-const CALIBRATION_PIT_TICKS: u64 = pit::TICKS_PER_SECOND / 100;
-/// TSC cycles to wait for a PIT that does not count: the PIT ticks every
-/// 0.84 us, so any TSC below 80 GHz sees it move in this many cycles.
-const PIT_SILENCE_CYCLES: u64 = 1 << 16;
-/// TSC cycles the whole calibration may take if the PIT stops counting
-/// half way: 2^34 cycles are 10 s at 1.7 GHz.
-const CALIBRATION_MAX_CYCLES: u64 = 1 << 34;
-/// The rate taken when nothing measures it.
+/// Timer time each measurement spans: 10 ms.
+const WINDOW_MICROS: u64 = 10_000;
+/// Measurements per timer; the median is kept.
+const MEASUREMENTS: usize = 5;
+/// Longest gap between the TSC reads around one reading of a timer (a few
+/// port or device accesses, well under 10 us on any PC): a longer one had
+/// an SMI, or a host's scheduler under an emulator, inside it.
+const SMI_GUARD_CYCLES: u64 = 50_000;
+/// Readings tried before a measurement is given up.
+const READ_TRIES: u32 = 16;
+/// TSC cycles to wait for a timer that does not count: its ticks are at
+/// most a microsecond apart (the PIT's, the slowest, 0.84 us), so any TSC
+/// below 20 THz sees it move in 2^24 cycles, and an SMI is far shorter.
+const SILENCE_CYCLES: u64 = 1 << 24;
+/// TSC cycles one measurement may take if the timer stops counting half
+/// way: 2^32 cycles are 1 s at 4 GHz.
+const MEASUREMENT_MAX_CYCLES: u64 = 1 << 32;
+/// The rate taken when nothing measures or states it.
 const ASSUMED_HZ: u64 = 1_000_000_000;
 
 /// TSC cycles per second, once [`init`] has measured it.
 static CYCLES_PER_SECOND: AtomicU64 = AtomicU64::new(ASSUMED_HZ);
 /// Where that rate came from, as an index into `ClockSource::ALL`.
 static SOURCE: AtomicU8 = AtomicU8::new(ClockSource::Assumed as u8);
+/// What every source gave.
+static READINGS: Once<ClockReadings> = Once::new();
 
-/// Measures the TSC's rate. Takes about 10 ms with a PIT.
-pub fn init() {
-    let (rate, source) = match rate_from_pit() {
-        Some(rate) => (rate, ClockSource::Pit),
-        None => match rate_from_cpuid() {
-            Some(rate) => (rate, ClockSource::Cpuid),
-            None => (ASSUMED_HZ, ClockSource::Assumed),
-        },
+/// Measures the TSC's rate against every timer there is, `rsdp` (the
+/// bootloader's ACPI root pointer) leading to those the ACPI tables
+/// describe. Takes about 50 ms per timer. Call once, after `paging::init`
+/// (the HPET's registers and the tables are reached through it).
+pub fn init(rsdp: Option<u64>) {
+    let readings = ClockReadings {
+        pit: rate_against(Stopwatch::start()),
+        pm_timer: rsdp.and_then(PmTimer::find).and_then(rate_against),
+        hpet: rsdp.and_then(Hpet::find).and_then(rate_against),
+        cpuid: rate_from_cpuid(),
     };
+    let (rate, source) = [
+        (readings.pit, ClockSource::Pit),
+        (readings.pm_timer, ClockSource::PmTimer),
+        (readings.hpet, ClockSource::Hpet),
+        (readings.cpuid, ClockSource::Cpuid),
+    ]
+    .into_iter()
+    .find_map(|(rate, source)| Some((rate?, source)))
+    .unwrap_or((ASSUMED_HZ, ClockSource::Assumed));
     CYCLES_PER_SECOND.store(rate, Ordering::Relaxed);
     SOURCE.store(source as u8, Ordering::Relaxed);
+    READINGS.call_once(|| readings);
 }
 
-/// The TSC's rate and how it was found, as `CLOCK` reports it.
+/// The TSC's rate, how it was found and what every source gave, as
+/// `CLOCK` reports it.
 pub fn rate() -> TscRate {
     let source = ClockSource::ALL[usize::from(SOURCE.load(Ordering::Relaxed))];
-    TscRate { hz: cycles_per_second(), source }
+    TscRate { hz: cycles_per_second(), source, readings: READINGS.get().copied().unwrap_or_default() }
 }
 
 /// The time-stamp counter.
@@ -100,36 +136,68 @@ impl Deadline {
     }
 }
 
-/// Counts the TSC over [`CALIBRATION_PIT_TICKS`] of the PIT. `None` if the
-/// PIT's count does not move (no PIT) or stops.
-fn rate_from_pit() -> Option<u64> {
-    let mut stopwatch = Stopwatch::start();
-    let silence = Deadline::after_cycles(PIT_SILENCE_CYCLES);
-    while stopwatch.elapsed_ticks() == 0 {
+/// The median of up to [`MEASUREMENTS`] measurements of the TSC against
+/// `timer`; `None` if the timer does not count (no such timer: an absent
+/// PIT reads 0xFF for ever) or no measurement succeeds.
+fn rate_against(mut timer: impl Timer) -> Option<u64> {
+    let start = timer.ticks();
+    let silence = Deadline::after_cycles(SILENCE_CYCLES);
+    while timer.ticks() == start {
         if silence.passed() {
             return None;
         }
     }
-    // Count from a tick edge, so the 10 ms are whole ticks on both clocks.
-    let (ticks_at_start, cycles_at_start) = (stopwatch.elapsed_ticks(), cycles());
-    let give_up = Deadline::after_cycles(CALIBRATION_MAX_CYCLES);
-    loop {
-        let ticks = stopwatch.elapsed_ticks() - ticks_at_start;
-        if ticks >= CALIBRATION_PIT_TICKS {
-            let spent = u128::from(cycles() - cycles_at_start);
-            return u64::try_from(spent * u128::from(pit::TICKS_PER_SECOND) / u128::from(ticks)).ok();
+    let mut rates = [0; MEASUREMENTS];
+    let mut measured = 0;
+    for _ in 0..2 * MEASUREMENTS {
+        if measured == MEASUREMENTS {
+            break;
         }
+        if let Some(rate) = measure(&mut timer) {
+            rates[measured] = rate;
+            measured += 1;
+        }
+    }
+    let rates = &mut rates[..measured];
+    rates.sort_unstable();
+    rates.get(measured / 2).copied()
+}
+
+/// TSC cycles per second over [`WINDOW_MICROS`] of `timer`, from one
+/// guarded reading to another.
+fn measure(timer: &mut impl Timer) -> Option<u64> {
+    let window = timer.hz() * WINDOW_MICROS / 1_000_000;
+    let (start_cycles, start_ticks) = guarded_reading(timer)?;
+    let give_up = Deadline::after_cycles(MEASUREMENT_MAX_CYCLES);
+    while timer.ticks() - start_ticks < window {
         if give_up.passed() {
             return None;
         }
     }
+    let (end_cycles, end_ticks) = guarded_reading(timer)?;
+    let spent = u128::from(end_cycles.checked_sub(start_cycles)?);
+    u64::try_from(spent * u128::from(timer.hz()) / u128::from(end_ticks - start_ticks)).ok()
+}
+
+/// The timer's ticks and the TSC at the moment it was read (the middle of
+/// the two TSC reads around it), from the first of [`READ_TRIES`]
+/// readings that took at most [`SMI_GUARD_CYCLES`].
+fn guarded_reading(timer: &mut impl Timer) -> Option<(u64, u64)> {
+    (0..READ_TRIES).find_map(|_| {
+        let before = cycles();
+        let ticks = timer.ticks();
+        let after = cycles();
+        let took = after.checked_sub(before)?;
+        (took <= SMI_GUARD_CYCLES).then_some((before + took / 2, ticks))
+    })
 }
 
 /// The TSC's rate as the CPU states it: leaf 0x15 (crystal frequency times
 /// the TSC/crystal ratio), else leaf 0x16's base frequency, which these
-/// CPUs run the TSC at.
+/// CPUs run the TSC at. A statement, not a measurement: some CPUs leave
+/// the crystal's frequency out, and the base frequency is the TSC's only
+/// on the CPUs that say so; AMD's have neither leaf.
 fn rate_from_cpuid() -> Option<u64> {
-    use core::arch::x86_64::__cpuid;
     let highest_leaf = __cpuid(0).eax;
     if highest_leaf >= 0x15 {
         let leaf = __cpuid(0x15);

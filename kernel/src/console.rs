@@ -3,25 +3,24 @@
 //! answers and keeps serving: a bad line gets an `ERR` frame naming the
 //! problem, an over-long one is thrown away up to its newline, a line
 //! left unfinished for `PARTIAL_LINE_IDLE_SECONDS` is dropped and the
-//! show plays again (a stray byte on the line does not end the show for
-//! good), and no byte sequence can make it panic or wait forever. `EXIT`
-//! and `FAULT` are answered only on QEMU (`machine.rs`).
+//! show plays again (`line.rs`: a stray byte on the line does not end
+//! the show for good), and no byte sequence can make it panic or wait
+//! forever. `EXIT` and `FAULT` are answered only on QEMU (`machine.rs`).
 
 use alloc::format;
 use alloc::string::{String, ToString};
 use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt::Write;
-use protocol::{Command, CommandError, Firmware, FrameKind, Machine, Pong, Ready, MAX_LINE, PARTIAL_LINE_IDLE_SECONDS};
+use protocol::{Command, CommandError, Firmware, FrameKind, Machine, Pong, Ready};
 use raster::MethodId;
 use scenes::show::{Stage, ENTRIES_IN_ORDER};
 use scenes::{builtin, file, Op, Scene};
 
-use crate::clock::Deadline;
+use crate::line::{Complete, PendingLine};
 use crate::machine::Identity;
-use crate::pci::DisplayController;
 use crate::video::Screen;
-use crate::{bench, clock, demo, exit, fault, heap, machine, player, serial};
+use crate::{bench, clock, demo, exit, fault, heap, interrupts, machine, pic, player, serial};
 
 /// What `announce` found at boot (the firmware, the machine, the display
 /// controller and where it sits), for the `READY` command to say again.
@@ -29,20 +28,31 @@ static BOOTED: spin::Once<Ready> = spin::Once::new();
 
 /// Tells the host the kernel is up: a `LOG` frame saying which machine it
 /// found and by what signs, one if COM1's interrupt did not arrive (the
-/// kernel then receives by polling alone), on the VGA path one per
+/// kernel then receives by polling alone), one if the PIT's did not (the
+/// console then never halts), one per thing the screen found on its way
+/// (a framebuffer missing, or not the VGA's), on the VGA path one per
 /// register or DAC entry that did not read back as written, then `READY`
 /// naming the firmware, the machine, the display controller and where it
 /// sits, the video path (with the count of those mismatches, or where the
-/// frame is presented), and the bytes the serial line lost so far.
-pub fn announce(screen: &Screen, firmware: Firmware, identity: &Identity, display: Option<DisplayController>) {
+/// frame is presented) and its memory type, and the bytes the serial
+/// line lost so far.
+pub fn announce(screen: &Screen, firmware: Firmware, identity: &Identity) {
     serial::send_frame(FrameKind::Log, identity.evidence().as_bytes());
     if !serial::interrupt_arrives() {
         let text = "COM1: its interrupt (IRQ 4) did not arrive; receiving by polling alone";
         serial::send_frame(FrameKind::Log, text.as_bytes());
     }
+    if !pic::timer_arrives() {
+        let text = "PIT: its interrupt (IRQ 0) did not arrive; the console waits without halting";
+        serial::send_frame(FrameKind::Log, text.as_bytes());
+    }
+    for finding in screen.findings() {
+        serial::send_frame(FrameKind::Log, finding.as_bytes());
+    }
     for mismatch in screen.mismatches() {
         serial::send_frame(FrameKind::Log, mismatch.to_string().as_bytes());
     }
+    let display = screen.display();
     BOOTED.call_once(|| Ready {
         firmware,
         machine: Some(identity.machine),
@@ -57,27 +67,27 @@ pub fn announce(screen: &Screen, firmware: Firmware, identity: &Identity, displa
 /// and the line's losses so far.
 fn ready(screen: &Screen) -> Ready {
     let booted = BOOTED.get().copied().unwrap_or_default();
-    Ready { video: screen.video(), losses: serial::losses(), ..booted }
+    Ready { video: screen.video(), memory: screen.memory_type(), losses: serial::losses(), ..booted }
 }
 
-/// Serves the host forever, starting with `first_byte` (the byte that
-/// stopped the demo). `SHOW` draws on `stage`.
-pub fn serve(screen: &mut Screen, stage: &mut Stage, first_byte: u8) -> ! {
-    let mut console = Console { screen, stage, line: Vec::with_capacity(MAX_LINE), overlong: false, demo: None };
-    let mut byte = first_byte;
+/// Serves the host forever, starting with `first` (the line that stopped
+/// the demo), taking the lines that follow from `pending`. `SHOW` draws
+/// on `stage`.
+pub fn serve(screen: &mut Screen, stage: &mut Stage, mut pending: PendingLine, first: Complete) -> ! {
+    let mut console = Console { screen, stage, demo: None };
+    let mut complete = first;
     loop {
-        console.accept(byte);
-        // `DEMO` was answered: play until the host's next byte, which is
-        // then the first of its next command.
-        byte = match console.demo.take() {
-            Some(start) => demo::run(console.screen, console.stage, start),
-            None => match serial::read_byte(console.idle_deadline()) {
-                Some(byte) => byte,
-                None => {
-                    console.drop_partial_line();
-                    demo::run(console.screen, console.stage, demo::Start::default())
-                }
-            },
+        match complete {
+            Complete::Line(line) => {
+                console.execute(&line);
+                pending.recycle(line);
+            }
+            Complete::TooLong => serial::send_frame(FrameKind::Err, CommandError::TooLong.to_string().as_bytes()),
+        }
+        // `DEMO` was answered: play until the host's next line.
+        complete = match console.demo.take() {
+            Some(start) => demo::run(console.screen, console.stage, start, &mut pending),
+            None => console.next_line(&mut pending),
         };
     }
 }
@@ -90,53 +100,26 @@ struct Console<'a> {
     screen: &'a mut Screen,
     /// Where `SHOW` draws its frames, allocated once.
     stage: &'a mut Stage,
-    /// The line so far, without its `\n`; never longer than `MAX_LINE`.
-    line: Vec<u8>,
-    /// The current line outgrew `MAX_LINE`: drop bytes up to its `\n`.
-    overlong: bool,
     /// The demo `DEMO` asked for, to play once its answer is sent.
     demo: Option<demo::Start>,
 }
 
 impl Console<'_> {
-    /// When the line being received is given up if no byte comes: never
-    /// between lines, [`PARTIAL_LINE_IDLE_SECONDS`] from now inside one.
-    fn idle_deadline(&self) -> Option<Deadline> {
-        let idle = PARTIAL_LINE_IDLE_SECONDS * 1_000_000;
-        (!self.line.is_empty() || self.overlong).then(|| Deadline::after_micros(idle))
-    }
-
-    /// Drops the unfinished line, saying so in a `LOG` frame.
-    fn drop_partial_line(&mut self) {
-        let what = if self.overlong { "an overlong line" } else { "an unfinished line" };
-        let text = format!(
-            "dropped {what} ({} bytes kept) idle for {PARTIAL_LINE_IDLE_SECONDS} s; the show plays again",
-            self.line.len(),
-        );
-        serial::send_frame(FrameKind::Log, text.as_bytes());
-        self.line.clear();
-        self.overlong = false;
-    }
-
-    fn accept(&mut self, byte: u8) {
-        match byte {
-            b'\n' if self.overlong => {
-                self.overlong = false;
-                serial::send_frame(FrameKind::Err, CommandError::TooLong.to_string().as_bytes());
+    /// Waits for the next complete line; a line left unfinished for its
+    /// bound is dropped and the show plays again, until one comes.
+    fn next_line(&mut self, pending: &mut PendingLine) -> Complete {
+        loop {
+            match serial::read_byte(pending.give_up()) {
+                Some(byte) => {
+                    if let Some(complete) = pending.push(byte) {
+                        return complete;
+                    }
+                }
+                None => {
+                    pending.drop_if_idle();
+                    return demo::run(self.screen, self.stage, demo::Start::default(), pending);
+                }
             }
-            b'\n' => {
-                let line = core::mem::take(&mut self.line);
-                self.execute(&line);
-                // Keep the buffer and its capacity for the next line.
-                self.line = line;
-                self.line.clear();
-            }
-            _ if self.overlong => {}
-            _ if self.line.len() == MAX_LINE => {
-                self.overlong = true;
-                self.line.clear();
-            }
-            _ => self.line.push(byte),
         }
     }
 
@@ -144,6 +127,7 @@ impl Console<'_> {
     /// sequence number, a damaged one is answered `ERR` without one and
     /// runs nothing.
     fn execute(&mut self, line: &[u8]) {
+        interrupts::report();
         let (seq, reply) = match protocol::unseal(line) {
             Ok((seq, command)) => {
                 (seq, Command::parse(command).map_err(|error| error.to_string()).and_then(|command| self.run(command)))
@@ -158,7 +142,9 @@ impl Console<'_> {
 
     fn run(&mut self, command: Command<'_>) -> Reply {
         match command {
-            Command::Ping => ok(Pong { losses: serial::losses(), heap: heap::state() }),
+            Command::Ping => {
+                ok(Pong { losses: serial::losses(), heap: heap::state(), interrupts: Some(interrupts::counts()) })
+            }
             Command::List => Ok((FrameKind::List, listing().into_bytes())),
             Command::Draw { scene, method } => {
                 let scene = builtin_scene(scene)?;
@@ -209,7 +195,7 @@ impl Console<'_> {
             }
             Command::Fault(kind) => {
                 on_qemu("FAULT")?;
-                fault::provoke(kind)
+                ok(fault::provoke(kind))
             }
         }
     }

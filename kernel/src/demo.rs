@@ -16,18 +16,22 @@
 //! when the host asks with `DEMO`, which may name an entry to start at and
 //! stay on, and a method for every entry ([`Start`]).
 //!
-//! The first byte from the host stops it and leaves the screen as boot
-//! left it, black in the VGA default palette, so that what the host draws
-//! is all that is on the screen when it asks for a dump, and the palette
-//! is the one `DRAW` uses whichever frame the demo was at.
+//! Bytes from the host accumulate between its frames while it plays
+//! (`line.rs`): a line left incomplete does not hold the show up, and is
+//! dropped after its bound. The first complete line from the host stops
+//! it and leaves the screen as boot left it, black in the VGA default
+//! palette, so that what the host draws is all that is on the screen when
+//! it asks for a dump, and the palette is the one `DRAW` uses whichever
+//! frame the demo was at.
 
 use raster::MethodId;
 use scenes::show::{Stage, ENTRIES_IN_ORDER};
 
 use crate::keyboard::{self, Key};
+use crate::line::{Complete, PendingLine};
 use crate::player::{self, Pacer};
-use crate::serial;
 use crate::video::Screen;
+use crate::{interrupts, serial};
 
 /// Where the demo starts and what it keeps to.
 #[derive(Clone, Copy, Debug, Default)]
@@ -41,10 +45,10 @@ pub struct Start {
     pub method: Option<MethodId>,
 }
 
-/// Runs the demo on `stage` from `start` until the host sends a byte,
-/// clears the screen, and returns that byte. Allocates nothing per frame
-/// beyond what the entries and their methods do.
-pub fn run(screen: &mut Screen, stage: &mut Stage, start: Start) -> u8 {
+/// Runs the demo on `stage` from `start` until the host completes a line
+/// in `pending`, clears the screen, and returns that line. Allocates
+/// nothing per frame beyond what the entries and their methods do.
+pub fn run(screen: &mut Screen, stage: &mut Stage, start: Start, pending: &mut PendingLine) -> Complete {
     let mut pacer = Pacer::start();
     let mut index = start.entry % ENTRIES_IN_ORDER.len();
     let mut stay = start.stay;
@@ -77,9 +81,13 @@ pub fn run(screen: &mut Screen, stage: &mut Stage, start: Start) -> u8 {
             index = (index + 1) % ENTRIES_IN_ORDER.len();
             frame = 0;
         }
-        if let Some(byte) = serial::try_read_byte() {
-            screen.clear(0);
-            return byte;
+        interrupts::report();
+        while let Some(byte) = serial::try_read_byte() {
+            if let Some(complete) = pending.push(byte) {
+                screen.clear(0);
+                return complete;
+            }
         }
+        pending.drop_if_idle();
     }
 }

@@ -8,24 +8,18 @@
 //! nobody identified. Elsewhere, and on a QEMU without the device, the CPU
 //! halts for good. A non-maskable interrupt, the one thing that ends a
 //! halt with interrupts off (a chipset reporting a parity error, say),
-//! is then taken and the CPU halts again (`interrupts.rs`): the run ended
-//! cleanly before it.
-
-use core::sync::atomic::{AtomicBool, Ordering};
+//! is counted and returned from like any other (`interrupts.rs`), and
+//! the CPU halts again.
 
 use protocol::Machine;
 
 use crate::machine;
 use crate::port::DEBUG_EXIT;
 
-/// Set once the kernel has stopped for good.
-static STOPPED: AtomicBool = AtomicBool::new(false);
-
 /// Stops: exits QEMU with `code` on a machine identified as QEMU, and
 /// halts.
 pub fn stop(code: u8) -> ! {
     x86_64::instructions::interrupts::disable();
-    STOPPED.store(true, Ordering::SeqCst);
     if machine::current() == Machine::Qemu {
         DEBUG_EXIT.write(u32::from(code));
     }
@@ -33,9 +27,4 @@ pub fn stop(code: u8) -> ! {
         // Interrupts are off, so only an NMI ends a `hlt`; halt again.
         x86_64::instructions::hlt();
     }
-}
-
-/// Whether the kernel has stopped for good ([`stop`]).
-pub fn stopped() -> bool {
-    STOPPED.load(Ordering::SeqCst)
 }

@@ -1,14 +1,19 @@
 //! The test-only `FAULT` command: provokes each kind of fault for real, so
 //! the harness can prove that the handlers in `interrupts.rs` and the
 //! panic handler report it, by its name, and exit QEMU with the failure
-//! code. Answered only on QEMU (`console.rs`).
+//! code; and raises a stray interrupt, which the kernel must survive.
+//! Answered only on QEMU (`console.rs`).
 
 use core::arch::asm;
 use core::hint::black_box;
 
+use alloc::format;
+use alloc::string::String;
 use protocol::FaultKind;
 
+use crate::clock::Deadline;
 use crate::fatal::fatal;
+use crate::{apic, interrupts};
 
 /// An address no page maps: level-4 entry 27 of the lower half. The
 /// bootloader hands out level-4 entries from index 0 up (no ASLR in our
@@ -20,9 +25,18 @@ const UNMAPPED_ADDRESS: u64 = 0xdeadbeef000;
 /// the 80 KiB kernel stack runs out after some 160 calls.
 const FRAME_WORDS: usize = 64;
 
-/// Provokes `kind`. Its handler ends the run; should one ever return, the
-/// run ends here, reported all the same.
-pub fn provoke(kind: FaultKind) -> ! {
+/// The vector `FAULT strayinterrupt` raises: in the local APIC's priority
+/// class 9, which nothing on a PC is set up to use while this kernel
+/// runs.
+const STRAY_VECTOR: u8 = 0x99;
+/// Longest wait for the local APIC to deliver it.
+const DELIVERY_TIMEOUT_MICROS: u64 = 100_000;
+
+/// Provokes `kind`. A fault's handler ends the run; should one ever
+/// return, the run ends here, reported all the same. A stray interrupt
+/// is survived: the answer says how it was raised and how many the
+/// kernel has taken on its vector.
+pub fn provoke(kind: FaultKind) -> String {
     match kind {
         FaultKind::DivideError => {
             black_box(divide_by_zero());
@@ -39,8 +53,32 @@ pub fn provoke(kind: FaultKind) -> ! {
             black_box(overflow_stack(0));
         }
         FaultKind::Panic => panic!("FAULT panic: the host asked for it"),
+        FaultKind::StrayInterrupt => return raise_stray_interrupt(),
     }
     fatal(format_args!("FAULT {}: the fault handler returned", kind.name()))
+}
+
+/// Raises [`STRAY_VECTOR`] as a device would, through the local APIC (a
+/// self-IPI, which the APIC then has in service until its end of
+/// interrupt), and waits for it to be taken; with no local APIC, by
+/// `int`. Call with interrupts on (the console runs so).
+fn raise_stray_interrupt() -> String {
+    let before = interrupts::stray_count(STRAY_VECTOR);
+    let how = if apic::send_to_self(STRAY_VECTOR) {
+        "sent through the local APIC"
+    } else {
+        // SAFETY: `int` calls the vector's handler on this stack (the
+        // kernel's target has no red zone to clobber), which counts and
+        // returns; it touches no Rust object.
+        unsafe { asm!("int {vector}", vector = const STRAY_VECTOR) };
+        "raised by INT (no enabled local APIC)"
+    };
+    let give_up = Deadline::after_micros(DELIVERY_TIMEOUT_MICROS);
+    while interrupts::stray_count(STRAY_VECTOR) == before && !give_up.passed() {
+        core::hint::spin_loop();
+    }
+    let count = interrupts::stray_count(STRAY_VECTOR);
+    format!("strayinterrupt: vector {STRAY_VECTOR:#04x} {how}; {count} taken on it so far")
 }
 
 /// Divides by zero with `div`: a divide error. (In asm: Rust's `/` checks

@@ -5,18 +5,36 @@
 //! number that fits, the frame centred and black around it, every colour
 //! the palette entry's 6-bit levels widened to 8 bits as QEMU's VGA shows
 //! them (`scenes::palette::c6_to_8`), so a page looks the same both ways.
+//!
+//! The framebuffer is written through pages of the write-combining type
+//! (`paging::set_memory_type`, `pat.rs`), as Linux maps such framebuffers
+//! (`ioremap_wc`): the bootloader maps it write-back by the PAT, which
+//! the firmware's MTRRs make uncacheable where the framebuffer is in the
+//! PCI hole (each 8-byte store then its own bus transaction: 40 to 130 ms
+//! for a 1080p frame) and leave write-back where it is not (a 64-bit BAR
+//! above 4 GiB, where stores can sit in the cache and the screen shows
+//! stale blocks). Write-combining gathers the stores into bursts, which
+//! sit in the CPU's write-combining buffers in no promised order until
+//! something drains them: each presentation ends with an SFENCE, so a
+//! frame counts as shown only once all of it has left the CPU. The
+//! framebuffer's alias in the bootloader's map of physical memory gets
+//! the same type: the manual forbids a write-combining page aliased to a
+//! cacheable one.
 
-use alloc::vec;
+use alloc::string::String;
 use alloc::vec::Vec;
+use alloc::{format, vec};
 
 use bootloader_api::info::{FrameBuffer, PixelFormat};
-use protocol::Presentation;
+use protocol::{MemoryType, Presentation};
 use raster::SCREEN;
 use scenes::palette::{c6_to_8, ENTRIES};
 use volatile::{VolatilePtr, VolatileRef};
+use x86_64::{PhysAddr, VirtAddr};
 
-use crate::serial;
+use crate::paging::{self, Mapping};
 use crate::vga::Palette;
+use crate::{pat, serial};
 
 /// Frame width and height in pixels.
 const FRAME_WIDTH: usize = SCREEN.width as usize;
@@ -35,6 +53,10 @@ enum Layout {
 /// The firmware's framebuffer and where the frame goes in it.
 pub struct Presenter {
     pixels: VolatilePtr<'static, [u8]>,
+    /// Where the framebuffer starts, in the kernel's address space and in
+    /// physical memory.
+    start: VirtAddr,
+    physical: PhysAddr,
     layout: Layout,
     bytes_per_pixel: usize,
     /// Bytes from one framebuffer row to the next.
@@ -45,10 +67,11 @@ pub struct Presenter {
 }
 
 impl Presenter {
-    /// Takes `framebuffer` over, blacks it out and centres the frame in it.
-    /// `None` if its pixel format is not RGB or BGR in 3 or 4 bytes, or it
-    /// is smaller than the frame.
-    pub fn new(framebuffer: FrameBuffer) -> Option<Self> {
+    /// Takes `framebuffer` over (at physical address `physical`), maps it
+    /// write-combining, blacks it out and centres the frame in it. `None`
+    /// if its pixel format is not RGB or BGR in 3 or 4 bytes, or it is
+    /// smaller than the frame.
+    pub fn new(framebuffer: FrameBuffer, physical: PhysAddr) -> Option<Self> {
         let info = framebuffer.info();
         let layout = match info.pixel_format {
             PixelFormat::Rgb => Layout::Rgb,
@@ -75,10 +98,21 @@ impl Presenter {
             left: u32::try_from((info.width - FRAME_WIDTH * scale) / 2).ok()?,
             top: u32::try_from((info.height - FRAME_HEIGHT * scale) / 2).ok()?,
         };
-        let pixels = VolatileRef::from_mut_ref(framebuffer.into_buffer()).into_ptr();
+        // Only the rows on the screen: a firmware may hand over its whole
+        // aperture (hundreds of MB on a real GPU) as the framebuffer.
+        let buffer = &mut framebuffer.into_buffer()[..last_byte];
+        let (start, len) = (VirtAddr::from_ptr(buffer.as_ptr()), buffer.len() as u64);
+        // Where a step fails (no RAM left for a page table), the pages keep
+        // the type they had, and `mapping` reports what they have.
+        let _ = paging::set_memory_type(start, len, MemoryType::WriteCombining);
+        if let Some(alias) = paging::physical(physical.as_u64()) {
+            let _ = paging::set_memory_type(alias, len, MemoryType::WriteCombining);
+        }
+        let pixels = VolatileRef::from_mut_ref(buffer).into_ptr();
         pixels.fill(0);
+        pat::store_fence();
         let row = vec![0; FRAME_WIDTH * scale * bytes_per_pixel];
-        Some(Self { pixels, layout, bytes_per_pixel, row_bytes, presentation, row })
+        Some(Self { pixels, start, physical, layout, bytes_per_pixel, row_bytes, presentation, row })
     }
 
     /// Where the frame goes, for `READY`.
@@ -86,8 +120,29 @@ impl Presenter {
         self.presentation
     }
 
+    /// How the framebuffer is mapped, read back from the page tables.
+    pub fn mapping(&self) -> Option<Mapping> {
+        paging::mapping(self.start, self.pixels.len() as u64)
+    }
+
+    /// The `VGACHECK` line: where the framebuffer is, how it is mapped and
+    /// what a frame costs, e.g. `framebuffer 0x80000000-0x8012bfff: 300
+    /// pages of 4 KiB, write-combining (WC), PAT entry 1; 1024000 bytes
+    /// written a frame`.
+    pub fn describe(&self) -> String {
+        let end = self.physical.as_u64() + self.pixels.len() as u64 - 1;
+        let mapping = match self.mapping() {
+            Some(mapping) => format!("{mapping}"),
+            None => String::from("not mapped"),
+        };
+        let Presentation { scale, .. } = self.presentation;
+        let bytes = FRAME_WIDTH * FRAME_HEIGHT * (scale as usize).pow(2) * self.bytes_per_pixel;
+        format!("framebuffer {:#x}-{end:#x}: {mapping}; {bytes} bytes written a frame", self.physical.as_u64())
+    }
+
     /// Puts `frame` (320x200 palette indices, row after row) on the screen
-    /// in the colours of `palette`. Up to 4 MB of writes to a firmware's
+    /// in the colours of `palette`, and drains the write-combining buffers
+    /// ([`pat::store_fence`]). Up to 4 MB of writes to a firmware's
     /// framebuffer, so COM1 is polled after each row (`serial::poll`).
     pub fn show(&mut self, frame: VolatilePtr<'_, [u8]>, palette: &Palette) {
         let colors = self.encode(palette);
@@ -109,6 +164,7 @@ impl Presenter {
             }
             serial::poll();
         }
+        pat::store_fence();
     }
 
     /// The bytes of each palette entry in this framebuffer's layout (the

@@ -1,26 +1,36 @@
-//! The IDT and the interrupt controllers.
+//! The IDT: every one of the 256 vectors has a handler.
 //!
-//! Every exception vector the CPU can raise has a handler (the ones the
-//! architecture reserves, 15, 22 to 27 and 31, are never raised): each
-//! reports what happened, by name, in a `FATAL` frame and ends the run
-//! (`fatal.rs`), so a kernel bug is reported, never silent and never
-//! mistaken for another (a divide error without its own handler would
-//! have become a double fault). The harness provokes some with `FAULT`.
-//! The double fault runs on a stack of its own (`gdt.rs`). A non-maskable
-//! interrupt is fatal too, except after the kernel has stopped for good
-//! (`exit.rs`): the run ended cleanly, and the halt goes on.
+//! - Every exception the CPU can raise (vectors 0 to 31; the ones the
+//!   architecture reserves, 15, 22 to 27 and 31, are never raised) is
+//!   reported, by name, in a `FATAL` frame and ends the run (`fatal.rs`),
+//!   so a kernel bug is reported, never silent and never mistaken for
+//!   another. The harness provokes some with `FAULT`. The double fault
+//!   runs on a stack of its own (`gdt.rs`). A machine check is fatal too.
+//! - A non-maskable interrupt is not an error of the kernel's: a chipset
+//!   reports a PCI system error (SERR#) or an I/O channel check (IOCHK#)
+//!   with one, a BMC sends one to ask for a diagnosis, a TCO watchdog on
+//!   its first expiry. The handler reads why from port 0x61 (bits 7 and
+//!   6), clears what it read (bits 2 and 3 set, then cleared again, as
+//!   Linux does), counts it and returns: the show plays on.
+//! - COM1's IRQ 4 moves the received bytes into `serial`'s ring buffer,
+//!   and the PIT's IRQ 0 wakes a halt (`pic.rs`).
+//! - Every other vector, 0x20 to 0xFF, is one the kernel did not ask for:
+//!   an LVT entry of the local APIC the firmware left live (thermal,
+//!   CMCI, error, performance counter), its spurious vector, an unmasked
+//!   I/O APIC entry, a spurious 8259 IRQ. Each is counted and returns,
+//!   after an end of interrupt where the local APIC or a PIC has it in
+//!   service (`apic.rs`, `pic.rs`): left in service, it would block every
+//!   interrupt of its priority or below.
 //!
-//! Two hardware interrupts are used. COM1's IRQ 4, whose handler moves
-//! the received bytes into `serial`'s ring buffer: a speed-up only, since
-//! the kernel also polls the UART wherever it waits, and does not rely on
-//! the interrupt where it never arrives (`serial.rs`). And the PIT's IRQ 0,
-//! let in only while the kernel halts waiting for a byte
-//! ([`halt_until_interrupt`]), so that a halt ends within one tick (55 ms)
-//! even if COM1's interrupt is lost. The BIOS leaves the master 8259 PIC
-//! on vectors 8-15, the CPU's own exception vectors (IRQ 0 would look like
-//! a double fault), so both PICs are moved to 0x20-0x2F first, and every
-//! other IRQ is masked: the keyboard and the VGA are polled.
+//! Handlers only count (atomics, nothing else is safe to touch from an
+//! NMI): [`report`], from the show's frames and the console, sends a
+//! `LOG` frame per NMI and per vector that came again since, and `PING`
+//! tells the totals ([`counts`]).
 
+use alloc::format;
+use core::sync::atomic::{AtomicU32, AtomicU8, Ordering};
+
+use protocol::{FrameKind, InterruptCounts};
 use spin::Lazy;
 use x86_64::registers::control::Cr2;
 use x86_64::set_general_handler;
@@ -28,42 +38,24 @@ use x86_64::structures::idt::{InterruptDescriptorTable, InterruptStackFrame, Pag
 
 use crate::fatal::fatal;
 use crate::gdt::DOUBLE_FAULT_IST_INDEX;
-use crate::port::{io_delay, pic};
-use crate::{exit, serial};
+use crate::port::system_control;
+use crate::{apic, pic, serial};
 
-/// Where the PICs' IRQs land: 0-7 from the master, 8-15 from the slave,
-/// just past the 32 vectors the CPU reserves for exceptions.
-const MASTER_VECTORS: u8 = 0x20;
-const SLAVE_VECTORS: u8 = MASTER_VECTORS + 8;
-/// The PIT's IRQ line, and COM1's.
-const TIMER_IRQ: u8 = 0;
-const COM1_IRQ: u8 = 4;
-const TIMER_VECTOR: u8 = MASTER_VECTORS + TIMER_IRQ;
-const COM1_VECTOR: u8 = MASTER_VECTORS + COM1_IRQ;
-/// The vector of the master's IRQ 7, which it also raises for an interrupt
-/// that went away before the CPU took it (a spurious one).
-const MASTER_SPURIOUS_VECTOR: u8 = MASTER_VECTORS + 7;
 /// The exceptions: vectors 0 to 31.
 const EXCEPTIONS: core::ops::Range<u8> = 0..32;
-const NMI_VECTOR: u8 = 2;
+/// The rest: interrupts.
+const INTERRUPTS: core::ops::RangeInclusive<u8> = 32..=255;
 const PAGE_FAULT_VECTOR: u8 = 14;
 
-/// Initialisation command word 1: start initialising, ICW4 follows,
-/// cascaded, edge triggered.
-const ICW1_INIT_WITH_ICW4: u8 = 0x11;
-/// ICW3: the master has the slave on IRQ 2; the slave's cascade identity.
-const ICW3_SLAVE_ON_IRQ2: u8 = 1 << 2;
-const ICW3_CASCADE_IDENTITY: u8 = 2;
-/// ICW4: 8086 mode, normal end of interrupt.
-const ICW4_8086: u8 = 0x01;
-/// Interrupt mask registers: a set bit masks that IRQ. The master passes
-/// IRQ 4 only (and IRQ 0 while the kernel halts); the slave (and the
-/// cascade to it) nothing.
-const MASTER_MASK: u8 = !(1 << COM1_IRQ);
-const MASTER_MASK_HALTED: u8 = MASTER_MASK & !(1 << TIMER_IRQ);
-const SLAVE_MASK: u8 = 0xFF;
-/// Operation command word 2: non-specific end of interrupt.
-const END_OF_INTERRUPT: u8 = 0x20;
+/// Port 0x61 (system control port B) bits: read, the NMI's reasons; written,
+/// the latches that clear them (and mask them while set).
+const SERR: u8 = 1 << 7;
+const IOCHK: u8 = 1 << 6;
+const CLEAR_SERR: u8 = 1 << 2;
+const CLEAR_IOCHK: u8 = 1 << 3;
+/// The bits of port 0x61 that read back what was written (timer 2 gate,
+/// speaker data, the two latches).
+const WRITABLE: u8 = 0x0F;
 
 /// The exceptions' names, by vector, as the manuals give them; the
 /// reserved vectors have none.
@@ -102,17 +94,30 @@ const EXCEPTION_NAMES: [&str; 32] = [
     "reserved exception 31",
 ];
 
+/// Stray interrupts by vector, and what ended each vector's last one
+/// (`ENDED_BY_*` bits); NMIs and the port 0x61 value the last one read.
+static STRAY: [AtomicU32; 256] = [const { AtomicU32::new(0) }; 256];
+static ENDED_BY: [AtomicU8; 256] = [const { AtomicU8::new(0) }; 256];
+const ENDED_BY_APIC: u8 = 1;
+const ENDED_BY_PIC: u8 = 2;
+static NMIS: AtomicU32 = AtomicU32::new(0);
+static NMI_REASON: AtomicU8 = AtomicU8::new(0);
+/// The counts [`report`] has told of, touched by the main flow only.
+static REPORTED_STRAY: [AtomicU32; 256] = [const { AtomicU32::new(0) }; 256];
+static REPORTED_NMIS: AtomicU32 = AtomicU32::new(0);
+
 static IDT: Lazy<InterruptDescriptorTable> = Lazy::new(|| {
     let mut idt = InterruptDescriptorTable::new();
     set_general_handler!(&mut idt, exception, EXCEPTIONS);
-    // Replaces the general one: the double fault needs its own stack.
+    set_general_handler!(&mut idt, stray_interrupt, INTERRUPTS);
+    // Replace general ones: the double fault needs its own stack.
     let double_fault_entry = idt.double_fault.set_handler_fn(double_fault);
     // SAFETY: `gdt::init` loads a TSS whose IST slot
     // `DOUBLE_FAULT_IST_INDEX` holds a stack used for nothing else.
     unsafe { double_fault_entry.set_stack_index(DOUBLE_FAULT_IST_INDEX) };
-    idt[TIMER_VECTOR].set_handler_fn(timer_tick);
-    idt[COM1_VECTOR].set_handler_fn(com1_received);
-    idt[MASTER_SPURIOUS_VECTOR].set_handler_fn(master_spurious);
+    idt.non_maskable_interrupt.set_handler_fn(non_maskable_interrupt);
+    idt[pic::TIMER_VECTOR].set_handler_fn(timer_tick);
+    idt[pic::COM1_VECTOR].set_handler_fn(com1_received);
     idt
 });
 
@@ -122,7 +127,7 @@ static IDT: Lazy<InterruptDescriptorTable> = Lazy::new(|| {
 pub fn init() {
     x86_64::instructions::interrupts::disable();
     IDT.load();
-    remap_pics();
+    pic::remap();
 }
 
 /// Lets the unmasked IRQ (COM1's) in.
@@ -130,60 +135,41 @@ pub fn enable() {
     x86_64::instructions::interrupts::enable();
 }
 
-/// Puts the PICs' IRQs on [`MASTER_VECTORS`] and [`SLAVE_VECTORS`] and
-/// masks all but COM1's. Initialising clears the masks, hence the order.
-/// An 8259 needs time between the words of its initialisation on the old
-/// boards (Linux and the `pic8259` crate wait the same way), hence an
-/// I/O delay after each.
-fn remap_pics() {
-    let words = [
-        (pic::MASTER_COMMAND, ICW1_INIT_WITH_ICW4),
-        (pic::SLAVE_COMMAND, ICW1_INIT_WITH_ICW4),
-        (pic::MASTER_DATA, MASTER_VECTORS),
-        (pic::SLAVE_DATA, SLAVE_VECTORS),
-        (pic::MASTER_DATA, ICW3_SLAVE_ON_IRQ2),
-        (pic::SLAVE_DATA, ICW3_CASCADE_IDENTITY),
-        (pic::MASTER_DATA, ICW4_8086),
-        (pic::SLAVE_DATA, ICW4_8086),
-        (pic::MASTER_DATA, MASTER_MASK),
-        (pic::SLAVE_DATA, SLAVE_MASK),
-    ];
-    for (port, word) in words {
-        port.write(word);
-        io_delay();
-    }
-}
-
-/// Halts until an interrupt, with the PIT's IRQ 0 let in meanwhile, so
-/// that the halt ends within one PIT period (55 ms) where there is a PIT,
-/// whatever else does or does not arrive. Call with interrupts off (after
-/// finding nothing to do); returns with them off.
-pub fn halt_until_interrupt() {
-    pic::MASTER_DATA.write(MASTER_MASK_HALTED);
-    x86_64::instructions::interrupts::enable_and_hlt();
-    x86_64::instructions::interrupts::disable();
-    pic::MASTER_DATA.write(MASTER_MASK);
-}
-
 extern "x86-interrupt" fn timer_tick(_frame: InterruptStackFrame) {
-    pic::MASTER_COMMAND.write(END_OF_INTERRUPT);
+    pic::on_timer_tick();
 }
 
 extern "x86-interrupt" fn com1_received(_frame: InterruptStackFrame) {
     serial::on_interrupt();
-    pic::MASTER_COMMAND.write(END_OF_INTERRUPT);
+    pic::end_of_master_interrupt();
 }
 
-/// IRQ 7 is masked, so anything on its vector is spurious: the master has
-/// not marked it in service, and must not be sent an end of interrupt.
-extern "x86-interrupt" fn master_spurious(_frame: InterruptStackFrame) {}
-
-/// Every exception but the double fault: reports it by name and ends the
-/// run. An NMI after the kernel stopped for good returns to the halt.
-fn exception(frame: InterruptStackFrame, vector: u8, error: Option<u64>) {
-    if vector == NMI_VECTOR && exit::stopped() {
-        return;
+/// Reads port 0x61 for the reason, clears the latch of each reason
+/// found, counts, and returns to whatever it interrupted.
+extern "x86-interrupt" fn non_maskable_interrupt(_frame: InterruptStackFrame) {
+    let reason = system_control::PORT_B.read();
+    let latches =
+        (if reason & SERR != 0 { CLEAR_SERR } else { 0 }) | (if reason & IOCHK != 0 { CLEAR_IOCHK } else { 0 });
+    if latches != 0 {
+        system_control::PORT_B.write(reason & WRITABLE | latches);
+        system_control::PORT_B.write(reason & WRITABLE & !latches);
     }
+    NMI_REASON.store(reason, Ordering::Relaxed);
+    NMIS.fetch_add(1, Ordering::Release);
+}
+
+/// A vector from 0x20 to 0xFF that nothing asked for: counted, ended
+/// where it is in service, and returned from.
+fn stray_interrupt(_frame: InterruptStackFrame, vector: u8, _error: Option<u64>) {
+    let ended = (if apic::end_if_in_service(vector) { ENDED_BY_APIC } else { 0 })
+        | (if pic::end_if_in_service(vector) { ENDED_BY_PIC } else { 0 });
+    ENDED_BY[usize::from(vector)].store(ended, Ordering::Relaxed);
+    STRAY[usize::from(vector)].fetch_add(1, Ordering::Release);
+}
+
+/// Every exception but the double fault and the NMI: reports it by name
+/// and ends the run.
+fn exception(frame: InterruptStackFrame, vector: u8, error: Option<u64>) {
     let name = EXCEPTION_NAMES[usize::from(vector % 32)];
     let at = frame.instruction_pointer.as_u64();
     match (vector, error) {
@@ -204,4 +190,43 @@ extern "x86-interrupt" fn double_fault(frame: InterruptStackFrame, error: u64) -
         frame.instruction_pointer.as_u64(),
         frame.stack_pointer.as_u64()
     ))
+}
+
+/// Stray interrupts taken on `vector` since boot.
+pub fn stray_count(vector: u8) -> u32 {
+    STRAY[usize::from(vector)].load(Ordering::Acquire)
+}
+
+/// NMIs and stray interrupts taken since boot, for `PING`.
+pub fn counts() -> InterruptCounts {
+    let stray = STRAY.iter().map(|count| count.load(Ordering::Acquire)).fold(0u32, u32::wrapping_add);
+    InterruptCounts { nmis: NMIS.load(Ordering::Acquire), stray }
+}
+
+/// Sends a `LOG` frame for each NMI, and each vector's stray interrupts,
+/// taken since the last call: `NMI 1 (port 0x61 = 0x20: no SERR#, no
+/// IOCHK#); the show plays on` or `stray interrupt: vector 0x99, 2 so
+/// far, ended at the local APIC; returned`. Call from the main flow only.
+pub fn report() {
+    let nmis = NMIS.load(Ordering::Acquire);
+    if REPORTED_NMIS.swap(nmis, Ordering::Relaxed) != nmis {
+        let reason = NMI_REASON.load(Ordering::Relaxed);
+        let serr = if reason & SERR != 0 { "SERR# (a PCI system error)" } else { "no SERR#" };
+        let iochk = if reason & IOCHK != 0 { "IOCHK# (an I/O channel check)" } else { "no IOCHK#" };
+        let text = format!("NMI {nmis} (port 0x61 = {reason:#04x}: {serr}, {iochk}); the kernel carries on");
+        serial::send_frame(FrameKind::Log, text.as_bytes());
+    }
+    for (vector, (count, reported)) in STRAY.iter().zip(&REPORTED_STRAY).enumerate() {
+        let count = count.load(Ordering::Acquire);
+        if reported.swap(count, Ordering::Relaxed) != count {
+            let ended = match ENDED_BY[vector].load(Ordering::Relaxed) {
+                0 => "in service nowhere, so no end of interrupt",
+                ENDED_BY_APIC => "ended at the local APIC",
+                ENDED_BY_PIC => "ended at the 8259",
+                _ => "ended at the local APIC and the 8259",
+            };
+            let text = format!("stray interrupt: vector {vector:#04x}, {count} so far, {ended}; returned");
+            serial::send_frame(FrameKind::Log, text.as_bytes());
+        }
+    }
 }

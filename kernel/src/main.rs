@@ -7,8 +7,9 @@
 //! show), and serves the host's commands over COM1 as soon as one arrives.
 //!
 //! Hardware access lives in small modules with `// SAFETY:` notes
-//! (`port`, `video`, `paging`, `heap`, `gdt`, `interrupts`, `fault`, and
-//! `clock`'s one RDTSC); everything above them is safe code.
+//! (`port`, `video`, `paging`, `pat`, `apic`, `timers`, `heap`, `gdt`,
+//! `interrupts`, `fault`, and `clock`'s one RDTSC); everything above them
+//! is safe code.
 #![no_std]
 #![no_main]
 #![feature(abi_x86_interrupt)]
@@ -16,6 +17,8 @@
 
 extern crate alloc;
 
+mod acpi;
+mod apic;
 mod bench;
 mod card;
 mod clock;
@@ -30,13 +33,17 @@ mod gdt;
 mod heap;
 mod interrupts;
 mod keyboard;
+mod line;
 mod machine;
 mod paging;
+mod pat;
 mod pci;
+mod pic;
 mod pit;
 mod player;
 mod port;
 mod serial;
+mod timers;
 mod vga;
 mod video;
 
@@ -57,19 +64,25 @@ fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
     // First, so that a fatal error from here on knows whether it may
     // leave QEMU through its exit port.
     let identity = machine::identify();
-    clock::init();
-    serial::init();
     gdt::init();
     interrupts::init();
     heap::init();
+    paging::init(boot_info);
+    // After the page tables, through which it reaches the ACPI tables and
+    // the HPET; before anything that waits.
+    clock::init(boot_info.rsdp_addr.into_option());
+    serial::init();
+    apic::init();
     let firmware = firmware::of(boot_info);
-    let display = pci::display_controller();
-    let mut screen = video::Screen::open(boot_info, firmware, display);
+    let displays = pci::Displays::scan();
+    let mut screen = video::Screen::open(boot_info, firmware, &displays);
     serial::enable_interrupt();
     interrupts::enable();
-    console::announce(&screen, firmware, &identity, display);
+    pic::check_timer();
+    console::announce(&screen, firmware, &identity);
     // The show's memory, allocated once for the demo and `SHOW`.
     let mut stage = scenes::show::Stage::new();
-    let first_byte = demo::run(&mut screen, &mut stage, demo::Start::default());
-    console::serve(&mut screen, &mut stage, first_byte)
+    let mut pending = line::PendingLine::new();
+    let first = demo::run(&mut screen, &mut stage, demo::Start::default(), &mut pending);
+    console::serve(&mut screen, &mut stage, pending, first)
 }

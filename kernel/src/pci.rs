@@ -17,6 +17,16 @@
 //! [`display_controller`] names; only where none decodes them does it name
 //! the first display controller in bus order, as the frame then goes
 //! elsewhere (a firmware's framebuffer) or nowhere.
+//!
+//! Under UEFI the firmware's framebuffer lies in one device's memory,
+//! which need not be that VGA's: the head the firmware showed its own
+//! screen on. [`Displays::holding`] finds the display controller whose
+//! memory BAR holds an address, from the BARs' bases alone (sizing a BAR
+//! takes a configuration write, which this module never makes): BARs do
+//! not overlap, so the BAR holding an address is the one with the
+//! greatest base at or below it, of every BAR of every function; and a
+//! BAR is aligned to its size, which bounds how far past its base an
+//! address in it can lie.
 
 use alloc::vec::Vec;
 
@@ -36,6 +46,17 @@ const HEADER_OFFSET: u8 = 0x0C;
 const BRIDGE_BUSES_OFFSET: u8 = 0x18;
 const BRIDGE_CONTROL_OFFSET: u8 = 0x3C;
 const SUBSYSTEM_OFFSET: u8 = 0x2C;
+/// The base address registers: six in a device's header, two in a
+/// bridge's.
+const FIRST_BAR_OFFSET: u8 = 0x10;
+const DEVICE_BARS: u8 = 6;
+const BRIDGE_BARS: u8 = 2;
+/// BAR bit 0: an I/O range (else memory); bits 2-1 of a memory BAR: 10
+/// for a 64-bit BAR, whose upper half is the next BAR; bits 31-4 of a
+/// memory BAR: its base.
+const BAR_IO: u32 = 1;
+const BAR_64_BIT: u32 = 0b100;
+const BAR_MEMORY_BASE: u32 = !0xF;
 /// The vendor ID an absent function reads.
 const NO_VENDOR: u16 = 0xFFFF;
 /// Header type bit 7: the device has functions 1 to 7 as well.
@@ -80,36 +101,90 @@ impl DisplayController {
     }
 }
 
-/// The display controller that decodes the legacy VGA ranges (the first,
-/// if a misconfigured machine has more than one), else the first display
-/// controller in bus, device, function order; `None` if there is none.
-/// Reads the configuration space of every possible device once (8,192
-/// reads, and more for multi-function ones).
-pub fn display_controller() -> Option<DisplayController> {
-    let mut bridges = Vec::new();
-    let mut displays = Vec::new();
-    for address in functions() {
-        let decodes = read(address, COMMAND_OFFSET) & DECODES_IO_AND_MEMORY == DECODES_IO_AND_MEMORY;
-        match read(address, HEADER_OFFSET) & HEADER_TYPE {
-            BRIDGE_HEADER => bridges.push(Bridge {
-                bus: address.bus,
-                secondary: read(address, BRIDGE_BUSES_OFFSET).to_le_bytes()[1],
-                forwards_vga: decodes && read(address, BRIDGE_CONTROL_OFFSET) & BRIDGE_VGA_ENABLE != 0,
-            }),
-            DEVICE_HEADER => {
-                let [_, interface, subclass, class] = read(address, CLASS_OFFSET).to_le_bytes();
-                if let (DISPLAY_CLASS, Some(id)) = (class, vendor_and_device(address)) {
-                    let class = [class, subclass, interface];
-                    displays.push(DisplayController { id, address, class, decodes_vga: decodes });
+/// The display controllers on the bus, and the memory BARs of every
+/// function, from one scan.
+pub struct Displays {
+    /// In bus, device, function order.
+    displays: Vec<DisplayController>,
+    /// Every memory BAR's base and the function it belongs to.
+    bars: Vec<(u64, PciAddress)>,
+}
+
+impl Displays {
+    /// Reads the configuration space of every possible device once (8,192
+    /// reads, and more for multi-function ones).
+    pub fn scan() -> Self {
+        let mut bridges = Vec::new();
+        let mut displays = Vec::new();
+        let mut bars = Vec::new();
+        for address in functions() {
+            let decodes = read(address, COMMAND_OFFSET) & DECODES_IO_AND_MEMORY == DECODES_IO_AND_MEMORY;
+            match read(address, HEADER_OFFSET) & HEADER_TYPE {
+                BRIDGE_HEADER => {
+                    bars.extend(memory_bars(address, BRIDGE_BARS).map(|base| (base, address)));
+                    bridges.push(Bridge {
+                        bus: address.bus,
+                        secondary: read(address, BRIDGE_BUSES_OFFSET).to_le_bytes()[1],
+                        forwards_vga: decodes && read(address, BRIDGE_CONTROL_OFFSET) & BRIDGE_VGA_ENABLE != 0,
+                    });
                 }
+                DEVICE_HEADER => {
+                    bars.extend(memory_bars(address, DEVICE_BARS).map(|base| (base, address)));
+                    let [_, interface, subclass, class] = read(address, CLASS_OFFSET).to_le_bytes();
+                    if let (DISPLAY_CLASS, Some(id)) = (class, vendor_and_device(address)) {
+                        let class = [class, subclass, interface];
+                        displays.push(DisplayController { id, address, class, decodes_vga: decodes });
+                    }
+                }
+                _ => {}
             }
-            _ => {}
         }
+        for display in &mut displays {
+            display.decodes_vga &= vga_ranges_reach(display.address.bus, &bridges);
+        }
+        Self { displays, bars }
     }
-    for display in &mut displays {
-        display.decodes_vga &= vga_ranges_reach(display.address.bus, &bridges);
+
+    /// The display controller that decodes the legacy VGA ranges (the
+    /// first, if a misconfigured machine has more than one), else the
+    /// first display controller in bus, device, function order; `None` if
+    /// there is none.
+    pub fn vga(&self) -> Option<DisplayController> {
+        self.displays.iter().find(|display| display.is_the_vga()).or(self.displays.first()).copied()
     }
-    displays.iter().find(|display| display.is_the_vga()).or(displays.first()).copied()
+
+    /// The display controller one of whose memory BARs holds physical
+    /// address `address` (see the module docs); `None` if the BAR there
+    /// is another function's, or none is (a framebuffer in RAM).
+    pub fn holding(&self, address: u64) -> Option<DisplayController> {
+        let &(base, function) = self.bars.iter().filter(|(base, _)| *base <= address).max_by_key(|(base, _)| *base)?;
+        let within_alignment = address - base < 1u64.checked_shl(base.trailing_zeros()).unwrap_or(u64::MAX);
+        within_alignment.then(|| self.displays.iter().find(|display| display.address == function).copied()).flatten()
+    }
+}
+
+/// The bases of the memory BARs among the first `count` of the function
+/// at `address` (64-bit ones whole); unassigned ones (base 0) left out.
+fn memory_bars(address: PciAddress, count: u8) -> impl Iterator<Item = u64> {
+    let mut index = 0;
+    core::iter::from_fn(move || {
+        while index < count {
+            let low = read(address, FIRST_BAR_OFFSET + 4 * index);
+            index += 1;
+            if low & BAR_IO != 0 {
+                continue;
+            }
+            let mut base = u64::from(low & BAR_MEMORY_BASE);
+            if low & BAR_64_BIT != 0 && index < count {
+                base |= u64::from(read(address, FIRST_BAR_OFFSET + 4 * index)) << 32;
+                index += 1;
+            }
+            if base != 0 {
+                return Some(base);
+            }
+        }
+        None
+    })
 }
 
 /// A PCI-to-PCI bridge: the bus it sits on, the bus behind it, and

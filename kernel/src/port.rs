@@ -4,10 +4,12 @@
 //! Port I/O is `unsafe` in `x86_64` because a port can reach memory behind
 //! the compiler's back (a DMA controller, a disk, a PCI device's address
 //! decoders). [`IoPort`] can only be made here, for the registers listed
-//! below: VGA, the Bochs VBE interface, the PIT, the PS/2 controller, the
-//! interrupt controllers, PCI configuration reads, the POST code port (for
-//! [`io_delay`]) and QEMU's debug-exit device (written only once the
-//! kernel has identified QEMU, `machine.rs`); [`com1`] hands COM1's eight
+//! below: VGA, the Bochs VBE interface, the PIT, system control port B
+//! (the NMI's reason), the PS/2 controller, the interrupt controllers, PCI
+//! configuration reads, the POST code port (for [`io_delay`]), QEMU's
+//! debug-exit device (written only once the kernel has identified QEMU,
+//! `machine.rs`), and the ACPI PM timer at the port the firmware's tables
+//! name; [`com1`] hands COM1's eight
 //! registers to the `uart_16550` driver, and [`vmware_svga`] writes one
 //! register of that card. None of
 //! them moves memory, so reading or writing them from safe code cannot
@@ -68,6 +70,9 @@ pub mod vga {
     pub const MISC_WRITE: IoPort<u8> = IoPort::new(0x3C2);
     pub const SEQUENCER_INDEX: IoPort<u8> = IoPort::new(0x3C4);
     pub const SEQUENCER_DATA: IoPort<u8> = IoPort::new(0x3C5);
+    /// The DAC's pixel mask: ANDed with every pixel's byte before the DAC
+    /// looks it up.
+    pub const DAC_PIXEL_MASK: IoPort<u8> = IoPort::new(0x3C6);
     /// DAC read index: the entry that the next reads of [`DAC_DATA`] return.
     pub const DAC_READ_INDEX: IoPort<u8> = IoPort::new(0x3C7);
     /// DAC write index: the entry that the next writes of [`DAC_DATA`] set.
@@ -198,6 +203,24 @@ pub mod pit {
 
     pub const CHANNEL_0: IoPort<u8> = IoPort::new(0x40);
     pub const COMMAND: IoPort<u8> = IoPort::new(0x43);
+}
+
+/// System control port B: reading it says why an NMI came (bit 7 a PCI
+/// system error, SERR#; bit 6 an I/O channel check, IOCHK#); writing bit
+/// 2 or 3 clears that latch (and masks it while set). Bits 0 and 1 gate
+/// PIT channel 2 and the speaker, which the kernel leaves as it finds
+/// them (`interrupts.rs`).
+pub mod system_control {
+    use super::IoPort;
+
+    pub const PORT_B: IoPort<u8> = IoPort::new(0x61);
+}
+
+/// The ACPI power management timer's counter, at the port the firmware's
+/// FADT names (`acpi.rs`): a 24- or 32-bit count at 3.579545 MHz, which
+/// reading does not change. Only the port the FADT gives is ever made.
+pub fn acpi_pm_timer(port: u16) -> IoPort<u32> {
+    IoPort::new(port)
 }
 
 /// The 8042 PS/2 controller.

@@ -38,7 +38,7 @@ use uart_16550::{BaudRate, Config, Uart16550};
 use x86_64::instructions::interrupts;
 
 use crate::clock::Deadline;
-use crate::port;
+use crate::{pic, port};
 
 /// Longest wait for room in the transmitter before the rest of a frame is
 /// given up: 16 bytes take 1.4 ms at 115200 baud, but under QEMU the
@@ -233,11 +233,12 @@ pub fn try_read_byte() -> Option<u8> {
 
 /// The next byte from the host, waiting for it until `until` (for ever
 /// with `None`); `None` if the deadline passed first. The UART is polled
-/// at every turn. Where COM1's interrupt is known to arrive, the CPU
-/// halts between turns until an interrupt (the UART's, or the PIT's tick,
-/// let in while it halts: `interrupts::halt_until_interrupt`), so a lost
-/// interrupt delays a byte by one tick at most; elsewhere it polls
-/// without pause, which keeps up with a FIFO of 16 bytes at 115200 baud.
+/// at every turn. Where COM1's interrupt and the PIT's are both known to
+/// arrive, the CPU halts between turns until an interrupt (the UART's, or
+/// the PIT's tick, let in while it halts: `pic::halt_until_interrupt`),
+/// so a lost interrupt delays a byte by one tick at most; elsewhere it
+/// polls without pause, which keeps up with a FIFO of 16 bytes at 115200
+/// baud, and a halt that nothing might end never happens.
 pub fn read_byte(until: Option<Deadline>) -> Option<u8> {
     loop {
         // With interrupts off between the look and the `hlt` (`sti; hlt`
@@ -252,8 +253,8 @@ pub fn read_byte(until: Option<Deadline>) -> Option<u8> {
             interrupts::enable();
             return byte;
         }
-        if INTERRUPT_SEEN.load(Ordering::Acquire) {
-            crate::interrupts::halt_until_interrupt();
+        if INTERRUPT_SEEN.load(Ordering::Acquire) && pic::timer_arrives() {
+            pic::halt_until_interrupt();
         }
         interrupts::enable();
         spin_loop();

@@ -168,10 +168,19 @@ fn video_on() {
     io_delay();
 }
 
-/// Puts the card in mode 13h. The DAC is the screen's to load
-/// (`video::Screen`).
+/// Every bit of a pixel's byte reaches the DAC: the pixel mask a BIOS's
+/// mode set writes. A firmware may leave another, which masks the palette.
+const PIXEL_MASK_ALL: u8 = 0xFF;
+
+/// Puts the card in mode 13h, its DAC pixel mask open. The DAC is the
+/// screen's to load (`video::Screen`).
 pub fn set_mode_13h() {
     set_mode(&MODE_13H);
+    // A DAC index write first: on a Cirrus card the fifth access to 0x3C6
+    // after four reads of it in a row reaches its hidden DAC register
+    // instead, and any other DAC port resets that count.
+    vga::DAC_WRITE_INDEX.write(0);
+    vga::DAC_PIXEL_MASK.write(PIXEL_MASK_ALL);
 }
 
 /// Whether a VGA answers at the standard ports: the graphics bit-mask
@@ -317,7 +326,8 @@ pub fn wait_for_retrace() {
 
 /// Reads back every register of [`MODE_13H`] and the whole DAC and returns
 /// whatever differs from what [`set_mode`] wrote and from `palette`, the
-/// palette [`load_dac`] loaded last. Empty means the card is in mode 13h
+/// palette [`load_dac`] loaded last. (Not the DAC's pixel mask: QEMU's VGA
+/// does not keep it and reads 0x00 there whatever was written.) Empty means the card is in mode 13h
 /// as we set it.
 pub fn verify(palette: &Palette) -> Vec<Mismatch> {
     let mode = &MODE_13H;

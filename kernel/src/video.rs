@@ -26,16 +26,18 @@ use core::ops::Range;
 use core::ptr::{self, NonNull};
 
 use bootloader_api::BootInfo;
-use protocol::{Firmware, Video, DUMP_LEN, FRAMEBUFFER_LEN};
+use protocol::{Firmware, MemoryType, Video, DUMP_LEN, FRAMEBUFFER_LEN};
 use raster::{sink, Method, Size, SpanSink, SCREEN};
 use scenes::palette::VGA_DEFAULT;
 use scenes::{DrawReport, Scene};
 use volatile::{VolatilePtr, VolatileRef};
 
+use x86_64::VirtAddr;
+
 use crate::framebuffer::Presenter;
-use crate::pci::DisplayController;
+use crate::pci::{DisplayController, Displays};
 use crate::vga::{self, Palette};
-use crate::{card, paging};
+use crate::{card, paging, pat};
 
 // The sink's bounds check against `SCREEN` is what keeps spans inside the
 // 64,000 bytes.
@@ -65,6 +67,9 @@ pub struct Screen {
     /// in the DAC on the VGA path.
     palette: &'static Palette,
     output: Output,
+    /// See [`Screen::display`] and [`Screen::findings`].
+    display: Option<DisplayController>,
+    findings: Vec<String>,
 }
 
 impl Screen {
@@ -72,7 +77,9 @@ impl Screen {
     /// in the VGA default palette:
     /// - mode 13h where a VGA answers and is in a standard VGA mode: under
     ///   a BIOS, which leaves it in text mode, any VGA; under UEFI, a card
-    ///   `card.rs` knows, once it has undone the firmware's mode;
+    ///   `card.rs` knows, once it has undone the firmware's mode, and only
+    ///   where that VGA is the head the firmware used: the framebuffer the
+    ///   firmware handed over is in its memory (or none was handed over);
     /// - else the firmware's framebuffer from the boot info, if there is
     ///   one the presenter can draw in (under UEFI; under a BIOS the boot
     ///   stages set no framebuffer mode);
@@ -81,14 +88,32 @@ impl Screen {
     /// Panics on the VGA path if the bootloader did not map physical
     /// memory (main.rs's config asks for it): 0xA0000 would be out of
     /// reach.
-    pub fn open(boot_info: &'static mut BootInfo, firmware: Firmware, display: Option<DisplayController>) -> Self {
+    pub fn open(boot_info: &'static mut BootInfo, firmware: Firmware, displays: &Displays) -> Self {
+        let framebuffer = match firmware {
+            Firmware::Uefi => boot_info.framebuffer.take(),
+            Firmware::Bios => None,
+        };
+        let physical = framebuffer
+            .as_ref()
+            .and_then(|framebuffer| paging::to_physical(VirtAddr::from_ptr(framebuffer.buffer().as_ptr())));
+        let vga = displays.vga();
+        let head = physical.and_then(|physical| displays.holding(physical.as_u64()));
+        let mut findings = Vec::new();
         let vga_usable = match firmware {
             Firmware::Bios => vga::responds(),
             // Not a port of a card that is not the VGA, or is unknown, is
             // touched, the VGA's included; a card's own registers (the
             // Bochs interface's probe among them) only once the VGA has
             // answered at its standard ports.
-            Firmware::Uefi => match display.filter(DisplayController::is_the_vga) {
+            Firmware::Uefi => match vga.filter(DisplayController::is_the_vga) {
+                Some(display) if physical.is_some() && head != Some(display) => {
+                    findings.push(format!(
+                        "video: the firmware's framebuffer is not in the memory of the VGA at {}: the frame goes \
+                         to the framebuffer, where the firmware showed its screen",
+                        display.address
+                    ));
+                    false
+                }
                 Some(display) if vga::responds() => match card::identify(&display) {
                     Some(card) => {
                         card.undo_firmware_mode(&display);
@@ -99,19 +124,26 @@ impl Screen {
                 Some(_) | None => false,
             },
         };
-        let mut screen = if vga_usable {
+        if firmware == Firmware::Uefi && framebuffer.is_none() {
+            findings.push(String::from(
+                "video: the loader handed over no framebuffer (the firmware's graphics mode has none it can draw \
+                 in: a PixelBitmask or BltOnly mode, or no graphics output at all)",
+            ));
+        }
+        let (mut screen, display) = if vga_usable {
             vga::set_mode_13h();
-            let cirrus = display.is_some_and(|display| card::is_cirrus(&display));
-            Self::on(vga_window(boot_info), Output::Vga { cirrus })
+            let cirrus = vga.is_some_and(|display| card::is_cirrus(&display));
+            (Self::on(vga_window(), Output::Vga { cirrus }), vga)
         } else {
-            let presenter = match firmware {
-                Firmware::Uefi => boot_info.framebuffer.take().and_then(Presenter::new),
-                Firmware::Bios => None,
-            };
+            let presenter =
+                framebuffer.zip(physical).and_then(|(framebuffer, physical)| Presenter::new(framebuffer, physical));
+            let display = if presenter.is_some() { head.or(vga) } else { vga };
             let output = presenter.map_or(Output::Nothing, Output::Framebuffer);
             let frame = VolatileRef::from_mut_ref(Box::leak(vec![0; FRAMEBUFFER_LEN].into_boxed_slice())).into_ptr();
-            Self::on(frame, output)
+            (Self::on(frame, output), display)
         };
+        screen.display = display;
+        screen.findings = findings;
         // The text mode the BIOS left had other bytes in video memory.
         screen.clear(0);
         screen
@@ -124,7 +156,30 @@ impl Screen {
         if let Output::Vga { .. } = output {
             vga::load_dac(&VGA_DEFAULT);
         }
-        Self { pixels, stray_spans: 0, palette: &VGA_DEFAULT, output }
+        Self { pixels, stray_spans: 0, palette: &VGA_DEFAULT, output, display: None, findings: Vec::new() }
+    }
+
+    /// The display controller the frame goes to: on the framebuffer path
+    /// the one whose memory holds the framebuffer, where one does; else
+    /// the VGA (`pci::Displays::vga`).
+    pub fn display(&self) -> Option<DisplayController> {
+        self.display
+    }
+
+    /// What [`Screen::open`] found worth a `LOG` line before `READY`.
+    pub fn findings(&self) -> &[String] {
+        &self.findings
+    }
+
+    /// The memory type the output is written with, read back from the
+    /// page tables and the PAT; `None` with no output (or pages that
+    /// disagree).
+    pub fn memory_type(&self) -> Option<MemoryType> {
+        match &self.output {
+            Output::Vga { .. } => paging::mapping(window_start(), WINDOW_LEN).and_then(|mapping| mapping.memory_type()),
+            Output::Framebuffer(presenter) => presenter.mapping().and_then(|mapping| mapping.memory_type()),
+            Output::Nothing => None,
+        }
     }
 
     /// The path in use, for `READY`: on the VGA path with the count of
@@ -146,11 +201,12 @@ impl Screen {
         match &self.output {
             Output::Vga { .. } => {
                 let mismatches = vga::verify(self.palette);
-                let mapping = match paging::window_mapping() {
-                    Some(mapping) => format!("{mapping}"),
+                let end = WINDOW_PHYSICAL + WINDOW_LEN - 1;
+                let mapping = match paging::mapping(window_start(), WINDOW_LEN) {
+                    Some(mapping) => format!("window {WINDOW_PHYSICAL:#x}-{end:#x}: {mapping}"),
                     None => String::from("window not mapped"),
                 };
-                let summary = format!("{}; {mapping}", vga::summary(&mismatches));
+                let summary = format!("{}; {mapping}; PAT {:#018x}", vga::summary(&mismatches), pat::read());
                 if mismatches.is_empty() {
                     Ok(summary)
                 } else {
@@ -160,8 +216,13 @@ impl Screen {
             Output::Framebuffer(presenter) => {
                 let p = presenter.presentation();
                 Ok(format!(
-                    "vga: none in use, the frame is presented in the firmware's {}x{} framebuffer at scale {}",
-                    p.width, p.height, p.scale
+                    "vga: none in use, the frame is presented in the firmware's {}x{} framebuffer at scale {}; {}; \
+                     PAT {:#018x}",
+                    p.width,
+                    p.height,
+                    p.scale,
+                    presenter.describe(),
+                    pat::read()
                 ))
             }
             Output::Nothing => Err(String::from("vga: none, and no framebuffer: nothing shows the frame")),
@@ -294,20 +355,43 @@ impl Screen {
     }
 }
 
-/// The mode-13h window 0xA0000..0xAFA00, as `paging` maps it: in 4 KiB
-/// uncacheable pages, where the bootloader's map of all physical memory
-/// (`mappings.physical_memory` in main.rs's config) had it in one large
-/// write-back page.
-fn vga_window(boot_info: &BootInfo) -> VolatilePtr<'static, [u8]> {
-    let start = usize::try_from(paging::map_vga_window(boot_info).as_u64())
+/// The VGA window the kernel maps: 0xA0000 to 0xAFFFF, the 64 KiB that
+/// graphics modes with a 64 KiB window (Graphics register 6 = 05, mode
+/// 13h's) use; the 64,000 bytes of the frame are its start.
+const WINDOW_PHYSICAL: u64 = 0xA0000;
+const WINDOW_LEN: u64 = 0x10000;
+
+/// Where the physical-memory map puts the window.
+fn window_start() -> VirtAddr {
+    paging::physical(WINDOW_PHYSICAL).expect("the bootloader maps the first 4 GiB of physical memory")
+}
+
+/// The mode-13h window 0xA0000..0xAFA00 in 4 KiB uncacheable pages
+/// (`paging::set_memory_type`), where the bootloader's map of physical
+/// memory had it in one large write-back page.
+///
+/// Uncacheable, not the framebuffer's write-combining: the kernel reads
+/// video memory back (`DUMP` reads what the card holds), and a VGA's
+/// memory reads have side effects (each loads the card's latches), which
+/// the speculative reads write-combining allows could trigger at any
+/// time; the frame is small (64,000 bytes, an eighth of them 8-byte
+/// stores, [`Screen::fill`]), so bursts would save little; and UC is the
+/// type a PC's firmware gives this range itself.
+fn vga_window() -> VolatilePtr<'static, [u8]> {
+    let start = window_start();
+    if let Err(error) = paging::set_memory_type(start, WINDOW_LEN, MemoryType::Uncacheable) {
+        panic!("the VGA window could not be mapped uncacheable: {error}");
+    }
+    let pixels = usize::try_from(start.as_u64())
         .ok()
         .and_then(|start| NonNull::new(ptr::with_exposed_provenance_mut::<u8>(start)))
+        .map(|start| NonNull::slice_from_raw_parts(start, FRAMEBUFFER_LEN))
         .expect("the VGA window's address fits and is not null");
-    let pixels = NonNull::slice_from_raw_parts(start, FRAMEBUFFER_LEN);
-    // SAFETY: `paging::map_vga_window` maps these 64,000 bytes to the VGA
-    // window 0xA0000..0xAFA00: device memory, valid for volatile reads
-    // and writes for the whole run and never a Rust object, so nothing
-    // else holds a reference into it. `Screen::open` calls this once.
+    // SAFETY: the physical-memory map maps these 64,000 bytes to the VGA
+    // window 0xA0000..0xAFA00 (uncacheable since the call above): device
+    // memory, valid for volatile reads and writes for the whole run and
+    // never a Rust object, so nothing else holds a reference into it.
+    // `Screen::open` calls this once.
     unsafe { VolatilePtr::new(pixels) }
 }
 

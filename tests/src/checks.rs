@@ -1,5 +1,7 @@
 //! The end-to-end checks that the integration tests and the xtask share.
 
+use std::time::{Duration, Instant};
+
 use anyhow::{bail, ensure, Context, Result};
 use protocol::{Presentation, ShowReply, Video};
 use raster::MethodId;
@@ -10,6 +12,7 @@ use crate::picture::compare::{compare_images, compare_palettes};
 use crate::picture::render::{builtin_scene, render, render_show, show_entry, SceneSource};
 use crate::picture::Image;
 use crate::qemu::console::{Console, Dump};
+use crate::qemu::Qemu;
 
 /// QEMU shows each mode-13h pixel as a 2x2 block of its 640x400 screen.
 pub const SCREEN_SCALE: u32 = 2;
@@ -118,4 +121,20 @@ pub fn on_framebuffer(picture: &Image, presentation: &Presentation) -> Result<Im
             })
             .collect();
     Image::rgb(width, height, colors)
+}
+
+/// How many different screens QEMU shows over `watch`, its screen taken
+/// every `every`: one while the show stands still, more while it plays (a
+/// still page of the show stays 3 s, an animation's frame 1/35 s).
+pub fn distinct_screens(qemu: &mut Qemu, watch: Duration, every: Duration) -> Result<usize> {
+    let mut screens = Vec::new();
+    let started = Instant::now();
+    while started.elapsed() < watch {
+        let screen = qemu.screendump()?;
+        if !screens.contains(&screen) {
+            screens.push(screen);
+        }
+        std::thread::sleep(every);
+    }
+    Ok(screens.len())
 }

@@ -35,4 +35,4 @@ pub use boot_image::{build_image, cargo, process};
 pub use picture::compare::compare_images;
 pub use picture::{render, Image};
 pub use qemu::console::{BenchRow, Console, Dump, Listing, Reply};
-pub use qemu::{Adapter, Clock, Cpu, Display, ExitDevice, Medium, Qemu, QemuOptions, SerialLine};
+pub use qemu::{Adapter, Board, Clock, Cpu, Display, DisplayAhead, ExitDevice, Medium, Qemu, QemuOptions, SerialLine};

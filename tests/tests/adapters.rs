@@ -147,16 +147,20 @@ matrix! {
     uefi_ramfb_shows_every_page_and_the_first_frame_of_every_entry: Uefi Ramfb,
 }
 
-/// The firmware the test without a display card boots.
+/// The firmware the test without a display card boots, and the one the
+/// test of virtio-gpu's BltOnly mode boots.
 const NO_CARD_FIRMWARE: Firmware = Firmware::Bios;
+const BLT_ONLY_FIRMWARE: Firmware = Firmware::Uefi;
 
-/// The tests made by `matrix!`, with the one without a card, are one per
+/// The tests made by `matrix!`, with the one without a card and the one
+/// of virtio-gpu, are one per
 /// pair of firmware and card that `Adapter::proven_under` names, and none
 /// more: a card's test deleted from the list, or a card proven and never
 /// tested, fails here.
 #[test]
 fn the_matrix_is_every_card_each_firmware_can_drive() {
-    let tested: Vec<(Firmware, Adapter)> = MATRIX.iter().copied().chain([(NO_CARD_FIRMWARE, Adapter::None)]).collect();
+    let others = [(NO_CARD_FIRMWARE, Adapter::None), (BLT_ONLY_FIRMWARE, Adapter::VirtioGpu)];
+    let tested: Vec<(Firmware, Adapter)> = MATRIX.iter().copied().chain(others).collect();
     let proven: Vec<(Firmware, Adapter)> = Firmware::ALL
         .into_iter()
         .flat_map(|firmware| Adapter::ALL.into_iter().map(move |adapter| (firmware, adapter)))
@@ -211,5 +215,23 @@ fn with_no_display_card_the_kernel_boots_and_says_so_over_serial() -> Result<()>
     dump_matches_host_render(&mut qemu.console, page_1.name, page_1.method)?;
     let losses = qemu.console.ping()?;
     ensure!(losses.none(), "-vga none: PING says the serial line lost bytes: {losses}");
+    Ok(())
+}
+
+/// virtio-gpu under OVMF: its driver offers a BltOnly mode, with no
+/// framebuffer to draw in. The loader hands over none (before its edit it
+/// panicked there, and the kernel never started); the kernel boots, says
+/// so in a `LOG` frame, names the card and no video path, and serves.
+#[test]
+fn under_uefi_a_blt_only_display_gets_no_framebuffer_and_the_kernel_says_so() -> Result<()> {
+    let options = QemuOptions { firmware: BLT_ONLY_FIRMWARE, adapter: Adapter::VirtioGpu, ..QemuOptions::default() };
+    let mut qemu = Qemu::boot(options)?;
+    let ready = qemu.ready;
+    ensure!(ready.display == Adapter::VirtioGpu.pci_id(), "virtio-gpu: READY names the display {:?}", ready.display);
+    ensure!(ready.video == Video::None, "virtio-gpu: READY names the video path {:?}", ready.video);
+    let said = qemu.console.logs().iter().any(|log| log.starts_with("video: the loader handed over no framebuffer"));
+    ensure!(said, "virtio-gpu: no LOG says there is no framebuffer: {:?}", qemu.console.logs());
+    let losses = qemu.console.ping()?;
+    ensure!(losses.none(), "virtio-gpu: PING says the serial line lost bytes: {losses}");
     Ok(())
 }

@@ -6,19 +6,23 @@
 
 use anyhow::{ensure, Result};
 use harness::checks::{dump_matches_host_render, screen_matches_dump};
-use harness::{Adapter, Qemu, QemuOptions};
-use protocol::{Command, Firmware, PciAddress, Video};
+use harness::{Adapter, DisplayAhead, Qemu, QemuOptions};
+use protocol::{Command, Firmware, MemoryType, PciAddress, Video};
 use scenes::builtin;
 
 /// `VGACHECK` reads back how the kernel mapped the VGA window: 16 pages of
 /// 4 KiB, uncacheable by the PAT (the bootloader's map had it in one 2 MiB
-/// write-back page). TCG ignores memory types, so this is the page
-/// tables' word, not a measurement.
+/// write-back page), and the PAT as the CPU starts with it (the kernel
+/// reprograms an entry only for a firmware's framebuffer). `READY` names
+/// the type. TCG ignores memory types, so this is the page tables' word,
+/// not a measurement.
 #[test]
 fn vgacheck_reports_the_window_in_4_kib_uncacheable_pages() -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions::default())?;
+    ensure!(qemu.ready.memory == Some(MemoryType::Uncacheable), "READY names the memory {:?}", qemu.ready.memory);
     let text = qemu.console.ok(&Command::VgaCheck)?;
-    let expected = "vga: 0 mismatches; window 0xa0000-0xaffff: 16 pages of 4 KiB, uncacheable (UC), PAT entry 3";
+    let expected = "vga: 0 mismatches; window 0xa0000-0xaffff: 16 pages of 4 KiB, uncacheable (UC), PAT entry 3; \
+                    PAT 0x0007040600070406";
     ensure!(text == expected, "VGACHECK answered \"{text}\", expected \"{expected}\"");
     Ok(())
 }
@@ -37,14 +41,16 @@ fn vgacheck_leaves_the_picture_on_the_screen() -> Result<()> {
 }
 
 /// QEMU's std VGA in slot 5 behind a bochs-display (a display controller
-/// with no VGA, and the same PCI IDs) in slot 2: `READY` must name the VGA
-/// by its place, the page must reach the VGA's screen exactly, and every
-/// register read back.
-fn the_vga_behind_another_display_shows_the_page(firmware: Firmware) -> Result<()> {
-    let options = QemuOptions { firmware, adapter: Adapter::Std, display_ahead: true, ..QemuOptions::default() };
+/// with no VGA, and the same PCI IDs) in slot 2, under SeaBIOS: `READY`
+/// must name the VGA by its place, the page must reach the VGA's screen
+/// exactly, and every register read back.
+#[test]
+fn bios_finds_the_vga_behind_another_display_device() -> Result<()> {
+    let ahead = Some(DisplayAhead::BochsDisplay);
+    let options = QemuOptions { adapter: Adapter::Std, display_ahead: ahead, ..QemuOptions::default() };
     let mut qemu = Qemu::boot(options)?;
     let ready = qemu.ready;
-    let on = format!("{} std behind bochs-display", firmware.name());
+    let on = "bios std behind bochs-display";
     eprintln!("harness: {on}: {ready}");
     let slot_5 = Some(PciAddress { bus: 0, device: 5, function: 0 });
     ensure!(ready.display_at == slot_5, "{on}: READY names the display at {:?}, not 00:05.0", ready.display_at);
@@ -52,15 +58,41 @@ fn the_vga_behind_another_display_shows_the_page(firmware: Firmware) -> Result<(
     ensure!(ready.video == Video::Vga13h { mismatches: 0 }, "{on}: READY names the video path {:?}", ready.video);
     let page = builtin::ABRASH38_1;
     let dump = dump_matches_host_render(&mut qemu.console, page.name, page.method)?;
-    screen_matches_dump(&format!("{}.behind.{}", firmware.name(), page.name), &dump, &qemu.screendump()?, &ready.video)
+    screen_matches_dump(&format!("bios.behind.{}", page.name), &dump, &qemu.screendump()?, &ready.video)
+}
+
+/// Under OVMF with a display controller ahead of the std VGA, OVMF shows
+/// its screen on the one ahead and hands its framebuffer over: the frame
+/// must go there, the head a user looks at, not into mode 13h on the VGA
+/// behind. `READY` must name that device and its place, the framebuffer
+/// path and write-combining, and the page must reach that device's screen
+/// exactly (QMP's screendump of it).
+fn uefi_shows_the_frame_on_the_head_the_firmware_used(ahead: DisplayAhead, slot: u8) -> Result<()> {
+    let options = QemuOptions {
+        firmware: Firmware::Uefi,
+        adapter: Adapter::Std,
+        display_ahead: Some(ahead),
+        ..QemuOptions::default()
+    };
+    let mut qemu = Qemu::boot(options)?;
+    let ready = qemu.ready;
+    let on = format!("uefi std behind {ahead:?}");
+    eprintln!("harness: {on}: {ready}");
+    let head = Some(PciAddress { bus: 0, device: slot, function: 0 });
+    ensure!(ready.display_at == head, "{on}: READY names the display at {:?}, not 00:{slot:02x}.0", ready.display_at);
+    ensure!(matches!(ready.video, Video::Framebuffer(_)), "{on}: READY names the video path {:?}", ready.video);
+    ensure!(ready.memory == Some(MemoryType::WriteCombining), "{on}: READY names the memory {:?}", ready.memory);
+    let page = builtin::ABRASH38_1;
+    let dump = dump_matches_host_render(&mut qemu.console, page.name, page.method)?;
+    screen_matches_dump(&format!("uefi.{ahead:?}.{}", page.name), &dump, &qemu.screendump_ahead()?, &ready.video)
 }
 
 #[test]
-fn bios_finds_the_vga_behind_another_display_device() -> Result<()> {
-    the_vga_behind_another_display_shows_the_page(Firmware::Bios)
+fn uefi_shows_the_frame_on_bochs_display_ahead_of_the_vga() -> Result<()> {
+    uefi_shows_the_frame_on_the_head_the_firmware_used(DisplayAhead::BochsDisplay, 2)
 }
 
 #[test]
-fn uefi_finds_the_vga_behind_another_display_device() -> Result<()> {
-    the_vga_behind_another_display_shows_the_page(Firmware::Uefi)
+fn uefi_shows_the_frame_on_secondary_vga_ahead_of_the_vga() -> Result<()> {
+    uefi_shows_the_frame_on_the_head_the_firmware_used(DisplayAhead::SecondaryVga, 4)
 }

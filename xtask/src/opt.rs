@@ -93,8 +93,8 @@ pub struct RunOpt {
     #[arg(long, default_value = "bios", value_parser = firmware_named)]
     pub firmware: Firmware,
     /// The display card QEMU emulates: std, cirrus, vmware, qxl-vga,
-    /// virtio-vga, ati-vga, bochs-display, ramfb or none (the harness's
-    /// adapter matrix proves each under one firmware or both).
+    /// virtio-vga, ati-vga, bochs-display, ramfb, virtio-gpu or none (the
+    /// harness's adapter matrix proves each under one firmware or both).
     #[arg(long, default_value = "std", value_parser = Adapter::named)]
     pub vga: Adapter,
     /// Boot from the emulated USB stick (usb-storage on xHCI), as a PC

@@ -193,7 +193,7 @@ mod tests {
         assert!(
             vga.contains(
                 "unknown display adapter `qxl`; the adapters are std, cirrus, vmware, qxl-vga, virtio-vga, ati-vga, \
-                 bochs-display, ramfb, none"
+                 bochs-display, ramfb, virtio-gpu, none"
             ),
             "{vga}"
         );

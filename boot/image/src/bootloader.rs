@@ -187,6 +187,64 @@ pub const LOADER_EDITS: &[Edit] = &[
         find: "\n[[bin]]\n",
         replace: "\n[profile.release]\ntrim-paths = \"all\"\n\n[[bin]]\n",
     },
+    Edit {
+        file: "src/main.rs",
+        purpose: "hand over no framebuffer where the firmware's graphics mode has none the kernel can draw in \
+                  (PixelBitmask or BltOnly), before the uefi crate's `frame_buffer()` panics on a BltOnly mode, \
+                  instead of a panic that hangs the PC before the kernel (which says so on COM1)",
+        find: "    let mode_info = gop.current_mode_info();
+    let mut framebuffer = gop.frame_buffer();
+",
+        replace: "    let mode_info = gop.current_mode_info();
+    if matches!(mode_info.pixel_format(), PixelFormat::Bitmask | PixelFormat::BltOnly) {
+        return None;
+    }
+    let mut framebuffer = gop.frame_buffer();
+",
+    },
+    Edit {
+        file: "src/main.rs",
+        purpose: "the same formats in the match below it: no panic left there either",
+        find: "            PixelFormat::Bitmask | PixelFormat::BltOnly => {
+                panic!(\"Bitmask and BltOnly framebuffers are not supported\")
+            }
+",
+        replace: "            PixelFormat::Bitmask | PixelFormat::BltOnly => return None,
+",
+    },
+    Edit {
+        file: "src/main.rs",
+        purpose: "take the smallest mode of at least the configured size (640x400, boot.json) with a framebuffer \
+                  the kernel can draw in, not the largest: the kernel's 320x200 frame, scaled by a whole number, \
+                  then costs 640x400 pixels a frame instead of the native mode's (1600x1000 at 1080p)",
+        find: "                .filter(|m| {
+                    let res = m.info().resolution();
+                    res.1 >= height && res.0 >= width
+                })
+                .last(),
+",
+        replace: "                .filter(|m| {
+                    let res = m.info().resolution();
+                    res.1 >= height
+                        && res.0 >= width
+                        && matches!(m.info().pixel_format(), PixelFormat::Rgb | PixelFormat::Bgr)
+                })
+                .min_by_key(|m| {
+                    let res = m.info().resolution();
+                    res.0 * res.1
+                }),
+",
+    },
+    Edit {
+        file: "src/main.rs",
+        purpose: "keep the firmware's mode where it refuses the one chosen, instead of a panic (a hang, as above)",
+        find: "        gop.set_mode(&mode)
+            .expect(\"Failed to apply the desired display mode\");
+",
+        replace: "        // The firmware's own mode stays if it refuses this one.
+        let _ = gop.set_mode(&mode);
+",
+    },
 ];
 
 /// Files added to the UEFI loader's source: (path in the crate, text).
@@ -272,6 +330,21 @@ mod tests {
         assert!(removed.contains("vesa_mode.enable().unwrap();"));
         assert!(removed.contains("vesa::VesaInfo::query("));
         assert!(!added.contains("vesa"), "{added}");
+    }
+
+    #[test]
+    fn the_loader_edits_leave_no_panic_on_the_framebuffer_path_and_take_the_smallest_mode() {
+        let replacing = |text: &str| {
+            let edit = LOADER_EDITS.iter().find(|edit| edit.find.contains(text)).expect("an edit replaces it");
+            assert!(!edit.replace.contains("panic!") && !edit.replace.contains(".expect("), "{}", edit.replace);
+            edit.replace
+        };
+        assert!(replacing("Bitmask and BltOnly framebuffers are not supported").contains("=> return None,"));
+        replacing(".expect(\"Failed to apply the desired display mode\")");
+        assert!(replacing(".last(),").contains(".min_by_key("));
+        let early = replacing("    let mut framebuffer = gop.frame_buffer();\n");
+        let check = early.find("PixelFormat::BltOnly) {\n        return None;").expect("the early return");
+        assert!(check < early.find("gop.frame_buffer()").expect("the framebuffer's access"), "{early}");
     }
 
     #[test]

@@ -18,16 +18,21 @@ pub enum FaultKind {
     PageFault,
     DoubleFault,
     Panic,
+    /// An interrupt on a vector the kernel does not use, raised as a
+    /// device would raise it (through the local APIC where there is one):
+    /// the one kind the kernel survives, answering `OK`.
+    StrayInterrupt,
 }
 
 impl FaultKind {
-    pub const ALL: [FaultKind; 6] = [
+    pub const ALL: [FaultKind; 7] = [
         FaultKind::DivideError,
         FaultKind::InvalidOpcode,
         FaultKind::Breakpoint,
         FaultKind::PageFault,
         FaultKind::DoubleFault,
         FaultKind::Panic,
+        FaultKind::StrayInterrupt,
     ];
 
     pub const fn name(self) -> &'static str {
@@ -38,6 +43,7 @@ impl FaultKind {
             FaultKind::PageFault => "pagefault",
             FaultKind::DoubleFault => "doublefault",
             FaultKind::Panic => "panic",
+            FaultKind::StrayInterrupt => "strayinterrupt",
         }
     }
 }
@@ -80,7 +86,8 @@ pub enum Command<'a> {
     /// answered `ERR`, with nothing touched, on a machine the kernel has
     /// not identified as QEMU.
     Exit(u8),
-    /// `FAULT KIND`: test only; provokes a fault, which must be reported.
+    /// `FAULT KIND`: test only; provokes a fault, which must be reported
+    /// (a stray interrupt, which must be survived and answered `OK`).
     /// Answered `ERR` on a machine the kernel has not identified as QEMU.
     Fault(FaultKind),
     /// `READY`: answers a `READY` frame as at boot, its line losses as of
@@ -259,6 +266,7 @@ mod tests {
             Command::Fault(FaultKind::PageFault),
             Command::Fault(FaultKind::DivideError),
             Command::Fault(FaultKind::InvalidOpcode),
+            Command::Fault(FaultKind::StrayInterrupt),
             Command::Ready,
             Command::Clock,
         ];

@@ -8,22 +8,24 @@
 //! CRC32 of the payload in 8 lowercase hex digits), then LEN payload bytes,
 //! then `\n` ([`FrameHeader`], in `frames`); anything between frames is
 //! noise and the host skips it. The texts some frames carry ([`ShowReply`],
-//! [`Pong`], [`Ready`], [`TscRate`]) are in `replies`. A host on a line
-//! that can damage bytes seals its command lines (`#SEQ COMMAND CRC32`,
+//! [`Pong`], [`TscRate`]) are in `replies`, `READY`'s ([`Ready`]) in
+//! `ready`. A host on a line that can damage bytes seals its command
+//! lines (`#SEQ COMMAND CRC32`,
 //! [`Sealed`], in `sealed`): the kernel refuses a damaged one and echoes
 //! the sequence number in its reply's header.
 #![no_std]
 
 mod commands;
 mod frames;
+mod ready;
 mod replies;
 mod sealed;
 
 pub use commands::{Command, CommandError, FaultKind};
 pub use frames::{FrameHeader, FrameKind};
+pub use ready::{Firmware, Machine, MemoryType, PciAddress, PciId, Presentation, Ready, Video};
 pub use replies::{
-    ClockSource, Firmware, HeapState, LineErrors, LineLosses, Machine, PciAddress, PciId, Pong, Presentation, Ready,
-    ShowReply, TscRate, Video, PONG,
+    ClockReadings, ClockSource, HeapState, InterruptCounts, LineErrors, LineLosses, Pong, ShowReply, TscRate, PONG,
 };
 pub use sealed::{unseal, Damaged, Sealed, SEAL_MARK};
 

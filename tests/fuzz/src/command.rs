@@ -117,18 +117,26 @@ pub fn seeds() -> Vec<(String, Vec<u8>)> {
         machine: Some(Machine::Qemu),
         display: Some(PciId { vendor: 0x1234, device: 0x1111 }),
         display_at: Some(PciAddress { bus: 0, device: 2, function: 0 }),
+        memory: Some(protocol::MemoryType::Uncacheable),
         losses,
         ..Ready::default()
+    };
+    let interrupts = Some(protocol::InterruptCounts { nmis: 1, stray: 2 });
+    let readings = protocol::ClockReadings {
+        pit: Some(2_593_000_000),
+        pm_timer: Some(2_593_100_000),
+        hpet: Some(2_592_900_000),
+        cpuid: None,
     };
     let replies = [
         show.to_string(),
         Pong::default().to_string(),
         Ready::default().to_string(),
-        Pong { losses, ..Pong::default() }.to_string(),
+        Pong { losses, interrupts, ..Pong::default() }.to_string(),
         ready.to_string(),
         FrameHeader::for_payload(FrameKind::Ok, b"pong").to_string(),
         FrameHeader::for_reply(FrameKind::Ok, b"pong", Some(17)).to_string(),
-        TscRate { hz: 2_593_000_000, source: protocol::ClockSource::Pit }.to_string(),
+        TscRate { hz: 2_593_000_000, source: protocol::ClockSource::Pit, readings }.to_string(),
     ];
     seeds.extend(replies.into_iter().enumerate().map(|(i, text)| (format!("reply-{i}"), text.into_bytes())));
     seeds

@@ -3,6 +3,7 @@
 //! (killed on drop, every wait bounded) and its channels: COM1 on the
 //! child's stdin/stdout, QMP on a unix socket.
 
+mod board;
 pub mod console;
 pub mod qmp;
 pub mod serial;
@@ -24,6 +25,8 @@ use crate::prerequisites::{
 };
 use crate::process::command_line;
 use crate::supervisor::Supervised;
+use board::AHEAD_ID;
+pub use board::{Board, DisplayAhead};
 use boot_image::build_image;
 use console::Console;
 use qmp::{Qmp, QMP_TIMEOUT};
@@ -75,13 +78,16 @@ pub enum Adapter {
     /// A framebuffer in guest RAM the firmware sets up: no PCI device, no
     /// VGA.
     Ramfb,
+    /// virtio-gpu without a VGA core (class 03/80): OVMF's driver for it
+    /// offers only a BltOnly mode, no framebuffer the kernel can draw in.
+    VirtioGpu,
     /// No display card at all.
     None,
 }
 
 impl Adapter {
     /// Every card, in the order `--vga` lists them.
-    pub const ALL: [Adapter; 9] = [
+    pub const ALL: [Adapter; 10] = [
         Adapter::Std,
         Adapter::Cirrus,
         Adapter::Vmware,
@@ -90,19 +96,22 @@ impl Adapter {
         Adapter::AtiVga,
         Adapter::BochsDisplay,
         Adapter::Ramfb,
+        Adapter::VirtioGpu,
         Adapter::None,
     ];
 
-    /// Whether the adapter matrix proves the picture (or, with `None`,
-    /// the boot) on this card under `firmware`: SeaBIOS's VGA BIOSes put
-    /// the VGA-compatible cards in text mode; OVMF has a graphics driver
-    /// for the first five and for bochs-display and ramfb (none for
-    /// ati-vga), and with no card it shows nothing.
+    /// Whether the adapter matrix proves the picture (or, with `None` and
+    /// `VirtioGpu`, the boot) on this card under `firmware`: SeaBIOS's VGA
+    /// BIOSes put the VGA-compatible cards in text mode; OVMF has a
+    /// graphics driver for the first five and for bochs-display and ramfb
+    /// (none for ati-vga), a BltOnly one for virtio-gpu, and with no card
+    /// it shows nothing.
     pub fn proven_under(self, firmware: Firmware) -> bool {
         match self {
             Adapter::Std | Adapter::Cirrus | Adapter::Vmware | Adapter::QxlVga | Adapter::VirtioVga => true,
             Adapter::AtiVga | Adapter::None => firmware == Firmware::Bios,
-            Adapter::BochsDisplay | Adapter::Ramfb => firmware == Firmware::Uefi,
+            // virtio-gpu: the boot with no framebuffer (a BltOnly mode).
+            Adapter::BochsDisplay | Adapter::Ramfb | Adapter::VirtioGpu => firmware == Firmware::Uefi,
         }
     }
 
@@ -117,6 +126,7 @@ impl Adapter {
             Adapter::AtiVga => "ati-vga",
             Adapter::BochsDisplay => "bochs-display",
             Adapter::Ramfb => "ramfb",
+            Adapter::VirtioGpu => "virtio-gpu",
             Adapter::None => "none",
         }
     }
@@ -141,6 +151,7 @@ impl Adapter {
             Adapter::AtiVga => ["-device", "ati-vga"],
             Adapter::BochsDisplay => ["-device", "bochs-display"],
             Adapter::Ramfb => ["-device", "ramfb"],
+            Adapter::VirtioGpu => ["-device", "virtio-gpu-pci"],
             Adapter::None => ["-vga", "none"],
         }
     }
@@ -156,6 +167,7 @@ impl Adapter {
             Adapter::VirtioVga => Some("virtio-vga"),
             Adapter::AtiVga => Some("ati-vga"),
             Adapter::BochsDisplay => Some("bochs-display"),
+            Adapter::VirtioGpu => Some("virtio-gpu-pci"),
             Adapter::Ramfb | Adapter::None => None,
         }
     }
@@ -169,7 +181,7 @@ impl Adapter {
             Adapter::Cirrus => (0x1013, 0x00b8),
             Adapter::Vmware => (0x15ad, 0x0405),
             Adapter::QxlVga => (0x1b36, 0x0100),
-            Adapter::VirtioVga => (0x1af4, 0x1050),
+            Adapter::VirtioVga | Adapter::VirtioGpu => (0x1af4, 0x1050),
             Adapter::AtiVga => (0x1002, 0x5046),
             Adapter::Ramfb | Adapter::None => return None,
         };
@@ -249,10 +261,12 @@ pub struct QemuOptions {
     pub com1_irq: Option<u8>,
     pub cpu: Cpu,
     pub exit_device: ExitDevice,
-    /// A display controller with no VGA (bochs-display, class 03/80, the
-    /// std VGA's PCI IDs) in slot 2, ahead of the card in bus order, and
-    /// the card (a PCI one) in slot 5, where screendumps are taken of it.
-    pub display_ahead: bool,
+    /// A display controller with no legacy VGA ranges ahead of the card
+    /// in bus order, and the card (a PCI one) in slot 5, where
+    /// screendumps are taken of it ([`Qemu::screendump_ahead`] takes the
+    /// one ahead).
+    pub display_ahead: Option<DisplayAhead>,
+    pub board: Board,
 }
 
 /// The slot `QemuOptions::display_ahead` puts the card in, and the QEMU
@@ -289,9 +303,10 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
         );
         flag(&mut args, "-drive", with_path("if=pflash,format=raw,unit=1,file=", &uefi_variables(run_dir), ""));
     } else {
-        // The i440FX PC. Its own firmware is SeaBIOS: a BIOS that boots the
-        // image's BIOS side, like a PC's BIOS or CSM.
-        flag(&mut args, "-machine", "pc");
+        // The i440FX PC (or Q35). Its own firmware is SeaBIOS: a BIOS that
+        // boots the image's BIOS side, like a PC's BIOS or CSM. `pit=off`
+        // leaves the 8254 out, as on a legacy-free PC.
+        flag(&mut args, "-machine", options.board.machine());
     }
     if options.firmware == Firmware::Uefi && !options.secure_boot {
         // OVMF instead, as a UEFI PC's flash: its code read-only, and its
@@ -315,13 +330,14 @@ pub fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions) -> Vec
     // VGA BIOS puts them in text mode; under OVMF its graphics driver sets
     // their native mode, which the kernel undoes on the cards it knows.
     let [card_flag, card] = options.adapter.qemu_flags();
-    match options.adapter.pci_device().filter(|_| options.display_ahead) {
-        Some(device) => {
+    match options.adapter.pci_device().zip(options.display_ahead) {
+        Some((device, ahead)) => {
             // A display controller without VGA first in bus order, the
             // card behind it: the kernel must find the VGA by the legacy
-            // VGA decoding, not by bus order.
+            // VGA decoding, not by bus order, and under UEFI the head the
+            // firmware used.
             flag(&mut args, "-vga", "none");
-            flag(&mut args, "-device", "bochs-display,addr=02.0");
+            flag(&mut args, "-device", ahead.device());
             flag(&mut args, "-device", format!("{device},addr={CARD_BEHIND_SLOT},id={CARD_BEHIND_ID}"));
         }
         None => {
@@ -505,7 +521,7 @@ impl Qemu {
             qmp: None,
             stderr: forward_bytes(stderr),
             stderr_seen: Vec::new(),
-            screen: options.adapter.pci_device().filter(|_| options.display_ahead).map(|_| CARD_BEHIND_ID),
+            screen: options.adapter.pci_device().and(options.display_ahead).map(|_| CARD_BEHIND_ID),
         };
         if let SerialLine::Telnet { port } = options.serial {
             let stream = match connect_within(port, QMP_TIMEOUT) {
@@ -573,6 +589,13 @@ impl Qemu {
         let scratch = self.process.folder().join("screen.ppm");
         let screen = self.screen;
         self.with_qmp(|qmp| qmp.screendump(&scratch, screen))
+    }
+
+    /// QEMU's screendump of the display ahead of the card
+    /// (`QemuOptions::display_ahead`).
+    pub fn screendump_ahead(&mut self) -> Result<Image> {
+        let scratch = self.process.folder().join("screen.ppm");
+        self.with_qmp(|qmp| qmp.screendump(&scratch, Some(AHEAD_ID)))
     }
 
     /// Raises a non-maskable interrupt on the CPU, as a chipset does to
@@ -714,6 +737,7 @@ mod tests {
             (Adapter::AtiVga, "-device", "ati-vga"),
             (Adapter::BochsDisplay, "-device", "bochs-display"),
             (Adapter::Ramfb, "-device", "ramfb"),
+            (Adapter::VirtioGpu, "-device", "virtio-gpu-pci"),
             (Adapter::None, "-vga", "none"),
         ] {
             let args = arguments(QemuOptions { adapter, ..QemuOptions::default() });
@@ -736,7 +760,7 @@ mod tests {
                 error,
                 format!(
                     "unknown display adapter `{name}`; the adapters are std, cirrus, vmware, qxl-vga, virtio-vga, \
-                     ati-vga, bochs-display, ramfb, none"
+                     ati-vga, bochs-display, ramfb, virtio-gpu, none"
                 )
             );
         }
@@ -792,13 +816,37 @@ mod tests {
     }
 
     #[test]
-    fn a_display_ahead_puts_bochs_display_in_slot_2_and_the_card_in_slot_5() {
-        let args = arguments(QemuOptions { adapter: Adapter::Cirrus, display_ahead: true, ..QemuOptions::default() });
-        assert!(has_pair(&args, "-vga", "none"), "{args:?}");
-        let devices: Vec<&String> = args.windows(2).filter(|w| w[0] == "-device").map(|w| &w[1]).collect();
-        assert_eq!(devices[..2], ["bochs-display,addr=02.0", "cirrus-vga,addr=05.0,id=card"], "{args:?}");
-        let ramfb = arguments(QemuOptions { adapter: Adapter::Ramfb, display_ahead: true, ..QemuOptions::default() });
+    fn a_display_ahead_puts_bochs_display_in_slot_2_or_secondary_vga_in_slot_4_and_the_card_in_slot_5() {
+        for (ahead, expected) in [
+            (DisplayAhead::BochsDisplay, "bochs-display,addr=02.0,id=ahead"),
+            (DisplayAhead::SecondaryVga, "secondary-vga,addr=04.0,id=ahead"),
+        ] {
+            let options =
+                QemuOptions { adapter: Adapter::Cirrus, display_ahead: Some(ahead), ..QemuOptions::default() };
+            let args = arguments(options);
+            assert!(has_pair(&args, "-vga", "none"), "{args:?}");
+            let devices: Vec<&String> = args.windows(2).filter(|w| w[0] == "-device").map(|w| &w[1]).collect();
+            assert_eq!(devices[..2], [expected, "cirrus-vga,addr=05.0,id=card"], "{args:?}");
+        }
+        let options = QemuOptions {
+            adapter: Adapter::Ramfb,
+            display_ahead: Some(DisplayAhead::BochsDisplay),
+            ..QemuOptions::default()
+        };
+        let ramfb = arguments(options);
         assert!(has_pair(&ramfb, "-device", "ramfb") && !ramfb.iter().any(|a| a.contains("bochs-display")));
+    }
+
+    #[test]
+    fn a_board_without_a_pit_is_pc_or_q35_with_pit_off() {
+        assert!(has_pair(&arguments(QemuOptions::default()), "-machine", "pc"));
+        for (board, machine) in [(Board::PcWithoutPit, "pc,pit=off"), (Board::Q35WithoutPit, "q35,pit=off")] {
+            for firmware in Firmware::ALL {
+                let args = arguments(QemuOptions { board, firmware, ..QemuOptions::default() });
+                assert!(has_pair(&args, "-machine", machine), "{args:?}");
+                assert_eq!(args.iter().filter(|a| *a == "-machine").count(), 1, "{args:?}");
+            }
+        }
     }
 
     #[test]

@@ -68,6 +68,8 @@ impl TickUnit {
                 rate.hz as f64 / 1e6,
                 match rate.source {
                     protocol::ClockSource::Pit => "measured by the kernel against the PIT at boot",
+                    protocol::ClockSource::PmTimer => "measured by the kernel against the ACPI PM timer at boot",
+                    protocol::ClockSource::Hpet => "measured by the kernel against the HPET at boot",
                     protocol::ClockSource::Cpuid => "as the CPU states it in CPUID",
                     protocol::ClockSource::Assumed => "ASSUMED: nothing measured it, so the microseconds are not real",
                 }
@@ -299,7 +301,7 @@ impl BenchTable {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use protocol::ClockSource;
+    use protocol::{ClockReadings, ClockSource};
 
     fn table(unit: TickUnit) -> BenchTable {
         BenchTable {
@@ -334,7 +336,8 @@ mod tests {
 
     #[test]
     fn on_a_real_machine_the_ticks_are_tsc_ticks_also_given_in_microseconds() {
-        let unit = TickUnit::Tsc(TscRate { hz: 2_000_000_000, source: ClockSource::Pit });
+        let unit =
+            TickUnit::Tsc(TscRate { hz: 2_000_000_000, source: ClockSource::Pit, readings: ClockReadings::default() });
         let text = table(unit).markdown(2);
         assert!(text.starts_with("## Kernel BENCH: TSC ticks on this machine"), "{text}");
         assert!(text.contains("The TSC runs at 2000.000 MHz (measured by the kernel against the PIT at boot)"));
@@ -344,7 +347,8 @@ mod tests {
         let json = table(unit).json();
         assert_eq!(json["tsc_hz"], json!(2_000_000_000u64));
         assert_eq!(json["results"][3]["microseconds"], json!(2000.0));
-        let assumed = TickUnit::Tsc(TscRate { hz: 1, source: ClockSource::Assumed });
+        let assumed =
+            TickUnit::Tsc(TscRate { hz: 1, source: ClockSource::Assumed, readings: ClockReadings::default() });
         assert!(table(assumed).markdown(1).contains("ASSUMED"));
     }
 

@@ -165,12 +165,12 @@ mod tests {
     use crate::line::LineStats;
     use crate::serial_check::bench::{BenchTable, TickUnit};
     use crate::serial_check::Picture;
-    use protocol::{ClockSource, LineErrors, TscRate};
+    use protocol::{ClockReadings, ClockSource, LineErrors, TscRate};
     use raster::MethodId;
     use std::time::Duration;
 
     fn report() -> CheckReport {
-        let tsc = TscRate { hz: 1_000_000, source: ClockSource::Pit };
+        let tsc = TscRate { hz: 1_000_000, source: ClockSource::Pit, readings: ClockReadings::default() };
         let picture = |scene, frame, differing_pixels| Picture {
             scene,
             frame,
