@@ -26,7 +26,8 @@ pub enum Action {
     Run(RunOpt),
     /// Builds the raw image, one file that boots under a BIOS (or CSM),
     /// under UEFI and under UEFI Secure Boot (for QEMU or a USB stick), its
-    /// UEFI loader signed with your own key; prints its path last.
+    /// UEFI loader to be enrolled by its hash (or signed with your key,
+    /// --enroll key); prints its path last.
     Image(ImageOpt),
     /// Boots the kernel, draws a built-in scene or a scene file, checks the
     /// kernel's dump against the host render and QEMU's screendump, and
