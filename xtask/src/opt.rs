@@ -26,7 +26,8 @@ pub enum Action {
     Run(RunOpt),
     /// Builds the raw image, one file that boots under a BIOS (or CSM),
     /// under UEFI and under UEFI Secure Boot (for QEMU or a USB stick), its
-    /// UEFI loader signed with your own key; prints its path last.
+    /// UEFI loader enrolled by its hash or signed with your key; prints its
+    /// path last.
     Image(ImageOpt),
     /// Boots the kernel, draws a built-in scene or a scene file, checks the
     /// kernel's dump against the host render and QEMU's screendump, and
@@ -167,7 +168,7 @@ pub struct ImageOpt {
     /// enrolls this build's loader by its SHA-256 (no key at all; each
     /// build is enrolled anew), `key` signs it with your key (made for you
     /// in ~/.config/polylab/secure-boot, encrypted under a passphrase;
-    /// enrolled once). docs/boot.md weighs the two.
+    /// enrolled once). docs/secure-boot.md weighs the two.
     #[arg(long, value_enum, default_value_t = EnrollOpt::Hash)]
     pub enroll: EnrollOpt,
     /// With `--enroll key`: sign with this private key (PEM, encrypted)
