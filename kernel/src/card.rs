@@ -8,8 +8,8 @@
 //! reach: they read back as written while the screen keeps showing the
 //! firmware's framebuffer. Each card's way out is its own, so the kernel
 //! touches a card only once its PCI IDs (and, for the Bochs interface, the
-//! interface's own ID) say which card it is. docs/hardware.md has the
-//! table, card by card.
+//! interface's own ID) say which card it is. docs/hardware.md#undoing-a-uefi-firmwares-mode
+//! has the table, card by card.
 
 use crate::pci::DisplayController;
 use crate::port::{bochs_vbe, vmware_svga};

@@ -1,7 +1,7 @@
 //! Stopping for good: on request (`EXIT`) and after a fatal error.
 //!
 //! On QEMU the stop leaves QEMU with a status the host can assert on: its
-//! `isa-debug-exit` device (`docs/hardware.md#isa-debug-exit`) ends the
+//! `isa-debug-exit` device (`docs/emulators.md#isa-debug-exit`) ends the
 //! process with status `(value << 1) | 1`, so no value written there can
 //! look like QEMU's own success (0). The kernel writes that port only on a
 //! machine it has identified as QEMU (`machine.rs`): on a PC it is a port

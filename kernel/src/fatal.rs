@@ -1,7 +1,7 @@
 //! The end of the road for panics and CPU exceptions: one `FATAL` frame
 //! saying what happened, then QEMU exits with [`protocol::EXIT_FAILURE`]
 //! (a real PC halts, `exit.rs`), so a kernel bug is reported, never silent
-//! (`docs/hardware.md#kernel-and-host`).
+//! (`docs/hardware.md#failures`).
 
 use core::fmt::{self, Write};
 use core::panic::PanicInfo;

@@ -236,8 +236,8 @@ fn set_mode(mode: &Mode) {
 /// in the first 16 KiB are ever drawn again and the rest of the screen
 /// keeps the last picture; a write through the latches is recorded where
 /// it lands. Called after each change of the picture on that card, it
-/// marks every 4 KiB of the frame as written; docs/hardware.md has the
-/// details and the QEMU commit.
+/// marks every 4 KiB of the frame as written;
+/// docs/emulators.md#cirrus-since-qemu-90 has the details and the QEMU commit.
 pub fn rewrite_through_latches(window: VolatilePtr<'_, [u8]>) {
     let memory_mode = MODE_13H.sequencer[usize::from(SEQUENCER_MEMORY_MODE)];
     let graphics_mode = MODE_13H.graphics[usize::from(GRAPHICS_MODE)];

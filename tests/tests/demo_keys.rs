@@ -1,4 +1,4 @@
-//! The demo's keys (README "The demo"), pressed on the PS/2 keyboard with
+//! The demo's keys (`docs/demo.md#the-show`), pressed on the PS/2 keyboard with
 //! QMP `send-key` while the kernel plays the show: space and Enter move to
 //! the next entry, a digit draws every entry with that method, 0 gives
 //! each its own method again, Escape starts over. Each step is checked on

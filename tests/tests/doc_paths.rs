@@ -1,7 +1,10 @@
 //! Every repository path the docs and the code's comments name exists, and
 //! every link between the Markdown pages leads to a file and a heading that
 //! are there: a file or section that moved or went away leaves no citation
-//! behind.
+//! behind. And the names the docs use are the code's: every `cargo xtask`
+//! command is one of xtask's, every `--method`, `--vga` and `--test` names
+//! a method, a card and a test suite, every `POLYLAB_` variable is one the
+//! code reads, and every variable the code reads is in the docs.
 //!
 //! A path is a token that starts with one of the repository's top-level
 //! folders (`kernel/`, `boot/`, `xtask/`, `tests/`, `docs/`, `.ci/`,
@@ -192,4 +195,181 @@ fn a_link_to_a_missing_file_or_heading_is_caught() {
     );
     assert_eq!(anchor("What the tests prove, adapter by adapter"), "what-the-tests-prove-adapter-by-adapter");
     assert_eq!(anchor("`exact`: the `i32` limits"), "exact-the-i32-limits");
+}
+
+/// The section a plain-text citation names (`docs/PAGE.md#anchor`, as the
+/// code's comments write them) that its page does not have.
+fn missing_sections(root: &Path, text: &str) -> Vec<String> {
+    let cited = Regex::new(r"docs/([a-z0-9-]+\.md)#([A-Za-z0-9_-]+)").expect("a valid pattern");
+    cited
+        .captures_iter(text)
+        .filter(|found| {
+            let page = std::fs::read_to_string(root.join("docs").join(&found[1])).unwrap_or_default();
+            !anchors(&page).iter().any(|a| a == &found[2])
+        })
+        .map(|found| found[0].to_string())
+        .collect()
+}
+
+#[test]
+fn every_section_the_code_cites_exists() -> Result<()> {
+    let root = workspace::root();
+    let mut missing = Vec::new();
+    // The pages' own links are `every_markdown_link_leads_somewhere`'s.
+    let code = sources(root).into_iter().filter(|f| !f.ends_with(file!()) && f.extension().is_none_or(|e| e != "md"));
+    for file in code {
+        let text = std::fs::read_to_string(&file).with_context(|| format!("failed to read {}", file.display()))?;
+        let shown = file.strip_prefix(root).unwrap_or(&file).display().to_string();
+        missing.extend(missing_sections(root, &text).into_iter().map(|cited| format!("{shown} cites {cited}")));
+    }
+    assert!(missing.is_empty(), "{} citations of missing sections:\n{}", missing.len(), missing.join("\n"));
+    Ok(())
+}
+
+#[test]
+fn a_cited_section_that_is_not_there_is_caught() {
+    let text = "see docs/lab.md#goals and docs/lab.md#what-holds-exact-back, docs/gone.md#x";
+    assert_eq!(missing_sections(workspace::root(), text), ["docs/lab.md#what-holds-exact-back", "docs/gone.md#x"]);
+}
+
+/// xtask's commands, as clap names them: the variants of `Action` in
+/// `xtask/src/opt.rs`, in kebab case.
+fn xtask_commands(root: &Path) -> Result<Vec<String>> {
+    let opt = std::fs::read_to_string(root.join("xtask/src/opt.rs")).context("failed to read xtask/src/opt.rs")?;
+    let start = opt.find("pub enum Action {").context("xtask/src/opt.rs has no `enum Action`")?;
+    let body = &opt[start..start + opt[start..].find("\n}").context("`enum Action` does not end")?];
+    let variant = Regex::new(r"(?m)^    ([A-Z][A-Za-z0-9]*)\s*[(,]").expect("a valid pattern");
+    let kebab = |name: &str| {
+        name.chars().enumerate().fold(String::new(), |mut out, (i, c)| {
+            if c.is_uppercase() && i > 0 {
+                out.push('-');
+            }
+            out.push(c.to_ascii_lowercase());
+            out
+        })
+    };
+    Ok(variant.captures_iter(body).map(|found| kebab(&found[1])).collect())
+}
+
+/// The test suites of every crate: the files of a `tests/` folder beside a
+/// `Cargo.toml`, by name, as `--test NAME` runs them.
+fn test_suites(root: &Path) -> Vec<String> {
+    sources(root)
+        .into_iter()
+        .filter(|file| file.extension().is_some_and(|e| e == "rs"))
+        .filter(|file| {
+            let folder = file.parent().expect("a file is in a folder");
+            folder.ends_with("tests") && folder.parent().is_some_and(|krate| krate.join("Cargo.toml").is_file())
+        })
+        .filter_map(|file| Some(file.file_stem()?.to_str()?.to_string()))
+        .collect()
+}
+
+/// The `POLYLAB_` variables the code reads: the names its `.rs` files spell
+/// as string literals, outside comments.
+fn variables_read(root: &Path) -> Result<Vec<String>> {
+    let literal = Regex::new(r#""(POLYLAB_[A-Z0-9_]+)""#).expect("a valid pattern");
+    let mut names = Vec::new();
+    for file in sources(root).into_iter().filter(|f| f.extension().is_some_and(|e| e == "rs") && !f.ends_with(file!()))
+    {
+        let text = std::fs::read_to_string(&file).with_context(|| format!("failed to read {}", file.display()))?;
+        for line in text.lines().filter(|line| !line.trim_start().starts_with("//")) {
+            names.extend(literal.captures_iter(line).map(|found| found[1].to_string()));
+        }
+    }
+    names.sort();
+    names.dedup();
+    Ok(names)
+}
+
+/// What the docs may name, kind by kind: the pattern a name is found by (its
+/// first group the name) and the names there are.
+struct Names {
+    kinds: Vec<(&'static str, Regex, Vec<String>)>,
+}
+
+impl Names {
+    fn of(root: &Path) -> Result<Self> {
+        let pattern = |p: &str| Regex::new(p).expect("a valid pattern");
+        let methods = raster::MethodId::ALL.iter().map(|m| m.name().to_string()).collect();
+        let cards = harness::Adapter::ALL.iter().map(|a| a.name().to_string()).collect();
+        Ok(Self {
+            kinds: vec![
+                ("command", pattern(r"cargo xtask ([a-z][a-z-]*)"), xtask_commands(root)?),
+                ("method", pattern(r"--method[ =]([a-z][a-z0-9_]*)"), methods),
+                ("card", pattern(r"--vga[ =]([a-z][a-z0-9-]*)"), cards),
+                ("test suite", pattern(r"--test[ =]([a-z][a-z0-9_]*)"), test_suites(root)),
+                ("variable", pattern(r"(POLYLAB_[A-Z0-9_]*[A-Z0-9])"), variables_read(root)?),
+            ],
+        })
+    }
+
+    /// The names `text` uses that are not there: kind, line and name.
+    fn unknown(&self, text: &str) -> Vec<(&'static str, usize, String)> {
+        let mut unknown = Vec::new();
+        for (number, line) in text.lines().enumerate() {
+            for (kind, pattern, known) in &self.kinds {
+                for found in pattern.captures_iter(line) {
+                    if !known.iter().any(|name| name == &found[1]) {
+                        unknown.push((*kind, number + 1, found[1].to_string()));
+                    }
+                }
+            }
+        }
+        unknown
+    }
+}
+
+#[test]
+fn every_command_method_card_suite_and_variable_named_is_real() -> Result<()> {
+    let root = workspace::root();
+    let names = Names::of(root)?;
+    for (kind, _, known) in &names.kinds {
+        assert!(!known.is_empty(), "no {kind} found to hold the docs to");
+    }
+    let mut unknown = Vec::new();
+    for file in sources(root).into_iter().filter(|file| !file.ends_with(file!())) {
+        let text = std::fs::read_to_string(&file).with_context(|| format!("failed to read {}", file.display()))?;
+        let shown = file.strip_prefix(root).unwrap_or(&file).display().to_string();
+        for (kind, line, name) in names.unknown(&text) {
+            unknown.push(format!("{shown}:{line} names the {kind} {name}, which there is not"));
+        }
+    }
+    assert!(unknown.is_empty(), "{} unknown names:\n{}", unknown.len(), unknown.join("\n"));
+    Ok(())
+}
+
+#[test]
+fn a_wrong_command_method_card_suite_or_variable_is_caught() -> Result<()> {
+    let names = Names::of(workspace::root())?;
+    let right = "cargo xtask run --method exact --vga cirrus; cargo xtask test -- --test pages; POLYLAB_OVMF_CODE\n\
+                 cargo xtask kbench --serial X; cargo test -p raster --test exact_golden; --method M --vga CARD";
+    assert_eq!(names.unknown(right), []);
+    let wrong = "cargo xtask runn --method exakt --vga cga\ncargo xtask test -- --test pagez; POLYLAB_OVMF_CODES";
+    assert_eq!(
+        names.unknown(wrong),
+        [
+            ("command", 1, "runn".to_string()),
+            ("method", 1, "exakt".to_string()),
+            ("card", 1, "cga".to_string()),
+            ("test suite", 2, "pagez".to_string()),
+            ("variable", 2, "POLYLAB_OVMF_CODES".to_string()),
+        ]
+    );
+    Ok(())
+}
+
+#[test]
+fn every_variable_the_code_reads_is_in_the_docs() -> Result<()> {
+    let root = workspace::root();
+    let docs: String = sources(root)
+        .into_iter()
+        .filter(|file| file.extension().is_some_and(|e| e == "md"))
+        .filter_map(|page| std::fs::read_to_string(page).ok())
+        .collect();
+    let read = variables_read(root)?;
+    assert!(read.iter().any(|name| name == "POLYLAB_IMAGE"), "the variables were not found: {read:?}");
+    let undocumented: Vec<&String> = read.iter().filter(|name| !docs.contains(name.as_str())).collect();
+    assert!(undocumented.is_empty(), "variables the code reads and no page names: {undocumented:?}");
+    Ok(())
 }

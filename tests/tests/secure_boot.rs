@@ -90,7 +90,7 @@ fn a_loader_changed_after_its_hash_was_enrolled_is_refused_by_shim() -> Result<(
 }
 
 /// The first boot of a new stick on a PC with Secure Boot on, as
-/// docs/boot.md tells it: shim refuses the loader, MokManager comes up,
+/// docs/secure-boot.md#the-first-boot tells it: shim refuses the loader, MokManager comes up,
 /// and the keys a user presses enroll the hash of the loader's copy at the
 /// stick's root; after the reboot the show plays. Each screen waits for
 /// its words on COM1 before its key is pressed, and is saved as a PNG in

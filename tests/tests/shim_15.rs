@@ -87,7 +87,7 @@ fn fetch(url: &str, to: &Path) -> Result<()> {
             "could not fetch {url}: if Debian's pool has dropped shim 15.8, these tests can no longer prove \
              that a stick with shim 15.8 boots (or that its build is refused); they fail rather than pass \
              untested. Put the .deb at {} by hand (its SHA-256 is pinned in tests/tests/shim_15.rs), or \
-             retire these tests with a note in docs/boot.md",
+             retire these tests with a note in docs/secure-boot.md",
             to.display()
         )
     })?;

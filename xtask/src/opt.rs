@@ -168,7 +168,7 @@ pub struct ImageOpt {
     /// enrolls this build's loader by its SHA-256 (no key at all; each
     /// build is enrolled anew), `key` signs it with your key (made for you
     /// in ~/.config/polylab/secure-boot, encrypted under a passphrase;
-    /// enrolled once). docs/boot.md weighs the two.
+    /// enrolled once). docs/secure-boot.md weighs the two.
     #[arg(long, value_enum, default_value_t = EnrollOpt::Hash)]
     pub enroll: EnrollOpt,
     /// With `--enroll key`: sign with this private key (PEM, encrypted)

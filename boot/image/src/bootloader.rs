@@ -1,14 +1,9 @@
 //! The boot stages the image is built with: the registry's `bootloader`
 //! with its BIOS stage 2 and its UEFI loader patched.
 //!
-//! Why stage 2: `bootloader` 0.11's BIOS stage 2 asks the card's VBE BIOS
-//! for a linear-framebuffer mode and switches to it before the kernel runs
-//! (and panics when the card has no VBE). Undoing that takes card-specific
-//! steps: on QEMU's Cirrus card, for one, the standard VGA registers read
-//! back as programmed while the screen stays garbage, because an extended
-//! sequencer register keeps the VBE mode. A card that never left text mode
-//! needs no undoing, on any VGA-compatible adapter. (Under UEFI the kernel
-//! undoes the firmware's mode itself, card by card, see kernel/src/card.rs.)
+//! Why stage 2: it would leave the card in a VBE mode the kernel cannot
+//! undo on every card; docs/boot.md#why-stage-2-is-patched tells it, with
+//! what was measured.
 //!
 //! Why the UEFI loader: under Secure Boot shim starts it only if it carries
 //! an `.sbat` section, and once started it would boot any kernel beside it

@@ -7,7 +7,7 @@ use std::process::Command;
 use crate::workspace;
 
 /// The nightly that builds the kernel and `bootloader`'s BIOS stages
-/// (`docs/hardware.md#toolchain`: `x86_64` 0.15.5 needs >= 2026-07-10).
+/// (`docs/development.md#the-toolchain`: `x86_64` 0.15.5 needs >= 2026-07-10).
 pub const PINNED_TOOLCHAIN: &str = "nightly-2026-10-01";
 /// The kernel's target triple.
 pub const KERNEL_TARGET: &str = "x86_64-unknown-none";

@@ -197,7 +197,7 @@ fn secure_boot_files(
             format!(
                 "the loader is enrolled by its SHA-256 {}: on a PC with Secure Boot on, choose MokManager's \
                  \"Enroll hash from disk\", then {HASH_ENROLL_PATH}, and check that the hash it shows is this \
-                 one; each build is enrolled anew (docs/boot.md)",
+                 one; each build is enrolled anew (docs/secure-boot.md)",
                 hex(&hash)
             )
         }
@@ -211,7 +211,7 @@ fn secure_boot_files(
             files.extend([(LOADER_PATH, signed), (CERTIFICATE_PATH, certificate)]);
             format!(
                 "the loader is signed with your key, certificate {} (SHA-256 fingerprint {}), on the image as \
-                 {CERTIFICATE_PATH}: enroll it once with MokManager's \"Enroll key from disk\" (docs/boot.md)",
+                 {CERTIFICATE_PATH}: enroll it once with MokManager's \"Enroll key from disk\" (docs/secure-boot.md)",
                 key.cert.display(),
                 key::fingerprint(&der)
             )

@@ -80,10 +80,11 @@ pub fn scene(name: &str) -> Option<Scene> {
     named(name).map(Builtin::scene)
 }
 
-/// Listing 40.4 up to its `page`-th keypress (the book's chapter 40; `docs/methods.md`): the
-/// odd/even examples, the rectangle whose hole is cut by a bridge edge
-/// traversed in and back out, and the V shapes that tile without overlap.
-/// The screen starts black after the mode set and is never cleared.
+/// Listing 40.4 up to its `page`-th keypress (the book's chapter 40;
+/// `docs/scenes.md#chapter-40-sample-program`): the odd/even examples,
+/// the rectangle whose hole is cut by a bridge edge traversed in and back
+/// out, and the V shapes that tile without overlap. The screen starts
+/// black after the mode set and is never cleared.
 fn listing_40_4(page: u32) -> Vec<Op> {
     const POLYGON_1: &[(i32, i32)] = &[(0, 0), (100, 150), (320, 0), (0, 200), (220, 50), (320, 200)];
     const POLYGON_2: &[(i32, i32)] =
@@ -140,8 +141,9 @@ fn wgt_triangle() -> Vec<Op> {
     Vec::from([Op::Clear(0), Op::Fill(Polygon::from_pixels(&[(160, 30), (50, 150), (270, 180)], (0, 0), 15))])
 }
 
-/// Listing 38.3 up to its `page`-th keypress (the book's chapter 38; `docs/methods.md`). The book
-/// never clears between stages, so each page holds the ones before it.
+/// Listing 38.3 up to its `page`-th keypress (the book's chapter 38;
+/// `docs/scenes.md#chapter-38-sample-program`). The book never clears
+/// between stages, so each page holds the ones before it.
 fn listing_38_3(page: u32) -> Vec<Op> {
     const SCREEN_RECTANGLE: &[(i32, i32)] = &[(0, 0), (320, 0), (320, 200), (0, 200)];
     const CONVEX_SHAPE: &[(i32, i32)] = &[

@@ -1,4 +1,4 @@
-//! The plain-text scene format (documented in the README):
+//! The plain-text scene format (documented in `docs/scenes.md#scene-files`):
 //!
 //! ```text
 //! # a comment; blank lines are ignored

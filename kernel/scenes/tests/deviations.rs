@@ -1,5 +1,5 @@
 //! How far each classic method is from the exact reference on the pages of
-//! Listing 38.3 (`docs/methods.md#chapter-38-sample-program`), under our convention (pixel centres,
+//! Listing 38.3 (`docs/scenes.md#chapter-38-sample-program`), under our convention (pixel centres,
 //! [`SampleOffset::CENTRE`]) and under the method's own
 //! ([`SampleOffset::of`] its [`Convention`](raster::Convention)): the
 //! measured counts are pinned, each with the reason it is what it is.

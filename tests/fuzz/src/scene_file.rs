@@ -58,8 +58,8 @@ fn reaches_the_kernel(lines: &[file::Line<'_>]) {
     }
 }
 
-/// The built-in scenes written as scene files, and the scene of the
-/// README's example.
+/// The built-in scenes written as scene files, and the scene of
+/// `docs/scenes.md`'s example.
 pub fn seeds() -> Vec<(String, Vec<u8>)> {
     let mut seeds: Vec<(String, Vec<u8>)> = scenes::builtin::ALL
         .iter()

@@ -84,7 +84,7 @@ fn contender_table(out: &mut String, results: &Results) {
     out.push('\n');
 }
 
-/// Where `exact` stands against its speed goals, in numbers, one run.
+/// Where `exact` stands against its goals, in numbers, one run.
 fn exact_goals(out: &mut String, results: &Results) {
     let _ = writeln!(out, "## `{EXACT}` against its goals\n");
     let rows: Vec<&Row> = results.rows_of(EXACT).collect();
@@ -106,7 +106,6 @@ fn exact_goals(out: &mut String, results: &Results) {
     for goal in &results.goals {
         let shown = match (&goal.note, goal.value) {
             (Some(note), _) => note.clone(),
-            (None, Some(v)) if goal.goal.ends_with('×') => format!("{v:.2}×"),
             (None, Some(v)) => format!("{v}"),
             (None, None) => "not measured".to_string(),
         };

@@ -3,7 +3,7 @@
 //! its own SHA-256 or signed with the user's key, each put on the FAT
 //! partition where shim looks.
 //!
-//! The chain (docs/boot.md tells it in full): the firmware trusts
+//! The chain (docs/secure-boot.md tells it in full): the firmware trusts
 //! Microsoft's third-party UEFI CA (in its `db`), which signed Debian's
 //! shim; shim trusts the hashes and keys in the MOK list, which the user
 //! enrolls with MokManager; the loader's hash (or signature) covers the
