@@ -20,7 +20,6 @@ use alloc::format;
 use alloc::string::String;
 use alloc::vec;
 use alloc::vec::Vec;
-use core::fmt;
 use core::mem::{align_of, size_of};
 use core::ops::Range;
 use core::ptr::{self, NonNull};
@@ -417,16 +416,4 @@ pub struct Drawn {
     pub report: DrawReport,
     /// Spans a method emitted outside the screen (a method bug), dropped.
     pub stray_spans: usize,
-}
-
-impl fmt::Display for Drawn {
-    /// The `OK` text of `DRAW` and `POLY`: `polygons=N refused=M`, then
-    /// ` strays=K` only if a method broke the sink contract.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "polygons={} refused={}", self.report.polygons, self.report.refused)?;
-        if self.stray_spans > 0 {
-            write!(f, " strays={}", self.stray_spans)?;
-        }
-        Ok(())
-    }
 }

@@ -36,7 +36,7 @@ pub fn source_matches_host_render(console: &mut Console, source: &SceneSource, m
     let name = source.name();
     let expected = render(&source.scene(), method.method());
     match source {
-        SceneSource::Builtin(page) => console.draw(page.name, Some(method)),
+        SceneSource::Builtin(page) => console.draw(page.name, Some(method)).map(|_| ()),
         SceneSource::File(file) => console.draw_file(file, method),
     }
     .with_context(|| format!("kernel failed to draw {name} with {method}"))?;

@@ -34,5 +34,5 @@ pub mod workspace;
 pub use boot_image::{build_image, cargo, process};
 pub use picture::compare::compare_images;
 pub use picture::{render, Image};
-pub use qemu::console::{BenchRow, Console, Dump, Listing, Reply};
+pub use qemu::console::{Console, Dump, Reply};
 pub use qemu::{Adapter, Board, Clock, Cpu, Display, DisplayAhead, ExitDevice, Medium, Qemu, QemuOptions, SerialLine};

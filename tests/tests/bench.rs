@@ -8,8 +8,8 @@
 use std::collections::BTreeSet;
 
 use anyhow::{bail, ensure, Context, Result};
-use harness::{BenchRow, Clock, Qemu, QemuOptions, Reply};
-use protocol::Command;
+use harness::{Clock, Qemu, QemuOptions, Reply};
+use protocol::{BenchRow, Command};
 use raster::{Framebuffer, MethodId, SCREEN};
 use scenes::builtin;
 

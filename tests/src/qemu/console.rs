@@ -5,9 +5,10 @@ use std::time::{Duration, Instant};
 
 use anyhow::{bail, ensure, Context, Result};
 use protocol::{
-    Command, FrameKind, LineLosses, Pong, Ready, ShowReply, TscRate, BENCH_UNIT_LINE, DUMP_LEN, FRAMEBUFFER_LEN,
+    BenchReply, BenchRow, Cleared, Command, DrawReply, FrameKind, LineLosses, Listing, Pong, Ready, ShowReply, TscRate,
+    DUMP_LEN, FRAMEBUFFER_LEN,
 };
-use raster::{MethodId, Refusal, SCREEN};
+use raster::{MethodId, SCREEN};
 use scenes::palette::ENTRIES;
 use scenes::show;
 
@@ -31,7 +32,7 @@ pub enum Reply {
     Err(String),
     List(Listing),
     Dump(Box<Dump>),
-    /// The answer to `BENCH`: `(method, cycles)` per method, in order.
+    /// The answer to `BENCH`: a row per method, in order.
     Bench(Vec<BenchRow>),
     Fatal(String),
 }
@@ -42,9 +43,15 @@ impl Reply {
             FrameKind::Ready => Reply::Ready(frame.text()),
             FrameKind::Ok => Reply::Ok(frame.text()),
             FrameKind::Err => Reply::Err(frame.text()),
-            FrameKind::List => Reply::List(Listing::parse(&frame.text())?),
+            FrameKind::List => {
+                let text = frame.text();
+                Reply::List(Listing::parse(&text).with_context(|| format!("LIST {text:?}"))?)
+            }
             FrameKind::Dump => Reply::Dump(Box::new(Dump::parse(&frame.payload)?)),
-            FrameKind::Bench => Reply::Bench(parse_bench(&frame.text())?),
+            FrameKind::Bench => {
+                let text = frame.text();
+                Reply::Bench(BenchReply::parse(&text).with_context(|| format!("BENCH {text:?}"))?.rows)
+            }
             FrameKind::Fatal => Reply::Fatal(frame.text()),
             FrameKind::Log => bail!("a LOG frame is not a reply"),
         })
@@ -65,74 +72,6 @@ impl Reply {
             Reply::Fatal(text) => format!("FATAL \"{text}\""),
         }
     }
-}
-
-/// The answer to `LIST`.
-#[derive(Clone, Debug, PartialEq, Eq, Default)]
-pub struct Listing {
-    pub scenes: Vec<String>,
-    /// The show's entries in demo order: name and number of frames.
-    pub shows: Vec<(String, u32)>,
-    pub methods: Vec<String>,
-}
-
-impl Listing {
-    fn parse(text: &str) -> Result<Self> {
-        let mut listing = Listing::default();
-        for line in text.lines().filter(|line| !line.is_empty()) {
-            let words: Vec<&str> = line.split(' ').collect();
-            match words[..] {
-                ["scene", name] => listing.scenes.push(name.to_string()),
-                ["method", name] => listing.methods.push(name.to_string()),
-                ["show", name, frames] => {
-                    let frames = frames.parse().with_context(|| format!("LIST line `{line}`: bad frame count"))?;
-                    listing.shows.push((name.to_string(), frames));
-                }
-                _ => bail!("LIST line `{line}` is none of `scene NAME`, `show NAME FRAMES` and `method NAME`"),
-            }
-        }
-        Ok(listing)
-    }
-}
-
-/// One method's line of a `BENCH` answer.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct BenchRow {
-    pub method: MethodId,
-    /// rdtsc ticks of one whole-scene draw, the median of the repeats.
-    pub cycles: u64,
-    /// Polygons of the scene the method declined.
-    pub refused: usize,
-    /// Why it declined the first of them.
-    pub refusal: Option<Refusal>,
-}
-
-/// A `BENCH` payload: its first line must be [`BENCH_UNIT_LINE`] (the
-/// numbers are meaningless without their unit), then `METHOD CYCLES
-/// REFUSED [REFUSAL]` lines.
-fn parse_bench(text: &str) -> Result<Vec<BenchRow>> {
-    let mut lines = text.lines();
-    let unit = lines.next().unwrap_or_default();
-    ensure!(unit == BENCH_UNIT_LINE, "BENCH starts with `{unit}`, not its unit line `{BENCH_UNIT_LINE}`");
-    lines.filter(|line| !line.is_empty()).map(parse_bench_line).collect()
-}
-
-fn parse_bench_line(line: &str) -> Result<BenchRow> {
-    let shape = || format!("BENCH line `{line}` is not `METHOD CYCLES REFUSED [REFUSAL]`");
-    let mut words = line.split(' ');
-    let (Some(method), Some(cycles), Some(refused)) = (words.next(), words.next(), words.next()) else {
-        bail!(shape());
-    };
-    let refusal = words.next().map(|name| Refusal::from_name(name).with_context(shape)).transpose()?;
-    ensure!(words.next().is_none(), shape());
-    let row = BenchRow {
-        method: method.parse().with_context(|| format!("BENCH line `{line}`"))?,
-        cycles: cycles.parse().with_context(|| format!("BENCH line `{line}`: bad cycle count"))?,
-        refused: refused.parse().with_context(|| format!("BENCH line `{line}`: bad refusal count"))?,
-        refusal,
-    };
-    ensure!((row.refused > 0) == row.refusal.is_some(), "BENCH line `{line}`: a refusal count without its reason");
-    Ok(row)
 }
 
 /// The answer to `DUMP`: the framebuffer and the DAC, both read back.
@@ -287,23 +226,42 @@ impl Console {
         }
     }
 
-    /// Clears the screen to black (the host render's starting point) and
-    /// draws a built-in scene.
-    pub fn draw(&mut self, scene: &str, method: Option<MethodId>) -> Result<()> {
-        self.ok(&Command::Clear(0))?;
-        self.ok(&Command::Draw { scene, method })?;
+    /// Clears the screen to `color`, as the `CLEAR` answer must say.
+    pub fn clear(&mut self, color: u8) -> Result<()> {
+        let command = Command::Clear(color);
+        let text = self.ok(&command)?;
+        let cleared = Cleared::parse(&text).with_context(|| format!("`{command}` answered OK \"{text}\""))?;
+        ensure!(cleared == Cleared { color }, "`{command}` answered OK \"{text}\", another colour");
         Ok(())
+    }
+
+    /// Sends a `DRAW` or `POLY` and returns what its answer says was drawn.
+    fn draw_command(&mut self, command: &Command) -> Result<DrawReply> {
+        let text = self.ok(command)?;
+        DrawReply::parse(&text).with_context(|| format!("`{command}` answered OK \"{text}\""))
+    }
+
+    /// Clears the screen to black (the host render's starting point) and
+    /// draws a built-in scene; returns what the kernel says it drew.
+    pub fn draw(&mut self, scene: &str, method: Option<MethodId>) -> Result<DrawReply> {
+        self.clear(0)?;
+        self.draw_command(&Command::Draw { scene, method })
     }
 
     /// Clears the screen to black and draws a scene file with `method`,
     /// one command per operation (`CLEAR`, `POLY`), every one of which must
-    /// be answered OK. The commands are all made before the first is sent:
-    /// a polygon too long for a command line fails with nothing drawn.
+    /// be answered OK with its reply's text. The commands are all made
+    /// before the first is sent: a polygon too long for a command line
+    /// fails with nothing drawn.
     pub fn draw_file(&mut self, file: &SceneFile, method: MethodId) -> Result<()> {
         let commands = file.commands(method)?;
-        self.ok(&Command::Clear(0))?;
+        self.clear(0)?;
         for (line, command) in commands {
-            self.ok(&command).with_context(|| format!("{}:{line}", file.path.display()))?;
+            let done = match command {
+                Command::Clear(color) => self.clear(color),
+                _ => self.draw_command(&command).map(|_| ()),
+            };
+            done.with_context(|| format!("{}:{line}", file.path.display()))?;
         }
         Ok(())
     }
@@ -456,34 +414,55 @@ mod tests {
     }
 
     #[test]
-    fn a_bench_reply_is_method_cycles_and_refusals_after_its_unit_line() {
-        let payload = format!("{BENCH_UNIT_LINE}\npendleton 1200 2 multiple-contours\nexact 900 0\n");
-        let (mut console, sent, _keep) = console(&[(FrameKind::Bench, payload.as_bytes())]);
-        let rows = console.bench("abrash38-1", 3).unwrap();
+    fn a_bench_reply_comes_back_as_its_rows_and_a_malformed_one_is_an_error_quoting_it() {
         let row = |method, cycles, refused, refusal| BenchRow { method, cycles, refused, refusal };
-        assert_eq!(
-            rows,
-            [row(MethodId::Pendleton, 1200, 2, Some(Refusal::MultipleContours)), row(MethodId::Exact, 900, 0, None)]
-        );
+        let rows = vec![
+            row(MethodId::Pendleton, 1200, 2, Some(raster::Refusal::MultipleContours)),
+            row(MethodId::Exact, 900, 0, None),
+        ];
+        let payload = BenchReply { rows: rows.clone() }.to_string();
+        let (mut console, sent, _keep) =
+            console(&[(FrameKind::Bench, payload.as_bytes()), (FrameKind::Bench, b"exact 900 0\n")]);
+        assert_eq!(console.bench("abrash38-1", 3).unwrap(), rows);
         assert_eq!(sent.0.lock().unwrap().as_slice(), b"BENCH abrash38-1 3\n");
-        assert!(parse_bench("abrash_float 1200 0\n").is_err(), "a BENCH without its unit line");
-        for bad in [
-            "exact many 0",
-            "exact 900",
-            "exact 900 x",
-            "exact 900 1",
-            "exact 900 1 bored",
-            "exact 900 0 out-of-range x",
-        ] {
-            assert!(parse_bench(&format!("{BENCH_UNIT_LINE}\n{bad}\n")).is_err(), "{bad}");
-        }
+        let error = format!("{:#}", console.bench("abrash38-1", 3).unwrap_err());
+        assert_eq!(
+            error,
+            "waiting for the reply to `BENCH abrash38-1 3`: BENCH \"exact 900 0\\n\": malformed BENCH reply: expected \
+             its unit line first"
+        );
+    }
+
+    #[test]
+    fn draw_and_clear_answers_are_read_back_and_a_wrong_one_is_an_error() {
+        let (mut console, sent, _keep) = console(&[
+            (FrameKind::Ok, b"clear 0"),
+            (FrameKind::Ok, b"polygons=5 refused=1 strays=2"),
+            (FrameKind::Ok, b"clear 1"),
+            (FrameKind::Ok, b"clear 0"),
+            (FrameKind::Ok, b"drawn"),
+        ]);
+        let drawn = console.draw("abrash38-1", Some(MethodId::Wgt)).unwrap();
+        assert_eq!(drawn, DrawReply { polygons: 5, refused: 1, strays: 2 });
+        let error = console.draw("abrash38-1", None).unwrap_err().to_string();
+        assert_eq!(error, "`CLEAR 0` answered OK \"clear 1\", another colour");
+        let error = format!("{:#}", console.draw("abrash38-1", None).unwrap_err());
+        assert_eq!(
+            error,
+            "`DRAW abrash38-1` answered OK \"drawn\": malformed DRAW reply: expected the field `polygons=` next"
+        );
+        assert_eq!(
+            sent.0.lock().unwrap().as_slice(),
+            b"CLEAR 0\nDRAW abrash38-1 wgt\nCLEAR 0\nCLEAR 0\nDRAW abrash38-1\n"
+        );
     }
 
     #[test]
     fn a_list_line_of_no_known_shape_is_an_error() {
-        assert!(Listing::parse("show race many\n").is_err());
-        assert!(Listing::parse("show race\n").is_err());
-        assert!(Listing::parse("colour 4\n").is_err());
+        let (mut console, _, _keep) = console(&[(FrameKind::List, b"colour 4\n")]);
+        let error = format!("{:#}", console.list().unwrap_err());
+        let expected = "waiting for the reply to `LIST`: LIST \"colour 4\\n\": malformed LIST reply: expected lines";
+        assert!(error.starts_with(expected), "{error}");
     }
 
     #[test]
@@ -506,8 +485,12 @@ mod tests {
             (FrameKind::Ok, stranger.as_bytes()),
         ]);
         assert_eq!(console.show("race", 30, None).unwrap(), reply);
-        let error = console.show("race", 0, Some(MethodId::Exact)).unwrap_err().to_string();
-        assert_eq!(error, "`SHOW race 0 exact` answered OK \"drawn\", not a SHOW reply");
+        let error = format!("{:#}", console.show("race", 0, Some(MethodId::Exact)).unwrap_err());
+        assert_eq!(
+            error,
+            "`SHOW race 0 exact` answered OK \"drawn\", not a SHOW reply: malformed SHOW reply: expected the field \
+             `entry=` next"
+        );
         let error = console.show("race", 30, None).unwrap_err().to_string();
         assert_eq!(error, format!("`SHOW race 30` answered OK \"{stranger}\", naming an entry the show does not have"));
         assert_eq!(sent.0.lock().unwrap().as_slice(), b"SHOW race 30\nSHOW race 0 exact\nSHOW race 30\n");
@@ -524,8 +507,11 @@ mod tests {
         let (mut console, _, _keep) = console(&[(FrameKind::Ready, b"vga: 0 mismatches"), (FrameKind::Ok, b"pong")]);
         let error = console.wait_ready().unwrap_err().to_string();
         assert_eq!(error, "READY \"vga: 0 mismatches\" does not parse");
-        let error = console.ping().unwrap_err().to_string();
-        assert_eq!(error, "`PING` answered OK \"pong\", not a pong");
+        let error = format!("{:#}", console.ping().unwrap_err());
+        assert_eq!(
+            error,
+            "`PING` answered OK \"pong\", not a pong: malformed PING reply: expected `pong` and its fields"
+        );
     }
 
     #[test]
