@@ -30,7 +30,7 @@ pub fn run(screen: &mut Screen, scene: &Scene, repeats: u8) -> BenchReply {
         for _ in 0..repeats.max(1) {
             // Between draws, outside the timing: a BENCH takes seconds.
             serial::poll();
-            let (drawn, cycles) = timed(|| screen.draw(scene, method.method()));
+            let (drawn, cycles) = timed(|| screen.draw(scene, method));
             samples.push(cycles);
             refused = (drawn.report.refused, drawn.report.first_refusal);
         }

@@ -150,7 +150,7 @@ impl Console<'_> {
             Command::Draw { scene, method } => {
                 let scene = builtin_scene(scene)?;
                 let method = method.unwrap_or(scene.method);
-                ok(draw_reply(self.screen.draw(&scene, method.method())))
+                ok(draw_reply(self.screen.draw(&scene, method)))
             }
             Command::Show { entry, frame, method } => {
                 let entry = scenes::show::entry(entry).ok_or_else(|| format!("unknown show entry `{entry}`"))?;
@@ -164,7 +164,7 @@ impl Console<'_> {
             Command::Poly { method, spec } => {
                 let polygon = file::parse_poly(spec).map_err(|error| error.to_string())?;
                 let scene = Scene { name: String::from("POLY"), ops: vec![Op::Fill(polygon)], method };
-                ok(draw_reply(self.screen.draw(&scene, method.method())))
+                ok(draw_reply(self.screen.draw(&scene, method)))
             }
             Command::Dump => Ok((FrameKind::Dump, self.screen.dump())),
             Command::Bench { scene, repeats } => {

@@ -34,7 +34,7 @@ pub fn dump_matches_host_render(console: &mut Console, scene: &str, method: Meth
 /// commands load). Returns the dump for further checks.
 pub fn source_matches_host_render(console: &mut Console, source: &SceneSource, method: MethodId) -> Result<Dump> {
     let name = source.name();
-    let expected = render(&source.scene(), method.method());
+    let expected = render(&source.scene(), method);
     match source {
         SceneSource::Builtin(page) => console.draw(page.name, Some(method)).map(|_| ()),
         SceneSource::File(file) => console.draw_file(file, method),
@@ -66,7 +66,7 @@ pub fn show_matches_host_render(
     let said = (reply.entry, reply.frame, reply.method);
     ensure!(said == asked, "{name}: the kernel says it showed {said:?}, not {asked:?}");
     let dump = console.dump()?;
-    let expected = render_show(entry, frame, drawn_with.method(), reply.cycles);
+    let expected = render_show(entry, frame, drawn_with, reply.cycles);
     compare_images(&name, &expected, &dump.image())?;
     compare_palettes(&name, &show::PALETTE, &dump.palette)?;
     Ok((reply, dump))

@@ -9,7 +9,7 @@
 //! qemu.console.draw("abrash38-1", None)?;
 //! let dump = qemu.console.dump()?;
 //! let scene = render::builtin_scene("abrash38-1")?;
-//! let expected = render::render(&scene, scene.method.method());
+//! let expected = render::render(&scene, scene.method);
 //! compare_images("abrash38-1", &expected, &dump.image())?;
 //! # Ok(())
 //! # }

@@ -225,7 +225,7 @@ mod tests {
         // the frame scaled and centred in it); here it is read back from
         // disk.
         let page = show::entry("abrash38-2").expect("a page of the show");
-        let expected = render_show(page, 0, MethodId::Wgt.method(), 0);
+        let expected = render_show(page, 0, MethodId::Wgt, 0);
         let written = harness::Image::read_png(&dir.path().join("abrash38-2.png"))?;
         harness::picture::compare::compare_image_rows("run.abrash38-2.wgt", &expected, &written, 0..188)?;
         Ok(())
