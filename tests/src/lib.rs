@@ -29,10 +29,8 @@ pub mod soak;
 pub mod supervisor;
 pub mod workspace;
 
-/// The image build and the process helpers live with the boot stages
-/// (boot/image); the harness boots what it builds.
-pub use boot_image::{build_image, cargo, process};
 pub use picture::compare::compare_images;
 pub use picture::{render, Image};
-pub use qemu::console::{Console, Dump, Reply};
+pub use qemu::console::Console;
+pub use qemu::reply::{Dump, Reply};
 pub use qemu::{Adapter, Board, Clock, Cpu, Display, DisplayAhead, ExitDevice, Medium, Qemu, QemuOptions, SerialLine};

@@ -11,9 +11,10 @@ use std::path::Path;
 use std::time::Duration;
 
 use anyhow::{ensure, Context, Result};
+use boot_image::build_image;
 use harness::line::{open_console, FaultRates, Relay, TroubleKind};
 use harness::serial_check::{self, write_reports, CheckOptions, CheckReport, Scope};
-use harness::{build_image, Qemu, QemuOptions, Reply, SerialLine};
+use harness::{Qemu, QemuOptions, Reply, SerialLine};
 use protocol::{Command, Sealed, BENCH_DEFAULT_REPEATS};
 use raster::MethodId;
 

@@ -5,11 +5,12 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
+use boot_image::build_image;
 use harness::checks::{screen_matches_dump, show_matches_host_render, source_matches_host_render};
 use harness::prerequisites::ensure_qemu_window;
 use harness::render::{entry_names, SceneFile, SceneSource};
 use harness::workspace::target_dir;
-use harness::{build_image, Clock, Display, Medium, Qemu, QemuOptions};
+use harness::{Clock, Display, Medium, Qemu, QemuOptions};
 use protocol::Command;
 use raster::MethodId;
 use scenes::show::{self, Entry, ENTRIES_IN_ORDER};

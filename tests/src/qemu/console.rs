@@ -1,130 +1,36 @@
 //! The host end of the serial protocol: commands out, typed replies in.
 
 use std::io::Write;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use anyhow::{bail, ensure, Context, Result};
-use protocol::{
-    BenchReply, BenchRow, Cleared, Command, DrawReply, FrameKind, LineLosses, Listing, Pong, Ready, ShowReply, TscRate,
-    DUMP_LEN, FRAMEBUFFER_LEN,
-};
-use raster::{MethodId, SCREEN};
-use scenes::palette::ENTRIES;
+use protocol::{BenchRow, Cleared, Command, DrawReply, LineLosses, Listing, Pong, Ready, ShowReply, TscRate};
+use raster::MethodId;
 use scenes::show;
 
-use super::serial::{Frame, FrameReader};
-use crate::line::Sealing;
+use super::channel::Channel;
+use super::reply::{Dump, Reply, REPLY_TIMEOUT};
+use super::serial::FrameReader;
+use crate::line::{LineStats, Sealing};
 use crate::picture::render::SceneFile;
-use crate::picture::Image;
 
 /// Longest wait for the READY frame: SeaBIOS, the bootloader's stages and
 /// the mode set under TCG, on a loaded 2-core machine.
 pub const READY_TIMEOUT: Duration = Duration::from_secs(120);
-/// Longest wait for the answer to one command (a dump is 64 KB through an
-/// emulated UART).
-pub const REPLY_TIMEOUT: Duration = Duration::from_secs(60);
-
-/// A kernel's answer to a command, decoded.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Reply {
-    Ready(String),
-    Ok(String),
-    Err(String),
-    List(Listing),
-    Dump(Box<Dump>),
-    /// The answer to `BENCH`: a row per method, in order.
-    Bench(Vec<BenchRow>),
-    Fatal(String),
-}
-
-impl Reply {
-    pub(crate) fn decode(frame: Frame) -> Result<Self> {
-        Ok(match frame.kind {
-            FrameKind::Ready => Reply::Ready(frame.text()),
-            FrameKind::Ok => Reply::Ok(frame.text()),
-            FrameKind::Err => Reply::Err(frame.text()),
-            FrameKind::List => {
-                let text = frame.text();
-                Reply::List(Listing::parse(&text).with_context(|| format!("LIST {text:?}"))?)
-            }
-            FrameKind::Dump => Reply::Dump(Box::new(Dump::parse(&frame.payload)?)),
-            FrameKind::Bench => {
-                let text = frame.text();
-                Reply::Bench(BenchReply::parse(&text).with_context(|| format!("BENCH {text:?}"))?.rows)
-            }
-            FrameKind::Fatal => Reply::Fatal(frame.text()),
-            FrameKind::Log => bail!("a LOG frame is not a reply"),
-        })
-    }
-
-    /// One line for error messages; never the bytes of a dump.
-    pub(crate) fn describe(&self) -> String {
-        match self {
-            Reply::Ready(text) => format!("READY \"{text}\""),
-            Reply::Ok(text) => format!("OK \"{text}\""),
-            Reply::Err(text) => format!("ERR \"{text}\""),
-            Reply::List(listing) => {
-                let (scenes, shows, methods) = (listing.scenes.len(), listing.shows.len(), listing.methods.len());
-                format!("LIST of {scenes} scenes, {shows} show entries and {methods} methods")
-            }
-            Reply::Dump(_) => "a DUMP".to_string(),
-            Reply::Bench(rows) => format!("BENCH of {} methods", rows.len()),
-            Reply::Fatal(text) => format!("FATAL \"{text}\""),
-        }
-    }
-}
-
-/// The answer to `DUMP`: the framebuffer and the DAC, both read back.
-#[derive(Clone, PartialEq, Eq)]
-pub struct Dump {
-    /// 320x200 bytes read back from 0xA0000.
-    pub pixels: Vec<u8>,
-    /// The 256 DAC entries read back, 6-bit red, green, blue.
-    pub palette: [[u8; 3]; ENTRIES],
-}
-
-impl std::fmt::Debug for Dump {
-    /// A summary: a derived Debug would print 64,000 numbers.
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "Dump {{ {} pixels, {} palette entries }}", self.pixels.len(), self.palette.len())
-    }
-}
-
-impl Dump {
-    pub fn parse(payload: &[u8]) -> Result<Self> {
-        ensure!(payload.len() == DUMP_LEN, "a dump has {DUMP_LEN} bytes, this one {}", payload.len());
-        let (pixels, dac) = payload.split_at(FRAMEBUFFER_LEN);
-        let mut palette = [[0; 3]; ENTRIES];
-        for (entry, rgb) in palette.iter_mut().zip(dac.as_chunks::<3>().0) {
-            *entry = *rgb;
-        }
-        Ok(Self { pixels: pixels.to_vec(), palette })
-    }
-
-    /// The framebuffer as an indexed image whose palette is the read-back
-    /// DAC: the picture the screen shows, with the raw bytes kept.
-    pub fn image(&self) -> Image {
-        Image::from_dac(SCREEN.width as u32, SCREEN.height as u32, self.pixels.clone(), &self.palette)
-            .expect("a dump holds width x height pixels")
-    }
-}
-
 /// A protocol session over a serial line.
 pub struct Console {
-    pub(crate) frames: FrameReader,
-    input: Box<dyn Write + Send>,
-    pub(crate) logs: Vec<String>,
+    pub(crate) channel: Channel,
     /// How commands go out on a line that can damage bytes (sealed, each
     /// reply matched to its line, steps retried); `None`: plain lines, as
     /// over QEMU's stdio, which loses nothing.
-    pub(crate) sealing: Option<Sealing>,
+    sealing: Option<Sealing>,
 }
 
 impl Console {
     /// A console that sends plain lines to `input` and reads frames from
     /// `frames`.
     pub fn new(input: impl Write + Send + 'static, frames: FrameReader) -> Self {
-        Self { frames, input: Box::new(input), logs: Vec::new(), sealing: None }
+        Self { channel: Channel::new(input, frames), sealing: None }
     }
 
     /// A console that seals every command (`crate::line`) and retries a
@@ -146,19 +52,19 @@ impl Console {
     /// Waits (at most `timeout`) for `text` on the line outside any frame
     /// and returns what came up to its end.
     pub fn wait_for_text(&mut self, text: &str, timeout: Duration) -> Result<String> {
-        self.frames.skip_to_first(&[text], timeout).map(|(_, seen)| seen)
+        self.channel.frames.skip_to_first(&[text], timeout).map(|(_, seen)| seen)
     }
 
     /// Waits (at most `timeout`) for the first of `texts` on the line
     /// outside any frame (see [`FrameReader::skip_to_first`]): which, and
     /// what came up to its end.
     pub fn wait_for_first_text(&mut self, texts: &[&str], timeout: Duration) -> Result<(usize, String)> {
-        self.frames.skip_to_first(texts, timeout)
+        self.channel.frames.skip_to_first(texts, timeout)
     }
 
     /// The LOG frames received so far, in order.
     pub fn logs(&self) -> &[String] {
-        &self.logs
+        &self.channel.logs
     }
 
     /// Sends one command line.
@@ -168,9 +74,7 @@ impl Console {
 
     /// Sends raw bytes, valid or not.
     pub fn send_bytes(&mut self, bytes: &[u8]) -> Result<()> {
-        self.input.write_all(bytes)?;
-        self.input.flush()?;
-        Ok(())
+        self.channel.send_bytes(bytes)
     }
 
     /// The next reply, within [`REPLY_TIMEOUT`]; LOG frames on the way are
@@ -183,36 +87,14 @@ impl Console {
     /// which LOG frames on the way do not extend (a kernel that keeps
     /// logging and never answers still times out).
     pub fn reply_within(&mut self, timeout: Duration) -> Result<Reply> {
-        let deadline = Instant::now() + timeout;
-        let logs_before = self.logs.len();
-        let late = |logs: usize| {
-            format!("no reply within {:.1} s, only {} LOG frames", timeout.as_secs_f64(), logs - logs_before)
-        };
-        loop {
-            let remaining = deadline.saturating_duration_since(Instant::now());
-            if remaining.is_zero() {
-                bail!(late(self.logs.len()));
-            }
-            let frame = match self.frames.next_frame(remaining) {
-                Ok(frame) => frame,
-                Err(error) if logs_before < self.logs.len() && Instant::now() >= deadline => {
-                    return Err(error.context(late(self.logs.len())));
-                }
-                Err(error) => return Err(error),
-            };
-            if frame.kind == FrameKind::Log {
-                self.logs.push(frame.text());
-                continue;
-            }
-            return Reply::decode(frame);
-        }
+        self.channel.reply_within(timeout)
     }
 
     /// Sends `command` and returns its reply, whatever it is (sealed, if
     /// the console seals its commands).
     pub fn request(&mut self, command: &Command) -> Result<Reply> {
-        if self.sealing.is_some() {
-            return self.request_sealed(command);
+        if let Some(sealing) = self.sealing.as_mut() {
+            return sealing.request(&mut self.channel, command);
         }
         self.send(command)?;
         self.reply().with_context(|| format!("waiting for the reply to `{command}`"))
@@ -332,12 +214,63 @@ impl Console {
         let text = self.ok(&Command::Clock)?;
         TscRate::parse(&text).with_context(|| format!("`CLOCK` answered OK \"{text}\", not a TSC rate"))
     }
+
+    /// The line's counts, if the console seals its commands.
+    pub fn line_stats(&self) -> Option<&LineStats> {
+        self.sealing.as_ref().map(|sealing| &sealing.stats)
+    }
+
+    /// Sets how long a sealing console waits for a reply that takes the
+    /// kernel no work (10 s by default; a dump's and a `BENCH`'s waits
+    /// grow from it).
+    pub fn set_answer_timeout(&mut self, timeout: Duration) {
+        if let Some(sealing) = self.sealing.as_mut() {
+            sealing.set_answer_timeout(timeout);
+        }
+    }
+
+    /// Most retries of one step (0 for a console that does not seal).
+    pub fn retries_allowed(&self) -> u32 {
+        self.sealing.as_ref().map_or(0, Sealing::retries)
+    }
+
+    /// Bytes received so far, frames and noise.
+    pub fn bytes_received(&self) -> u64 {
+        self.channel.frames.received()
+    }
+
+    /// Runs `step`, and while it fails for what the line did (a
+    /// [`Trouble`](crate::line::Trouble)) runs it again, up to the
+    /// console's retry bound, after letting the line settle. Any other
+    /// failure, and a console that does not seal, fail at once.
+    pub fn retrying<T>(&mut self, mut step: impl FnMut(&mut Console) -> Result<T>) -> Result<T> {
+        let mut retried = 0;
+        loop {
+            let error = match step(self) {
+                Ok(value) => return Ok(value),
+                Err(error) => error,
+            };
+            let Some(sealing) = self.sealing.as_mut() else { return Err(error) };
+            sealing.retry_after(&mut self.channel, error, retried)?;
+            retried += 1;
+        }
+    }
+
+    /// Finds the kernel on a sealing console: sends `READY` until it
+    /// answers (or sends its `READY` at boot), within `bound`. Returns the
+    /// `READY` text and whether it came at boot. Fails with what to check
+    /// when nothing answers.
+    pub fn wait_for_kernel(&mut self, bound: Duration, device: &str) -> Result<(String, bool)> {
+        let Some(sealing) = self.sealing.as_mut() else { bail!("only a sealing console looks for the kernel") };
+        sealing.wait_for_kernel(&mut self.channel, bound, device)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use protocol::{Firmware, FrameHeader, HeapState, Video};
+    use protocol::{BenchReply, Firmware, FrameHeader, FrameKind, HeapState, Video, FRAMEBUFFER_LEN};
+    use scenes::palette::ENTRIES;
     use std::sync::mpsc::{self, Sender};
     use std::sync::{Arc, Mutex};
 
@@ -494,12 +427,6 @@ mod tests {
         let error = console.show("race", 30, None).unwrap_err().to_string();
         assert_eq!(error, format!("`SHOW race 30` answered OK \"{stranger}\", naming an entry the show does not have"));
         assert_eq!(sent.0.lock().unwrap().as_slice(), b"SHOW race 30\nSHOW race 0 exact\nSHOW race 30\n");
-    }
-
-    #[test]
-    fn a_short_dump_is_refused() {
-        let error = Dump::parse(&[0; 10]).unwrap_err().to_string();
-        assert_eq!(error, format!("a dump has {DUMP_LEN} bytes, this one 10"));
     }
 
     #[test]

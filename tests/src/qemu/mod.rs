@@ -7,10 +7,12 @@
 
 mod arguments;
 mod board;
+pub(crate) mod channel;
 pub mod console;
 mod options;
 mod process;
 pub mod qmp;
+pub mod reply;
 pub mod serial;
 
 pub use board::{Board, DisplayAhead};
