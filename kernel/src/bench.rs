@@ -5,48 +5,39 @@
 //! `-icount` executed instructions. Either way it is reported on its own,
 //! never next to the host lab's nanoseconds.
 
-use alloc::string::String;
 use alloc::vec::Vec;
-use core::fmt::Write;
 use core::sync::atomic::{compiler_fence, Ordering};
 
-use protocol::BENCH_UNIT_LINE;
-use raster::methods;
+use protocol::{BenchReply, BenchRow};
+use raster::MethodId;
 use scenes::Scene;
 
 use crate::video::Screen;
 use crate::{clock, serial};
 
-/// The `BENCH` payload for `scene`: [`BENCH_UNIT_LINE`], then per method
-/// in `raster::MethodId::ALL` order `NAME CYCLES REFUSED [REFUSAL]`: the
-/// median of `repeats` whole-scene draws, how many of the scene's polygons
-/// the method declined, and the first one's reason (`Refusal::name`).
-/// Bounded: `methods::ALL.len() * repeats` draws, `repeats` being at most
+/// The `BENCH` answer for `scene`: per method in `raster::MethodId::ALL`
+/// order, the median of `repeats` whole-scene draws, how many of the
+/// scene's polygons the method declined, and the first one's reason.
+/// Bounded: `MethodId::ALL.len() * repeats` draws, `repeats` being at most
 /// `protocol::BENCH_MAX_REPEATS`. The screen keeps the last draw. COM1 is
 /// polled between draws.
-pub fn run(screen: &mut Screen, scene: &Scene, repeats: u8) -> String {
-    let mut text = String::new();
-    // Writing to a `String` cannot fail.
-    let _ = writeln!(text, "{BENCH_UNIT_LINE}");
+pub fn run(screen: &mut Screen, scene: &Scene, repeats: u8) -> BenchReply {
+    let mut rows = Vec::with_capacity(MethodId::ALL.len());
     let mut samples = Vec::with_capacity(usize::from(repeats.max(1)));
-    for method in methods::ALL {
+    for method in MethodId::ALL {
         samples.clear();
         let mut refused = (0, None);
         for _ in 0..repeats.max(1) {
             // Between draws, outside the timing: a BENCH takes seconds.
             serial::poll();
-            let (drawn, cycles) = timed(|| screen.draw(scene, *method));
+            let (drawn, cycles) = timed(|| screen.draw(scene, method));
             samples.push(cycles);
             refused = (drawn.report.refused, drawn.report.first_refusal);
         }
         samples.sort_unstable();
-        let _ = write!(text, "{} {} {}", method.info().name, samples[samples.len() / 2], refused.0);
-        if let (_, Some(refusal)) = refused {
-            let _ = write!(text, " {}", refusal.name());
-        }
-        text.push('\n');
+        rows.push(BenchRow { method, cycles: samples[samples.len() / 2], refused: refused.0, refusal: refused.1 });
     }
-    text
+    BenchReply { rows }
 }
 
 /// Runs `work` and returns its result with the time-stamp counter cycles it

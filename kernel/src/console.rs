@@ -11,15 +11,16 @@ use alloc::format;
 use alloc::string::{String, ToString};
 use alloc::vec;
 use alloc::vec::Vec;
-use core::fmt::Write;
-use protocol::{Command, CommandError, Firmware, FrameKind, Machine, Pong, Ready};
+use protocol::{
+    Cleared, Command, CommandError, DemoReply, DrawReply, Firmware, FrameKind, Listing, Machine, Pong, Ready,
+};
 use raster::MethodId;
 use scenes::show::{Stage, ENTRIES_IN_ORDER};
 use scenes::{builtin, file, Op, Scene};
 
 use crate::line::{Complete, PendingLine};
 use crate::machine::Identity;
-use crate::video::Screen;
+use crate::video::{Drawn, Screen};
 use crate::{bench, clock, demo, exit, fault, heap, interrupts, machine, pic, player, serial};
 
 /// What `announce` found at boot (the firmware, the machine, the display
@@ -145,11 +146,11 @@ impl Console<'_> {
             Command::Ping => {
                 ok(Pong { losses: serial::losses(), heap: heap::state(), interrupts: Some(interrupts::counts()) })
             }
-            Command::List => Ok((FrameKind::List, listing().into_bytes())),
+            Command::List => Ok((FrameKind::List, listing().to_string().into_bytes())),
             Command::Draw { scene, method } => {
                 let scene = builtin_scene(scene)?;
                 let method = method.unwrap_or(scene.method);
-                ok(self.screen.draw(&scene, method.method()))
+                ok(draw_reply(self.screen.draw(&scene, method)))
             }
             Command::Show { entry, frame, method } => {
                 let entry = scenes::show::entry(entry).ok_or_else(|| format!("unknown show entry `{entry}`"))?;
@@ -158,17 +159,17 @@ impl Console<'_> {
             }
             Command::Clear(color) => {
                 self.screen.clear(color);
-                ok(format_args!("clear {color}"))
+                ok(Cleared { color })
             }
             Command::Poly { method, spec } => {
                 let polygon = file::parse_poly(spec).map_err(|error| error.to_string())?;
                 let scene = Scene { name: String::from("POLY"), ops: vec![Op::Fill(polygon)], method };
-                ok(self.screen.draw(&scene, method.method()))
+                ok(draw_reply(self.screen.draw(&scene, method)))
             }
             Command::Dump => Ok((FrameKind::Dump, self.screen.dump())),
             Command::Bench { scene, repeats } => {
                 let scene = builtin_scene(scene)?;
-                Ok((FrameKind::Bench, bench::run(self.screen, &scene, repeats).into_bytes()))
+                Ok((FrameKind::Bench, bench::run(self.screen, &scene, repeats).to_string().into_bytes()))
             }
             Command::Demo { entry, method } => {
                 let index = match entry {
@@ -182,9 +183,7 @@ impl Console<'_> {
                 };
                 let start = demo::Start { entry: index.unwrap_or(0), stay: index.is_some(), method };
                 self.demo = Some(start);
-                let from = ENTRIES_IN_ORDER[start.entry].name;
-                let method = method.map_or("own", MethodId::name);
-                ok(format_args!("demo from={from} stay={} method={method}", start.stay))
+                ok(DemoReply { from: ENTRIES_IN_ORDER[start.entry].name, stay: start.stay, method })
             }
             Command::VgaCheck => self.screen.check().and_then(ok),
             Command::Ready => Ok((FrameKind::Ready, ready(self.screen).to_string().into_bytes())),
@@ -220,20 +219,17 @@ fn builtin_scene(name: &str) -> Result<Scene, String> {
     builtin::scene(name).ok_or_else(|| format!("unknown scene `{name}`"))
 }
 
-/// The `LIST` payload: a `scene NAME` line per built-in scene, a
-/// `show NAME FRAMES` line per show entry in demo order, then a
-/// `method NAME` line per method, each ending in `\n`.
-fn listing() -> String {
-    let mut text = String::new();
-    // Writing to a `String` cannot fail.
-    for page in &builtin::ALL {
-        let _ = writeln!(text, "scene {}", page.name);
+/// The `DRAW` and `POLY` answer for what [`Screen::draw`] did.
+fn draw_reply(drawn: Drawn) -> DrawReply {
+    DrawReply { polygons: drawn.report.polygons, refused: drawn.report.refused, strays: drawn.stray_spans }
+}
+
+/// The `LIST` answer: every built-in scene, every show entry in demo
+/// order with its frames, every method.
+fn listing() -> Listing {
+    Listing {
+        scenes: builtin::ALL.iter().map(|page| String::from(page.name)).collect(),
+        shows: ENTRIES_IN_ORDER.iter().map(|entry| (String::from(entry.name), entry.frames)).collect(),
+        methods: MethodId::ALL.iter().map(|method| String::from(method.name())).collect(),
     }
-    for entry in ENTRIES_IN_ORDER {
-        let _ = writeln!(text, "show {} {}", entry.name, entry.frames);
-    }
-    for method in MethodId::ALL {
-        let _ = writeln!(text, "method {method}");
-    }
-    text
 }

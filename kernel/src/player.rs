@@ -39,9 +39,9 @@ pub fn play(
     let allocations = heap::allocations();
     let (report, cycles, strays) = if entry.is_animated() {
         let strays = stage.stray_spans();
-        let (report, cycles) = bench::timed(|| stage.draw(entry, frame, method.method()));
+        let (report, cycles) = bench::timed(|| stage.draw(entry, frame, method));
         let strays = stage.stray_spans().wrapping_sub(strays);
-        stage.label(entry, frame, method.method(), cycles);
+        stage.label(entry, frame, method, cycles);
         if let Some(pacer) = pacer {
             pacer.wait();
         }
@@ -54,10 +54,10 @@ pub fn play(
             pacer.wait();
         }
         screen.use_palette(&PALETTE);
-        let strays = screen.stray_spans();
-        let (report, cycles) = bench::timed(|| stage.draw_still(entry, method.method(), screen));
-        let strays = screen.stray_spans().wrapping_sub(strays);
-        draw_labels(screen, entry, frame, method.method(), cycles);
+        let strays = screen.frame().stray_spans();
+        let (report, cycles) = bench::timed(|| stage.draw_still(entry, method, screen.frame()));
+        let strays = screen.frame().stray_spans().wrapping_sub(strays);
+        draw_labels(screen.frame(), entry, frame, method, cycles);
         screen.present();
         (report, cycles, strays)
     };

@@ -9,39 +9,33 @@
 //! - nothing: the frame is the kernel's own memory, shown nowhere.
 //!
 //! Drawing, the methods, the demo and the protocol are the same on every
-//! path. Every access to the frame is volatile: the compiler sees stores
-//! that nobody reads and would be free to drop or merge them if they were
-//! plain writes. A span is written as aligned 8-byte stores, with 4-, 2-
-//! and 1-byte ones only at its ends: on a real card's bus that is an eighth
-//! of the byte writes.
+//! path. What the methods draw into, the frame as a span sink, is
+//! `video/frame.rs`'s [`Frame`].
 
 use alloc::boxed::Box;
 use alloc::format;
 use alloc::string::String;
 use alloc::vec;
 use alloc::vec::Vec;
-use core::fmt;
-use core::mem::{align_of, size_of};
-use core::ops::Range;
 use core::ptr::{self, NonNull};
 
 use bootloader_api::BootInfo;
 use protocol::{Firmware, MemoryType, Video, DUMP_LEN, FRAMEBUFFER_LEN};
-use raster::{sink, Method, Size, SpanSink, SCREEN};
+use raster::{sink, MethodId};
 use scenes::palette::VGA_DEFAULT;
 use scenes::{DrawReport, Scene};
 use volatile::{VolatilePtr, VolatileRef};
 
 use x86_64::VirtAddr;
 
+mod frame;
+
+pub use frame::Frame;
+
 use crate::framebuffer::Presenter;
 use crate::pci::{DisplayController, Displays};
 use crate::vga::{self, Palette};
 use crate::{card, paging, pat};
-
-// The sink's bounds check against `SCREEN` is what keeps spans inside the
-// 64,000 bytes.
-const _: () = assert!((SCREEN.width * SCREEN.height) as usize == FRAMEBUFFER_LEN);
 
 /// Where the frame is shown.
 enum Output {
@@ -56,13 +50,10 @@ enum Output {
     Nothing,
 }
 
-/// The screen as a span sink. Spans that break the sink contract are not
-/// drawn at all, only counted: nothing is ever written outside the 64,000
-/// bytes.
+/// The screen: the frame, where it is shown, and in what palette.
 pub struct Screen {
     /// The frame: 0xA0000 on the VGA path, the kernel's memory otherwise.
-    pixels: VolatilePtr<'static, [u8]>,
-    stray_spans: usize,
+    frame: Frame,
     /// The palette the frame is shown in, set by [`Screen::use_palette`]:
     /// in the DAC on the VGA path.
     palette: &'static Palette,
@@ -156,7 +147,7 @@ impl Screen {
         if let Output::Vga { .. } = output {
             vga::load_dac(&VGA_DEFAULT);
         }
-        Self { pixels, stray_spans: 0, palette: &VGA_DEFAULT, output, display: None, findings: Vec::new() }
+        Self { frame: Frame::new(pixels), palette: &VGA_DEFAULT, output, display: None, findings: Vec::new() }
     }
 
     /// The display controller the frame goes to: on the framebuffer path
@@ -255,8 +246,8 @@ impl Screen {
     /// all of it; nothing to do on the other paths.
     pub fn present(&mut self) {
         match &mut self.output {
-            Output::Vga { cirrus: true } => vga::rewrite_through_latches(self.pixels),
-            Output::Framebuffer(presenter) => presenter.show(self.pixels, self.palette),
+            Output::Vga { cirrus: true } => vga::rewrite_through_latches(self.frame.pixels()),
+            Output::Framebuffer(presenter) => presenter.show(self.frame.pixels(), self.palette),
             Output::Vga { cirrus: false } | Output::Nothing => {}
         }
     }
@@ -270,28 +261,28 @@ impl Screen {
         }
     }
 
-    /// Spans that broke the sink contract since the last [`Screen::draw`]
-    /// (a method bug; they were dropped).
-    pub fn stray_spans(&self) -> usize {
-        self.stray_spans
+    /// The frame the methods draw into, for a drawing that is not a
+    /// scene's (a still page of the show and its labels).
+    pub fn frame(&mut self) -> &mut Frame {
+        &mut self.frame
     }
 
     /// Fills the screen with `color` of the VGA default palette.
     pub fn clear(&mut self, color: u8) {
         self.use_palette(&VGA_DEFAULT);
-        sink::clear(self, color);
+        sink::clear(&mut self.frame, color);
         self.present();
     }
 
     /// Draws `scene` with `method` in the VGA default palette and says how
-    /// it went. The screen's type is known to the fill, so each span is
-    /// stored by [`Screen::fill`] inline, with no call.
-    pub fn draw(&mut self, scene: &Scene, method: &dyn Method) -> Drawn {
+    /// it went. The frame's type is known to the fill, so each span is
+    /// stored by [`Frame`]'s `fill` inline, with no call.
+    pub fn draw(&mut self, scene: &Scene, method: MethodId) -> Drawn {
         self.use_palette(&VGA_DEFAULT);
-        self.stray_spans = 0;
-        let report = scene.draw(method, self);
+        let strays = self.frame.stray_spans();
+        let report = scene.draw(method, &mut self.frame);
         self.present();
-        Drawn { report, stray_spans: self.stray_spans }
+        Drawn { report, stray_spans: self.frame.stray_spans().wrapping_sub(strays) }
     }
 
     /// Puts a whole frame on the screen with one volatile copy (a `memcpy`
@@ -299,8 +290,7 @@ impl Screen {
     /// row after row; bytes past 64,000 are ignored, a shorter frame
     /// replaces only the top of the screen.
     pub fn blit(&mut self, frame: &[u8]) {
-        let len = frame.len().min(FRAMEBUFFER_LEN);
-        self.pixels.index(..len).copy_from_slice(&frame[..len]);
+        self.frame.copy_from(frame);
         self.present();
     }
 
@@ -311,47 +301,12 @@ impl Screen {
     pub fn dump(&self) -> Vec<u8> {
         let mut dump = vec![0; DUMP_LEN];
         let (framebuffer, dac) = dump.split_at_mut(FRAMEBUFFER_LEN);
-        self.pixels.copy_into_slice(framebuffer);
+        self.frame.copy_into(framebuffer);
         match self.output {
             Output::Vga { .. } => dac.copy_from_slice(&vga::read_dac()),
             Output::Framebuffer(_) | Output::Nothing => dac.copy_from_slice(self.palette.as_flattened()),
         }
         dump
-    }
-
-    /// Sets the bytes `range` of video memory to `color`: the bytes up to
-    /// the first 8-byte boundary one at a time, then whole aligned 8-byte
-    /// stores, then the last few bytes one at a time, so the card's bus
-    /// sees an eighth of the writes a byte loop makes. Panics if `range`
-    /// reaches past the 64,000 bytes (callers check the sink contract).
-    #[inline]
-    fn fill(&mut self, range: Range<usize>, color: u8) {
-        let bytes = self.pixels.index(range);
-        let (start, len) = (bytes.as_raw_ptr().cast::<u8>().as_ptr(), bytes.len());
-        let head = start.align_offset(align_of::<u64>()).min(len);
-        let words = (len - head) / size_of::<u64>();
-        let tail = len - head - words * size_of::<u64>();
-        let pattern = u64::from(color) * 0x0101_0101_0101_0101;
-        // SAFETY: `bytes` is `len` bytes of the frame `Screen::open` took,
-        // video memory or the kernel's own (`index` checked the range),
-        // valid for volatile writes and aliased by no reference. The three runs cover bytes `0..head`,
-        // `head..head + 8 * words` and the `tail` after them, `len` in all,
-        // each write inside `bytes`; the words start at the first 8-byte
-        // boundary (`align_offset`), so each `u64` write is aligned; any
-        // bytes are a valid `u8` or `u64`.
-        unsafe {
-            for i in 0..head {
-                ptr::write_volatile(start.add(i), color);
-            }
-            let body = start.add(head).cast::<u64>();
-            for i in 0..words {
-                ptr::write_volatile(body.add(i), pattern);
-            }
-            let end = start.add(head + words * size_of::<u64>());
-            for i in 0..tail {
-                ptr::write_volatile(end.add(i), color);
-            }
-        }
     }
 }
 
@@ -395,38 +350,9 @@ fn vga_window() -> VolatilePtr<'static, [u8]> {
     unsafe { VolatilePtr::new(pixels) }
 }
 
-impl SpanSink for Screen {
-    fn size(&self) -> Size {
-        SCREEN
-    }
-
-    #[inline]
-    fn span(&mut self, y: i32, x_start: i32, x_end: i32, color: u8) {
-        if !SCREEN.holds_span(y, x_start, x_end) {
-            self.stray_spans += 1;
-            return;
-        }
-        // All three are non-negative and below 64,000 after the check above.
-        let row = (y * SCREEN.width) as usize;
-        self.fill(row + x_start as usize..row + x_end as usize, color);
-    }
-}
-
 /// What [`Screen::draw`] did.
 pub struct Drawn {
     pub report: DrawReport,
     /// Spans a method emitted outside the screen (a method bug), dropped.
     pub stray_spans: usize,
-}
-
-impl fmt::Display for Drawn {
-    /// The `OK` text of `DRAW` and `POLY`: `polygons=N refused=M`, then
-    /// ` strays=K` only if a method broke the sink contract.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "polygons={} refused={}", self.report.polygons, self.report.refused)?;
-        if self.stray_spans > 0 {
-            write!(f, " strays={}", self.stray_spans)?;
-        }
-        Ok(())
-    }
 }

@@ -11,7 +11,8 @@ use scenes::{builtin, show};
 use crate::picture::compare::{compare_images, compare_palettes};
 use crate::picture::render::{builtin_scene, render, render_show, show_entry, SceneSource};
 use crate::picture::Image;
-use crate::qemu::console::{Console, Dump};
+use crate::qemu::console::Console;
+use crate::qemu::reply::Dump;
 use crate::qemu::Qemu;
 
 /// QEMU shows each mode-13h pixel as a 2x2 block of its 640x400 screen.
@@ -34,9 +35,9 @@ pub fn dump_matches_host_render(console: &mut Console, scene: &str, method: Meth
 /// commands load). Returns the dump for further checks.
 pub fn source_matches_host_render(console: &mut Console, source: &SceneSource, method: MethodId) -> Result<Dump> {
     let name = source.name();
-    let expected = render(&source.scene(), method.method());
+    let expected = render(&source.scene(), method);
     match source {
-        SceneSource::Builtin(page) => console.draw(page.name, Some(method)),
+        SceneSource::Builtin(page) => console.draw(page.name, Some(method)).map(|_| ()),
         SceneSource::File(file) => console.draw_file(file, method),
     }
     .with_context(|| format!("kernel failed to draw {name} with {method}"))?;
@@ -66,7 +67,7 @@ pub fn show_matches_host_render(
     let said = (reply.entry, reply.frame, reply.method);
     ensure!(said == asked, "{name}: the kernel says it showed {said:?}, not {asked:?}");
     let dump = console.dump()?;
-    let expected = render_show(entry, frame, drawn_with.method(), reply.cycles);
+    let expected = render_show(entry, frame, drawn_with, reply.cycles);
     compare_images(&name, &expected, &dump.image())?;
     compare_palettes(&name, &show::PALETTE, &dump.palette)?;
     Ok((reply, dump))

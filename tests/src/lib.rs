@@ -9,7 +9,7 @@
 //! qemu.console.draw("abrash38-1", None)?;
 //! let dump = qemu.console.dump()?;
 //! let scene = render::builtin_scene("abrash38-1")?;
-//! let expected = render::render(&scene, scene.method.method());
+//! let expected = render::render(&scene, scene.method);
 //! compare_images("abrash38-1", &expected, &dump.image())?;
 //! # Ok(())
 //! # }
@@ -29,10 +29,8 @@ pub mod soak;
 pub mod supervisor;
 pub mod workspace;
 
-/// The image build and the process helpers live with the boot stages
-/// (boot/image); the harness boots what it builds.
-pub use boot_image::{build_image, cargo, process};
 pub use picture::compare::compare_images;
 pub use picture::{render, Image};
-pub use qemu::console::{BenchRow, Console, Dump, Listing, Reply};
+pub use qemu::console::Console;
+pub use qemu::reply::{Dump, Reply};
 pub use qemu::{Adapter, Board, Clock, Cpu, Display, DisplayAhead, ExitDevice, Medium, Qemu, QemuOptions, SerialLine};

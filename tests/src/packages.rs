@@ -13,8 +13,8 @@ use anyhow::{bail, Context, Result};
 use boot_image::apt::PrivateApt;
 
 use crate::prerequisites::{find_in_path, CHROMEDRIVER_ENV, CHROMIUM_ENV};
-use crate::process::{command_line, is_root, output_of, run_streaming};
 use crate::workspace;
+use boot_image::process::{command_line, is_root, output_of, run_streaming};
 
 /// How long apt-get waits for another apt or dpkg (an unattended upgrade,
 /// a second test run) to release its lock before it gives up.

@@ -275,7 +275,7 @@ pub fn ensure_cargo_fuzz() -> Result<()> {
 }
 
 fn cargo_fuzz_install_command() -> Command {
-    let mut install = crate::cargo::host();
+    let mut install = boot_image::cargo::host();
     install.args(["install", "cargo-fuzz", "--locked", "--version", CARGO_FUZZ_VERSION]);
     install
 }
@@ -289,7 +289,7 @@ fn on_path(programs: &[&str]) -> bool {
 pub const WASM_TARGET: &str = "wasm32-unknown-unknown";
 
 /// Makes sure the toolchain that runs us (the one `cargo xtask` or `cargo
-/// test` was started with, the one [`crate::cargo::host`] builds with) has
+/// test` was started with, the one [`boot_image::cargo::host`] builds with) has
 /// the `wasm32-unknown-unknown` target, adding it with rustup when missing.
 pub fn ensure_wasm_target() -> Result<()> {
     static DONE: OnceLock<Result<(), String>> = OnceLock::new();
@@ -409,7 +409,7 @@ fn virt_firmware_install_command(venv: &Path) -> Command {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::process::command_line;
+    use boot_image::process::command_line;
 
     #[test]
     fn a_named_file_or_program_replaces_debians() {

@@ -8,8 +8,8 @@
 use std::collections::BTreeSet;
 
 use anyhow::{bail, ensure, Context, Result};
-use harness::{BenchRow, Clock, Qemu, QemuOptions, Reply};
-use protocol::Command;
+use harness::{Clock, Qemu, QemuOptions, Reply};
+use protocol::{BenchRow, Command};
 use raster::{Framebuffer, MethodId, SCREEN};
 use scenes::builtin;
 
@@ -23,7 +23,7 @@ fn bench_answers_one_positive_cycle_count_per_method_for_every_demo_scene() -> R
         ensure!(methods == MethodId::ALL, "BENCH {scene} listed methods {methods:?}, expected {:?}", MethodId::ALL);
         for row in &rows {
             ensure!(row.cycles > 0, "BENCH {scene}: {} took {} cycles", row.method, row.cycles);
-            let host = page.scene().draw(row.method.method(), &mut Framebuffer::new(SCREEN));
+            let host = page.scene().draw(row.method, &mut Framebuffer::new(SCREEN));
             ensure!(
                 (row.refused, row.refusal) == (host.refused, host.first_refusal),
                 "BENCH {scene}: {} declined {} ({:?}), the host's draw {} ({:?})",

@@ -8,9 +8,10 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use anyhow::{bail, ensure, Context, Result};
+use boot_image::build_image;
 use harness::browser::Browser;
 use harness::supervisor::{live_members, Supervised};
-use harness::{build_image, Qemu, QemuOptions};
+use harness::{Qemu, QemuOptions};
 
 /// The test binary's own name for the harness it starts and kills.
 const HARNESS_TO_KILL: &str = "harness_to_be_killed";

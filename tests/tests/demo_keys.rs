@@ -109,7 +109,7 @@ fn expected_screen(step: &Step) -> Result<(String, Image)> {
         None => entry.method_at(0),
     };
     let name = format!("{}.{method}", entry.name);
-    Ok((name, as_on_screen(&render_show(entry, 0, method.method(), 0))))
+    Ok((name, as_on_screen(&render_show(entry, 0, method, 0))))
 }
 
 /// What the screen may show at `step`: its picture, and where the timer
@@ -212,7 +212,7 @@ const VISITS: usize = 4;
 fn with_no_key_the_timer_turns_the_pages_and_animations_play_by_themselves() -> Result<()> {
     let (first, second) = (expected_screen(&STEPS[0])?, expected_screen(&Step { key: None, ..STEPS[1] })?);
     let rotate = show_entry("lamothe-rotate")?;
-    let method = rotate.method_at(0).method();
+    let method = rotate.method_at(0);
     let frames: Vec<Image> = (0..rotate.frames).map(|f| as_on_screen(&render_show(rotate, f, method, 0))).collect();
     let skips = ENTRIES_IN_ORDER.iter().position(|entry| entry.name == rotate.name).context("no lamothe-rotate")?;
     let one_pass = Duration::from_millis(u64::from(rotate.demo_frames()) * 1000 / u64::from(FRAMES_PER_SECOND));
@@ -301,10 +301,10 @@ fn moves_forward(name: &str, shown: &[(usize, Instant)], loop_len: usize) -> Res
 #[test]
 fn demo_resumes_the_show_on_the_named_entry_and_method_and_stays_there() -> Result<()> {
     let page = show_entry("abrash38-3")?;
-    let still = as_on_screen(&render_show(page, 0, MethodId::Wgt.method(), 0));
+    let still = as_on_screen(&render_show(page, 0, MethodId::Wgt, 0));
     let rotate = show_entry("lamothe-rotate")?;
     let frames: Vec<Image> =
-        (0..rotate.frames).map(|f| as_on_screen(&render_show(rotate, f, MethodId::Exact.method(), 0))).collect();
+        (0..rotate.frames).map(|f| as_on_screen(&render_show(rotate, f, MethodId::Exact, 0))).collect();
 
     let _turn = my_turn();
     let mut qemu = Qemu::boot(QemuOptions::default())?;

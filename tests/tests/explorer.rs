@@ -120,18 +120,10 @@ fn abrash38_3_with_abrash_int_on_the_canvas_is_the_host_render() -> Result<()> {
     explorer.choose("method-a", "abrash_int")?;
     explorer.choose("view", "picture")?;
     let scene = builtin_scene("abrash38-3")?;
-    compare_images(
-        "explorer-abrash38-3-abrash_int",
-        &render(&scene, MethodId::AbrashInt.method()),
-        &explorer.canvas("a")?,
-    )?;
+    compare_images("explorer-abrash38-3-abrash_int", &render(&scene, MethodId::AbrashInt), &explorer.canvas("a")?)?;
     // Side by side: the second pane is its own method's picture.
     explorer.choose("method-b", "pendleton")?;
-    compare_images(
-        "explorer-abrash38-3-pendleton",
-        &render(&scene, MethodId::Pendleton.method()),
-        &explorer.canvas("b")?,
-    )
+    compare_images("explorer-abrash38-3-pendleton", &render(&scene, MethodId::Pendleton), &explorer.canvas("b")?)
 }
 
 /// The pixels `method` adds to and misses of `exact` on `polygon`, on the host.

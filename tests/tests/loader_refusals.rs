@@ -8,7 +8,7 @@
 //! the kernel never says READY.
 
 use anyhow::{ensure, Result};
-use harness::build_image;
+use boot_image::build_image;
 use harness::secure_boot::{loader_hash, refused, scratch, FatImage, MokEntry, LOADER_REFUSES};
 
 /// What changes on the stick.

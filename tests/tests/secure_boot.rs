@@ -20,13 +20,14 @@
 //! shim_15.rs.
 
 use anyhow::{ensure, Result};
+use boot_image::build_image;
 use boot_image::secure_boot::loader::DIGESTS_MARKER;
 use boot_image::secure_boot::{HASH_ENROLL_PATH, LOADER_PATH};
 use harness::checks::{dump_matches_host_render, screen_matches_dump};
 use harness::secure_boot::{
     boot, first_boot, loader_hash, ready_in_mode_13h, refused, scratch, FatImage, MokEntry, Screen, SHIM_REFUSES,
 };
-use harness::{build_image, Adapter};
+use harness::Adapter;
 use scenes::builtin;
 
 /// The image with its loader's hash enrolled: READY, then every demo page

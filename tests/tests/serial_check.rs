@@ -11,9 +11,10 @@ use std::path::Path;
 use std::time::Duration;
 
 use anyhow::{ensure, Context, Result};
+use boot_image::build_image;
 use harness::line::{open_console, FaultRates, Relay, TroubleKind};
 use harness::serial_check::{self, write_reports, CheckOptions, CheckReport, Scope};
-use harness::{build_image, Qemu, QemuOptions, Reply, SerialLine};
+use harness::{Qemu, QemuOptions, Reply, SerialLine};
 use protocol::{Command, Sealed, BENCH_DEFAULT_REPEATS};
 use raster::MethodId;
 
@@ -56,7 +57,7 @@ fn the_whole_check_over_qemus_pty_finds_every_picture_equal_and_writes_both_repo
         full.pictures()
     );
     ensure!(report.vgacheck.0, "VGACHECK answered ERR: {}", report.vgacheck.1);
-    ensure!(protocol::Ready::parse(&report.ready).is_some(), "READY text {:?} does not parse", report.ready);
+    protocol::Ready::parse(&report.ready).with_context(|| format!("READY text {:?}", report.ready))?;
     ensure!(report.bench.scenes == full.bench_scenes, "bench scenes {:?}", report.bench.scenes);
     ensure!(report.tsc.source == protocol::ClockSource::Pit, "TSC rate {} not measured against the PIT", report.tsc);
     // A clean pty damages nothing; a loaded machine may still hold a reply

@@ -9,7 +9,7 @@
 
 use std::time::Duration;
 
-use anyhow::{bail, ensure, Result};
+use anyhow::{bail, ensure, Context, Result};
 use harness::{Qemu, QemuOptions, Reply};
 use protocol::Pong;
 
@@ -37,11 +37,10 @@ fn a_burst_of_commands_sent_while_the_demo_plays_is_answered_in_full_in_order() 
             other => bail!("reply {i} of the burst is {other:?}, expected OK \"{expected}\""),
         }
     }
-    let pong = match qemu.console.reply()? {
-        Reply::Ok(text) => Pong::parse(&text),
+    let Pong { losses, .. } = match qemu.console.reply()? {
+        Reply::Ok(text) => Pong::parse(&text).context("the burst's closing PING")?,
         other => bail!("the burst's closing PING answered {other:?}"),
     };
-    let Some(Pong { losses, .. }) = pong else { bail!("the burst's closing PING answered no pong") };
     ensure!(losses.none(), "after the burst PING says the serial line lost bytes: {losses}");
     Ok(())
 }

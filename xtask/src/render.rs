@@ -8,7 +8,7 @@ use crate::opt::RenderOpt;
 pub fn render(opt: &RenderOpt) -> Result<()> {
     let scene = SceneSource::find(&opt.scene)?.scene();
     let method = opt.method.unwrap_or(scene.method);
-    render_scene(&scene, method.method()).write_png(&opt.out)?;
+    render_scene(&scene, method).write_png(&opt.out)?;
     println!("{}", opt.out.display());
     Ok(())
 }

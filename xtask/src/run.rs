@@ -5,11 +5,12 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
+use boot_image::build_image;
 use harness::checks::{screen_matches_dump, show_matches_host_render, source_matches_host_render};
 use harness::prerequisites::ensure_qemu_window;
 use harness::render::{entry_names, SceneFile, SceneSource};
 use harness::workspace::target_dir;
-use harness::{build_image, Clock, Display, Medium, Qemu, QemuOptions};
+use harness::{Clock, Display, Medium, Qemu, QemuOptions};
 use protocol::Command;
 use raster::MethodId;
 use scenes::show::{self, Entry, ENTRIES_IN_ORDER};
@@ -225,7 +226,7 @@ mod tests {
         // the frame scaled and centred in it); here it is read back from
         // disk.
         let page = show::entry("abrash38-2").expect("a page of the show");
-        let expected = render_show(page, 0, MethodId::Wgt.method(), 0);
+        let expected = render_show(page, 0, MethodId::Wgt, 0);
         let written = harness::Image::read_png(&dir.path().join("abrash38-2.png"))?;
         harness::picture::compare::compare_image_rows("run.abrash38-2.wgt", &expected, &written, 0..188)?;
         Ok(())

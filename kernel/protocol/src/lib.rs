@@ -1,31 +1,34 @@
 //! The serial protocol between the kernel and the host, shared by both
-//! sides so they cannot drift apart. `docs/protocol.md` is the prose
-//! version of this crate.
+//! sides so they cannot drift apart: every line and text either side
+//! writes is written here, and read back here. `docs/protocol.md` is the
+//! prose version of this crate.
 //!
 //! Host to kernel: one ASCII command per line (`\n`, a `\r` before it is
 //! ignored), at most [`MAX_LINE`] bytes ([`Command`], in `commands`). Kernel
 //! to host: frames, each a header line `@KIND LEN CRC32\n` (LEN in decimal,
 //! CRC32 of the payload in 8 lowercase hex digits), then LEN payload bytes,
 //! then `\n` ([`FrameHeader`], in `frames`); anything between frames is
-//! noise and the host skips it. The texts some frames carry ([`ShowReply`],
-//! [`Pong`], [`TscRate`]) are in `replies`, `READY`'s ([`Ready`]) in
-//! `ready`. A host on a line that can damage bytes seals its command
-//! lines (`#SEQ COMMAND CRC32`,
-//! [`Sealed`], in `sealed`): the kernel refuses a damaged one and echoes
-//! the sequence number in its reply's header.
+//! noise and the host skips it. The texts the frames carry are in
+//! `replies`, one file per reply ([`Ready`], [`Pong`], [`TscRate`],
+//! [`ShowReply`], [`DrawReply`], [`BenchReply`], [`Listing`], ...). A host
+//! on a line that can damage bytes seals its command lines (`#SEQ COMMAND
+//! CRC32`, [`Sealed`], in `sealed`): the kernel refuses a damaged one and
+//! echoes the sequence number in its reply's header.
 #![no_std]
+
+extern crate alloc;
 
 mod commands;
 mod frames;
-mod ready;
 mod replies;
 mod sealed;
 
 pub use commands::{Command, CommandError, FaultKind};
 pub use frames::{FrameHeader, FrameKind};
-pub use ready::{Firmware, Machine, MemoryType, PciAddress, PciId, Presentation, Ready, Video};
 pub use replies::{
-    ClockReadings, ClockSource, HeapState, InterruptCounts, LineErrors, LineLosses, Pong, ShowReply, TscRate, PONG,
+    BenchReply, BenchRow, Cleared, ClockReadings, ClockSource, DemoReply, DrawReply, Expected, Firmware, HeapState,
+    InterruptCounts, LineErrors, LineLosses, Listing, Machine, Malformed, MemoryType, PciAddress, PciId, Pong,
+    Presentation, Ready, ShowReply, TscRate, Video, BENCH_UNIT_LINE, OWN_METHOD, PONG,
 };
 pub use sealed::{unseal, Damaged, Sealed, SEAL_MARK};
 
@@ -51,10 +54,6 @@ pub const BENCH_DEFAULT_REPEATS: u8 = 3;
 /// Most draws per method a `BENCH` may ask for: keeps one `BENCH` within a
 /// few seconds of emulated time.
 pub const BENCH_MAX_REPEATS: u8 = 31;
-/// The first line of a `BENCH` payload: the unit of the numbers after it.
-pub const BENCH_UNIT_LINE: &str = "# rdtsc ticks per scene draw, median of the repeats; on a PC, cycles; under QEMU, \
-     its virtual clock: emulated instructions with -icount shift=0, host time without";
-
 /// What `DEMO` takes for "every entry" where an entry is named.
 pub const EVERY_ENTRY: &str = "*";
 

@@ -264,7 +264,7 @@ mod tests {
     fn lamothe_triangle_reaches_the_bottom_row() {
         let scene = LAMOTHE_TRIANGLE.scene();
         let mut target = Framebuffer::new(SCREEN);
-        let report = scene.draw(scene.method.method(), &mut target);
+        let report = scene.draw(scene.method, &mut target);
         assert_eq!((report.polygons, report.refused, target.stray_spans()), (1, 0, 0));
         let rows: Vec<usize> = target
             .pixels()

@@ -4,7 +4,7 @@ use alloc::string::String;
 use alloc::vec::Vec;
 
 use raster::sink;
-use raster::{Method, MethodId, Polygon, Refusal, SpanSink};
+use raster::{MethodId, Polygon, Refusal, SpanSink};
 
 /// One drawing step.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -51,13 +51,13 @@ impl Scene {
     /// Draws every operation with `method`. A refused polygon is counted and
     /// skipped; the rest of the scene is still drawn. The sink's type is
     /// known here, so `method` fills with its store inlined
-    /// ([`Method::fill_into`](raster::Method)).
-    pub fn draw<S: SpanSink>(&self, method: &dyn Method, sink: &mut S) -> DrawReport {
+    /// ([`MethodId::fill`]).
+    pub fn draw<S: SpanSink>(&self, method: MethodId, sink: &mut S) -> DrawReport {
         let mut report = DrawReport::default();
         for op in &self.ops {
             match op {
                 Op::Clear(color) => sink::clear(sink, *color),
-                Op::Fill(polygon) => report.record(method.fill_into(polygon, sink)),
+                Op::Fill(polygon) => report.record(method.fill(polygon, sink)),
             }
         }
         report

@@ -11,7 +11,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use raster::{methods, Framebuffer, Heap, Method, Point, Polygon, SCREEN};
+use raster::{methods, Framebuffer, Heap, Method, MethodId, Point, Polygon, SCREEN};
 use scenes::show::{Stage, ENTRIES_IN_ORDER};
 
 /// The system allocator, counting allocations.
@@ -104,14 +104,14 @@ fn methods_allocate_as_their_info_says_and_the_show_adds_nothing() {
     // nothing for convex polygons, allocates nothing after its first frame.
     let mut stage = Stage::new();
     for entry in ENTRIES_IN_ORDER.iter().filter(|e| e.is_animated()) {
-        for method in methods::ALL.iter().filter(|m| m.info().heap != Heap::EveryPolygon) {
-            stage.draw(entry, 0, *method);
+        for method in MethodId::ALL.into_iter().filter(|m| m.method().info().heap != Heap::EveryPolygon) {
+            stage.draw(entry, 0, method);
             for frame in [1, entry.frames / 2, entry.frames - 1] {
                 let count = allocations(|| {
-                    stage.draw(entry, frame, *method);
-                    stage.label(entry, frame, *method, u64::MAX);
+                    stage.draw(entry, frame, method);
+                    stage.label(entry, frame, method, u64::MAX);
                 });
-                assert_eq!(count, 0, "{} frame {frame} with {}", entry.name, method.info().name);
+                assert_eq!(count, 0, "{} frame {frame} with {method}", entry.name);
             }
         }
     }

@@ -2,9 +2,9 @@
 //! book's own fillers do on them, and `exact` against the reference on
 //! every polygon they hold.
 
-use raster::methods::{AbrashAet, AbrashFloat, AbrashInt, Exact};
+use raster::methods::Exact;
 use raster::reference::{self, SampleOffset};
-use raster::{CoverageReport, CoverageSink, Framebuffer, Method, Polygon, SCREEN};
+use raster::{CoverageReport, CoverageSink, Framebuffer, Method, MethodId, Polygon, SCREEN};
 use scenes::{builtin, Op};
 
 #[test]
@@ -12,8 +12,8 @@ fn the_edge_table_filler_draws_listing_38_3_as_the_fast_convex_filler_does() {
     // Ch. 40: the same pixel choice as ch. 38 and 39.
     let scene = builtin::ABRASH38_3.scene();
     let (mut aet, mut convex) = (Framebuffer::new(SCREEN), Framebuffer::new(SCREEN));
-    assert_eq!(scene.draw(&AbrashAet, &mut aet).refused, 0);
-    scene.draw(&AbrashInt, &mut convex);
+    assert_eq!(scene.draw(MethodId::AbrashAet, &mut aet).refused, 0);
+    scene.draw(MethodId::AbrashInt, &mut convex);
     assert!(aet == convex);
 }
 
@@ -28,8 +28,8 @@ fn integer_and_float_listing_38_3_differ_in_the_two_pixels_chapter_39_reports() 
     // version is right in both.
     let scene = builtin::ABRASH38_3.scene();
     let (mut int, mut float) = (Framebuffer::new(SCREEN), Framebuffer::new(SCREEN));
-    scene.draw(&AbrashInt, &mut int);
-    scene.draw(&AbrashFloat, &mut float);
+    scene.draw(MethodId::AbrashInt, &mut int);
+    scene.draw(MethodId::AbrashFloat, &mut float);
     let differing: Vec<(i32, i32, u8, u8)> = (0..SCREEN.height)
         .flat_map(|y| (0..SCREEN.width).map(move |x| (x, y)))
         .filter_map(|(x, y)| {

@@ -9,10 +9,11 @@
 //! command it seals, which seals again to the same line.
 
 use protocol::{
-    unseal, Command, FaultKind, FrameHeader, FrameKind, LineErrors, LineLosses, Machine, PciAddress, PciId, Pong,
-    Ready, Sealed, ShowReply, TscRate, BENCH_MAX_REPEATS,
+    unseal, BenchReply, BenchRow, Cleared, Command, DemoReply, DrawReply, FaultKind, FrameHeader, FrameKind,
+    LineErrors, LineLosses, Listing, Machine, PciAddress, PciId, Pong, Ready, Sealed, ShowReply, TscRate,
+    BENCH_MAX_REPEATS,
 };
-use raster::{CoverageSink, MethodId, SCREEN};
+use raster::{CoverageSink, MethodId, Refusal, SCREEN};
 use scenes::file;
 
 pub fn check(data: &[u8]) {
@@ -34,17 +35,32 @@ pub fn check(data: &[u8]) {
         }
     }
     let Ok(text) = std::str::from_utf8(data) else { return };
-    if let Some(reply) = ShowReply::parse(text) {
-        assert_eq!(ShowReply::parse(&reply.to_string()), Some(reply.clone()), "{text:?}");
+    if let Ok(reply) = ShowReply::parse(text) {
+        assert_eq!(ShowReply::parse(&reply.to_string()), Ok(reply.clone()), "{text:?}");
     }
-    if let Some(pong) = Pong::parse(text) {
-        assert_eq!(Pong::parse(&pong.to_string()), Some(pong), "{text:?}");
+    if let Ok(pong) = Pong::parse(text) {
+        assert_eq!(Pong::parse(&pong.to_string()), Ok(pong), "{text:?}");
     }
-    if let Some(ready) = Ready::parse(text) {
-        assert_eq!(Ready::parse(&ready.to_string()), Some(ready), "{text:?}");
+    if let Ok(ready) = Ready::parse(text) {
+        assert_eq!(Ready::parse(&ready.to_string()), Ok(ready), "{text:?}");
     }
-    if let Some(rate) = TscRate::parse(text) {
-        assert_eq!(TscRate::parse(&rate.to_string()), Some(rate), "{text:?}");
+    if let Ok(rate) = TscRate::parse(text) {
+        assert_eq!(TscRate::parse(&rate.to_string()), Ok(rate), "{text:?}");
+    }
+    if let Ok(drawn) = DrawReply::parse(text) {
+        assert_eq!(DrawReply::parse(&drawn.to_string()), Ok(drawn), "{text:?}");
+    }
+    if let Ok(cleared) = Cleared::parse(text) {
+        assert_eq!(Cleared::parse(&cleared.to_string()), Ok(cleared), "{text:?}");
+    }
+    if let Ok(demo) = DemoReply::parse(text) {
+        assert_eq!(DemoReply::parse(&demo.to_string()), Ok(demo), "{text:?}");
+    }
+    if let Ok(bench) = BenchReply::parse(text) {
+        assert_eq!(BenchReply::parse(&bench.to_string()), Ok(bench.clone()), "{text:?}");
+    }
+    if let Ok(listing) = Listing::parse(text) {
+        assert_eq!(Listing::parse(&listing.to_string()), Ok(listing.clone()), "{text:?}");
     }
     if let Some(header) = FrameHeader::parse(text) {
         assert_eq!(FrameHeader::parse(&header.to_string()), Some(header), "{text:?}");
@@ -137,6 +153,18 @@ pub fn seeds() -> Vec<(String, Vec<u8>)> {
         FrameHeader::for_payload(FrameKind::Ok, b"pong").to_string(),
         FrameHeader::for_reply(FrameKind::Ok, b"pong", Some(17)).to_string(),
         TscRate { hz: 2_593_000_000, source: protocol::ClockSource::Pit, readings }.to_string(),
+        DrawReply { polygons: 9, refused: 1, strays: 2 }.to_string(),
+        Cleared { color: 7 }.to_string(),
+        DemoReply { from: "race", stay: true, method: Some(MethodId::Wgt) }.to_string(),
+        BenchReply {
+            rows: vec![
+                BenchRow { method: MethodId::Pendleton, cycles: 1200, refused: 2, refusal: Some(Refusal::OutOfRange) },
+                BenchRow { method: MethodId::Exact, cycles: 900, refused: 0, refusal: None },
+            ],
+        }
+        .to_string(),
+        Listing { scenes: vec!["abrash38-1".into()], shows: vec![("race".into(), 240)], methods: vec!["exact".into()] }
+            .to_string(),
     ];
     seeds.extend(replies.into_iter().enumerate().map(|(i, text)| (format!("reply-{i}"), text.into_bytes())));
     seeds
@@ -179,6 +207,15 @@ pub fn dictionary() -> Vec<String> {
             "|",
             "tsc_hz=",
             "source=",
+            "clear ",
+            "demo ",
+            "from=",
+            "stay=",
+            "own",
+            "scene ",
+            "show ",
+            "method ",
+            protocol::BENCH_UNIT_LINE,
         ]
         .map(String::from),
     );

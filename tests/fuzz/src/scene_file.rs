@@ -32,7 +32,7 @@ pub fn check(data: &[u8]) {
     };
     for id in MethodId::ALL {
         let mut sink = CoverageSink::new(SCREEN);
-        let report = scene.draw(id.method(), &mut sink);
+        let report = scene.draw(id, &mut sink);
         assert_eq!(sink.out_of_bounds(), 0, "{id} drew outside the screen");
         if id == MethodId::Exact {
             assert_eq!(report.refused, 0, "exact refused {:?}", report.first_refusal);

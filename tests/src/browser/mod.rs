@@ -11,8 +11,8 @@ use anyhow::{bail, Context, Result};
 use serde_json::{json, Value};
 
 use crate::prerequisites::{chromedriver, chromium, ensure_chromium};
-use crate::process::command_line;
 use crate::supervisor::Supervised;
+use boot_image::process::command_line;
 use webdriver::Session;
 
 /// Chromium's flags. This machine's network is closed: without the flags

@@ -12,4 +12,7 @@ mod tty;
 pub use relay::{FaultCounts, FaultRates, Relay};
 pub use sealed::transfer_time;
 pub use sealed::{LineStats, Sealing, Trouble, TroubleKind};
-pub use tty::{open_console, BAUD};
+pub use tty::open_console;
+
+/// The kernel's line speed.
+pub const BAUD: u32 = 115_200;

@@ -12,11 +12,9 @@ use std::time::Duration;
 use anyhow::{bail, Context, Result};
 use serialport::{DataBits, FlowControl, Parity, SerialPort, StopBits, TTYPort};
 
+use super::BAUD;
 use crate::qemu::console::Console;
 use crate::qemu::serial::FrameReader;
-
-/// The kernel's line speed.
-pub const BAUD: u32 = 115_200;
 
 /// How long one read waits before the reader thread looks whether anyone
 /// still listens.
@@ -140,7 +138,7 @@ mod tests {
         std::io::Write::write_all(&mut master, format!("{header}\n").as_bytes()).unwrap();
         std::io::Write::write_all(&mut master, payload).unwrap();
         std::io::Write::write_all(&mut master, b"\n").unwrap();
-        assert_eq!(console.frames.next_frame(Duration::from_secs(5)).unwrap().payload, payload);
+        assert_eq!(console.channel.frames.next_frame(Duration::from_secs(5)).unwrap().payload, payload);
         let error = open_port(Path::new(&path)).unwrap_err().to_string();
         assert!(error.contains("the device is busy"), "{error}");
     }

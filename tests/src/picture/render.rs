@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, ensure, Context, Result};
 use protocol::{Command, MAX_LINE};
-use raster::{Framebuffer, Method, MethodId, SCREEN};
+use raster::{Framebuffer, MethodId, SCREEN};
 use scenes::builtin::{self, Builtin};
 use scenes::palette::VGA_DEFAULT;
 use scenes::show::{self, Entry, Stage, ENTRIES_IN_ORDER};
@@ -131,7 +131,7 @@ impl SceneFile {
 
 /// `scene` drawn with `method` on a black 320x200 screen, as an indexed
 /// image with the VGA default palette (the one the kernel loads).
-pub fn render(scene: &Scene, method: &dyn Method) -> Image {
+pub fn render(scene: &Scene, method: MethodId) -> Image {
     let mut framebuffer = Framebuffer::new(SCREEN);
     scene.draw(method, &mut framebuffer);
     Image::from_dac(SCREEN.width as u32, SCREEN.height as u32, framebuffer.pixels().to_vec(), &VGA_DEFAULT)
@@ -141,7 +141,7 @@ pub fn render(scene: &Scene, method: &dyn Method) -> Image {
 /// Frame `frame` of show entry `entry` drawn with `method` and labelled
 /// with `cycles` (the kernel's measurement, from its `SHOW` reply), as an
 /// indexed image with the show's palette: what `SHOW` puts on the screen.
-pub fn render_show(entry: &Entry, frame: u32, method: &dyn Method, cycles: u64) -> Image {
+pub fn render_show(entry: &Entry, frame: u32, method: MethodId, cycles: u64) -> Image {
     let mut stage = Stage::new();
     stage.draw(entry, frame, method);
     stage.label(entry, frame, method, cycles);
@@ -173,7 +173,7 @@ mod tests {
     #[test]
     fn a_show_frame_is_drawn_in_the_show_palette() {
         let entry = show_entry("abrash38-1").unwrap();
-        let shown = render_show(entry, 0, entry.method_at(0).method(), 1234);
+        let shown = render_show(entry, 0, entry.method_at(0), 1234);
         let Pixels::Indexed { indices, palette } = shown.pixels() else { panic!("a show frame is indexed") };
         let expected: Vec<[u8; 3]> = show::PALETTE.iter().map(|rgb| rgb.map(scenes::palette::c6_to_8)).collect();
         assert_eq!(palette, &expected);
@@ -199,7 +199,7 @@ mod tests {
     #[test]
     fn a_scene_file_renders_its_clear_colour() {
         let scene = from_file("ok", "clear 4\n").unwrap().scene();
-        let image = render(&scene, scene.method.method());
+        let image = render(&scene, scene.method);
         assert_eq!(image.color(0), [168, 0, 0]);
         assert_eq!(image.pixel_count(), 64_000);
     }

@@ -1,191 +1,36 @@
 //! The host end of the serial protocol: commands out, typed replies in.
 
 use std::io::Write;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use anyhow::{bail, ensure, Context, Result};
-use protocol::{
-    Command, FrameKind, LineLosses, Pong, Ready, ShowReply, TscRate, BENCH_UNIT_LINE, DUMP_LEN, FRAMEBUFFER_LEN,
-};
-use raster::{MethodId, Refusal, SCREEN};
-use scenes::palette::ENTRIES;
+use protocol::{BenchRow, Cleared, Command, DrawReply, LineLosses, Listing, Pong, Ready, ShowReply, TscRate};
+use raster::MethodId;
 use scenes::show;
 
-use super::serial::{Frame, FrameReader};
-use crate::line::Sealing;
+use super::channel::Channel;
+use super::reply::{Dump, Reply, REPLY_TIMEOUT};
+use super::serial::FrameReader;
+use crate::line::{LineStats, Sealing};
 use crate::picture::render::SceneFile;
-use crate::picture::Image;
 
 /// Longest wait for the READY frame: SeaBIOS, the bootloader's stages and
 /// the mode set under TCG, on a loaded 2-core machine.
 pub const READY_TIMEOUT: Duration = Duration::from_secs(120);
-/// Longest wait for the answer to one command (a dump is 64 KB through an
-/// emulated UART).
-pub const REPLY_TIMEOUT: Duration = Duration::from_secs(60);
-
-/// A kernel's answer to a command, decoded.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Reply {
-    Ready(String),
-    Ok(String),
-    Err(String),
-    List(Listing),
-    Dump(Box<Dump>),
-    /// The answer to `BENCH`: `(method, cycles)` per method, in order.
-    Bench(Vec<BenchRow>),
-    Fatal(String),
-}
-
-impl Reply {
-    pub(crate) fn decode(frame: Frame) -> Result<Self> {
-        Ok(match frame.kind {
-            FrameKind::Ready => Reply::Ready(frame.text()),
-            FrameKind::Ok => Reply::Ok(frame.text()),
-            FrameKind::Err => Reply::Err(frame.text()),
-            FrameKind::List => Reply::List(Listing::parse(&frame.text())?),
-            FrameKind::Dump => Reply::Dump(Box::new(Dump::parse(&frame.payload)?)),
-            FrameKind::Bench => Reply::Bench(parse_bench(&frame.text())?),
-            FrameKind::Fatal => Reply::Fatal(frame.text()),
-            FrameKind::Log => bail!("a LOG frame is not a reply"),
-        })
-    }
-
-    /// One line for error messages; never the bytes of a dump.
-    pub(crate) fn describe(&self) -> String {
-        match self {
-            Reply::Ready(text) => format!("READY \"{text}\""),
-            Reply::Ok(text) => format!("OK \"{text}\""),
-            Reply::Err(text) => format!("ERR \"{text}\""),
-            Reply::List(listing) => {
-                let (scenes, shows, methods) = (listing.scenes.len(), listing.shows.len(), listing.methods.len());
-                format!("LIST of {scenes} scenes, {shows} show entries and {methods} methods")
-            }
-            Reply::Dump(_) => "a DUMP".to_string(),
-            Reply::Bench(rows) => format!("BENCH of {} methods", rows.len()),
-            Reply::Fatal(text) => format!("FATAL \"{text}\""),
-        }
-    }
-}
-
-/// The answer to `LIST`.
-#[derive(Clone, Debug, PartialEq, Eq, Default)]
-pub struct Listing {
-    pub scenes: Vec<String>,
-    /// The show's entries in demo order: name and number of frames.
-    pub shows: Vec<(String, u32)>,
-    pub methods: Vec<String>,
-}
-
-impl Listing {
-    fn parse(text: &str) -> Result<Self> {
-        let mut listing = Listing::default();
-        for line in text.lines().filter(|line| !line.is_empty()) {
-            let words: Vec<&str> = line.split(' ').collect();
-            match words[..] {
-                ["scene", name] => listing.scenes.push(name.to_string()),
-                ["method", name] => listing.methods.push(name.to_string()),
-                ["show", name, frames] => {
-                    let frames = frames.parse().with_context(|| format!("LIST line `{line}`: bad frame count"))?;
-                    listing.shows.push((name.to_string(), frames));
-                }
-                _ => bail!("LIST line `{line}` is none of `scene NAME`, `show NAME FRAMES` and `method NAME`"),
-            }
-        }
-        Ok(listing)
-    }
-}
-
-/// One method's line of a `BENCH` answer.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct BenchRow {
-    pub method: MethodId,
-    /// rdtsc ticks of one whole-scene draw, the median of the repeats.
-    pub cycles: u64,
-    /// Polygons of the scene the method declined.
-    pub refused: usize,
-    /// Why it declined the first of them.
-    pub refusal: Option<Refusal>,
-}
-
-/// A `BENCH` payload: its first line must be [`BENCH_UNIT_LINE`] (the
-/// numbers are meaningless without their unit), then `METHOD CYCLES
-/// REFUSED [REFUSAL]` lines.
-fn parse_bench(text: &str) -> Result<Vec<BenchRow>> {
-    let mut lines = text.lines();
-    let unit = lines.next().unwrap_or_default();
-    ensure!(unit == BENCH_UNIT_LINE, "BENCH starts with `{unit}`, not its unit line `{BENCH_UNIT_LINE}`");
-    lines.filter(|line| !line.is_empty()).map(parse_bench_line).collect()
-}
-
-fn parse_bench_line(line: &str) -> Result<BenchRow> {
-    let shape = || format!("BENCH line `{line}` is not `METHOD CYCLES REFUSED [REFUSAL]`");
-    let mut words = line.split(' ');
-    let (Some(method), Some(cycles), Some(refused)) = (words.next(), words.next(), words.next()) else {
-        bail!(shape());
-    };
-    let refusal = words.next().map(|name| Refusal::from_name(name).with_context(shape)).transpose()?;
-    ensure!(words.next().is_none(), shape());
-    let row = BenchRow {
-        method: method.parse().with_context(|| format!("BENCH line `{line}`"))?,
-        cycles: cycles.parse().with_context(|| format!("BENCH line `{line}`: bad cycle count"))?,
-        refused: refused.parse().with_context(|| format!("BENCH line `{line}`: bad refusal count"))?,
-        refusal,
-    };
-    ensure!((row.refused > 0) == row.refusal.is_some(), "BENCH line `{line}`: a refusal count without its reason");
-    Ok(row)
-}
-
-/// The answer to `DUMP`: the framebuffer and the DAC, both read back.
-#[derive(Clone, PartialEq, Eq)]
-pub struct Dump {
-    /// 320x200 bytes read back from 0xA0000.
-    pub pixels: Vec<u8>,
-    /// The 256 DAC entries read back, 6-bit red, green, blue.
-    pub palette: [[u8; 3]; ENTRIES],
-}
-
-impl std::fmt::Debug for Dump {
-    /// A summary: a derived Debug would print 64,000 numbers.
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "Dump {{ {} pixels, {} palette entries }}", self.pixels.len(), self.palette.len())
-    }
-}
-
-impl Dump {
-    pub fn parse(payload: &[u8]) -> Result<Self> {
-        ensure!(payload.len() == DUMP_LEN, "a dump has {DUMP_LEN} bytes, this one {}", payload.len());
-        let (pixels, dac) = payload.split_at(FRAMEBUFFER_LEN);
-        let mut palette = [[0; 3]; ENTRIES];
-        for (entry, rgb) in palette.iter_mut().zip(dac.as_chunks::<3>().0) {
-            *entry = *rgb;
-        }
-        Ok(Self { pixels: pixels.to_vec(), palette })
-    }
-
-    /// The framebuffer as an indexed image whose palette is the read-back
-    /// DAC: the picture the screen shows, with the raw bytes kept.
-    pub fn image(&self) -> Image {
-        Image::from_dac(SCREEN.width as u32, SCREEN.height as u32, self.pixels.clone(), &self.palette)
-            .expect("a dump holds width x height pixels")
-    }
-}
-
 /// A protocol session over a serial line.
 pub struct Console {
-    pub(crate) frames: FrameReader,
-    input: Box<dyn Write + Send>,
-    pub(crate) logs: Vec<String>,
+    pub(crate) channel: Channel,
     /// How commands go out on a line that can damage bytes (sealed, each
     /// reply matched to its line, steps retried); `None`: plain lines, as
     /// over QEMU's stdio, which loses nothing.
-    pub(crate) sealing: Option<Sealing>,
+    sealing: Option<Sealing>,
 }
 
 impl Console {
     /// A console that sends plain lines to `input` and reads frames from
     /// `frames`.
     pub fn new(input: impl Write + Send + 'static, frames: FrameReader) -> Self {
-        Self { frames, input: Box::new(input), logs: Vec::new(), sealing: None }
+        Self { channel: Channel::new(input, frames), sealing: None }
     }
 
     /// A console that seals every command (`crate::line`) and retries a
@@ -207,19 +52,19 @@ impl Console {
     /// Waits (at most `timeout`) for `text` on the line outside any frame
     /// and returns what came up to its end.
     pub fn wait_for_text(&mut self, text: &str, timeout: Duration) -> Result<String> {
-        self.frames.skip_to_first(&[text], timeout).map(|(_, seen)| seen)
+        self.channel.frames.skip_to_first(&[text], timeout).map(|(_, seen)| seen)
     }
 
     /// Waits (at most `timeout`) for the first of `texts` on the line
     /// outside any frame (see [`FrameReader::skip_to_first`]): which, and
     /// what came up to its end.
     pub fn wait_for_first_text(&mut self, texts: &[&str], timeout: Duration) -> Result<(usize, String)> {
-        self.frames.skip_to_first(texts, timeout)
+        self.channel.frames.skip_to_first(texts, timeout)
     }
 
     /// The LOG frames received so far, in order.
     pub fn logs(&self) -> &[String] {
-        &self.logs
+        &self.channel.logs
     }
 
     /// Sends one command line.
@@ -229,9 +74,7 @@ impl Console {
 
     /// Sends raw bytes, valid or not.
     pub fn send_bytes(&mut self, bytes: &[u8]) -> Result<()> {
-        self.input.write_all(bytes)?;
-        self.input.flush()?;
-        Ok(())
+        self.channel.send_bytes(bytes)
     }
 
     /// The next reply, within [`REPLY_TIMEOUT`]; LOG frames on the way are
@@ -244,36 +87,14 @@ impl Console {
     /// which LOG frames on the way do not extend (a kernel that keeps
     /// logging and never answers still times out).
     pub fn reply_within(&mut self, timeout: Duration) -> Result<Reply> {
-        let deadline = Instant::now() + timeout;
-        let logs_before = self.logs.len();
-        let late = |logs: usize| {
-            format!("no reply within {:.1} s, only {} LOG frames", timeout.as_secs_f64(), logs - logs_before)
-        };
-        loop {
-            let remaining = deadline.saturating_duration_since(Instant::now());
-            if remaining.is_zero() {
-                bail!(late(self.logs.len()));
-            }
-            let frame = match self.frames.next_frame(remaining) {
-                Ok(frame) => frame,
-                Err(error) if logs_before < self.logs.len() && Instant::now() >= deadline => {
-                    return Err(error.context(late(self.logs.len())));
-                }
-                Err(error) => return Err(error),
-            };
-            if frame.kind == FrameKind::Log {
-                self.logs.push(frame.text());
-                continue;
-            }
-            return Reply::decode(frame);
-        }
+        self.channel.reply_within(timeout)
     }
 
     /// Sends `command` and returns its reply, whatever it is (sealed, if
     /// the console seals its commands).
     pub fn request(&mut self, command: &Command) -> Result<Reply> {
-        if self.sealing.is_some() {
-            return self.request_sealed(command);
+        if let Some(sealing) = self.sealing.as_mut() {
+            return sealing.request(&mut self.channel, command);
         }
         self.send(command)?;
         self.reply().with_context(|| format!("waiting for the reply to `{command}`"))
@@ -287,23 +108,42 @@ impl Console {
         }
     }
 
-    /// Clears the screen to black (the host render's starting point) and
-    /// draws a built-in scene.
-    pub fn draw(&mut self, scene: &str, method: Option<MethodId>) -> Result<()> {
-        self.ok(&Command::Clear(0))?;
-        self.ok(&Command::Draw { scene, method })?;
+    /// Clears the screen to `color`, as the `CLEAR` answer must say.
+    pub fn clear(&mut self, color: u8) -> Result<()> {
+        let command = Command::Clear(color);
+        let text = self.ok(&command)?;
+        let cleared = Cleared::parse(&text).with_context(|| format!("`{command}` answered OK \"{text}\""))?;
+        ensure!(cleared == Cleared { color }, "`{command}` answered OK \"{text}\", another colour");
         Ok(())
+    }
+
+    /// Sends a `DRAW` or `POLY` and returns what its answer says was drawn.
+    fn draw_command(&mut self, command: &Command) -> Result<DrawReply> {
+        let text = self.ok(command)?;
+        DrawReply::parse(&text).with_context(|| format!("`{command}` answered OK \"{text}\""))
+    }
+
+    /// Clears the screen to black (the host render's starting point) and
+    /// draws a built-in scene; returns what the kernel says it drew.
+    pub fn draw(&mut self, scene: &str, method: Option<MethodId>) -> Result<DrawReply> {
+        self.clear(0)?;
+        self.draw_command(&Command::Draw { scene, method })
     }
 
     /// Clears the screen to black and draws a scene file with `method`,
     /// one command per operation (`CLEAR`, `POLY`), every one of which must
-    /// be answered OK. The commands are all made before the first is sent:
-    /// a polygon too long for a command line fails with nothing drawn.
+    /// be answered OK with its reply's text. The commands are all made
+    /// before the first is sent: a polygon too long for a command line
+    /// fails with nothing drawn.
     pub fn draw_file(&mut self, file: &SceneFile, method: MethodId) -> Result<()> {
         let commands = file.commands(method)?;
-        self.ok(&Command::Clear(0))?;
+        self.clear(0)?;
         for (line, command) in commands {
-            self.ok(&command).with_context(|| format!("{}:{line}", file.path.display()))?;
+            let done = match command {
+                Command::Clear(color) => self.clear(color),
+                _ => self.draw_command(&command).map(|_| ()),
+            };
+            done.with_context(|| format!("{}:{line}", file.path.display()))?;
         }
         Ok(())
     }
@@ -374,12 +214,63 @@ impl Console {
         let text = self.ok(&Command::Clock)?;
         TscRate::parse(&text).with_context(|| format!("`CLOCK` answered OK \"{text}\", not a TSC rate"))
     }
+
+    /// The line's counts, if the console seals its commands.
+    pub fn line_stats(&self) -> Option<&LineStats> {
+        self.sealing.as_ref().map(|sealing| &sealing.stats)
+    }
+
+    /// Sets how long a sealing console waits for a reply that takes the
+    /// kernel no work (10 s by default; a dump's and a `BENCH`'s waits
+    /// grow from it).
+    pub fn set_answer_timeout(&mut self, timeout: Duration) {
+        if let Some(sealing) = self.sealing.as_mut() {
+            sealing.set_answer_timeout(timeout);
+        }
+    }
+
+    /// Most retries of one step (0 for a console that does not seal).
+    pub fn retries_allowed(&self) -> u32 {
+        self.sealing.as_ref().map_or(0, Sealing::retries)
+    }
+
+    /// Bytes received so far, frames and noise.
+    pub fn bytes_received(&self) -> u64 {
+        self.channel.frames.received()
+    }
+
+    /// Runs `step`, and while it fails for what the line did (a
+    /// [`Trouble`](crate::line::Trouble)) runs it again, up to the
+    /// console's retry bound, after letting the line settle. Any other
+    /// failure, and a console that does not seal, fail at once.
+    pub fn retrying<T>(&mut self, mut step: impl FnMut(&mut Console) -> Result<T>) -> Result<T> {
+        let mut retried = 0;
+        loop {
+            let error = match step(self) {
+                Ok(value) => return Ok(value),
+                Err(error) => error,
+            };
+            let Some(sealing) = self.sealing.as_mut() else { return Err(error) };
+            sealing.retry_after(&mut self.channel, error, retried)?;
+            retried += 1;
+        }
+    }
+
+    /// Finds the kernel on a sealing console: sends `READY` until it
+    /// answers (or sends its `READY` at boot), within `bound`. Returns the
+    /// `READY` text and whether it came at boot. Fails with what to check
+    /// when nothing answers.
+    pub fn wait_for_kernel(&mut self, bound: Duration, device: &str) -> Result<(String, bool)> {
+        let Some(sealing) = self.sealing.as_mut() else { bail!("only a sealing console looks for the kernel") };
+        sealing.wait_for_kernel(&mut self.channel, bound, device)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use protocol::{Firmware, FrameHeader, HeapState, Video};
+    use protocol::{BenchReply, Firmware, FrameHeader, FrameKind, HeapState, Video, FRAMEBUFFER_LEN};
+    use scenes::palette::ENTRIES;
     use std::sync::mpsc::{self, Sender};
     use std::sync::{Arc, Mutex};
 
@@ -456,34 +347,55 @@ mod tests {
     }
 
     #[test]
-    fn a_bench_reply_is_method_cycles_and_refusals_after_its_unit_line() {
-        let payload = format!("{BENCH_UNIT_LINE}\npendleton 1200 2 multiple-contours\nexact 900 0\n");
-        let (mut console, sent, _keep) = console(&[(FrameKind::Bench, payload.as_bytes())]);
-        let rows = console.bench("abrash38-1", 3).unwrap();
+    fn a_bench_reply_comes_back_as_its_rows_and_a_malformed_one_is_an_error_quoting_it() {
         let row = |method, cycles, refused, refusal| BenchRow { method, cycles, refused, refusal };
-        assert_eq!(
-            rows,
-            [row(MethodId::Pendleton, 1200, 2, Some(Refusal::MultipleContours)), row(MethodId::Exact, 900, 0, None)]
-        );
+        let rows = vec![
+            row(MethodId::Pendleton, 1200, 2, Some(raster::Refusal::MultipleContours)),
+            row(MethodId::Exact, 900, 0, None),
+        ];
+        let payload = BenchReply { rows: rows.clone() }.to_string();
+        let (mut console, sent, _keep) =
+            console(&[(FrameKind::Bench, payload.as_bytes()), (FrameKind::Bench, b"exact 900 0\n")]);
+        assert_eq!(console.bench("abrash38-1", 3).unwrap(), rows);
         assert_eq!(sent.0.lock().unwrap().as_slice(), b"BENCH abrash38-1 3\n");
-        assert!(parse_bench("abrash_float 1200 0\n").is_err(), "a BENCH without its unit line");
-        for bad in [
-            "exact many 0",
-            "exact 900",
-            "exact 900 x",
-            "exact 900 1",
-            "exact 900 1 bored",
-            "exact 900 0 out-of-range x",
-        ] {
-            assert!(parse_bench(&format!("{BENCH_UNIT_LINE}\n{bad}\n")).is_err(), "{bad}");
-        }
+        let error = format!("{:#}", console.bench("abrash38-1", 3).unwrap_err());
+        assert_eq!(
+            error,
+            "waiting for the reply to `BENCH abrash38-1 3`: BENCH \"exact 900 0\\n\": malformed BENCH reply: expected \
+             its unit line first"
+        );
+    }
+
+    #[test]
+    fn draw_and_clear_answers_are_read_back_and_a_wrong_one_is_an_error() {
+        let (mut console, sent, _keep) = console(&[
+            (FrameKind::Ok, b"clear 0"),
+            (FrameKind::Ok, b"polygons=5 refused=1 strays=2"),
+            (FrameKind::Ok, b"clear 1"),
+            (FrameKind::Ok, b"clear 0"),
+            (FrameKind::Ok, b"drawn"),
+        ]);
+        let drawn = console.draw("abrash38-1", Some(MethodId::Wgt)).unwrap();
+        assert_eq!(drawn, DrawReply { polygons: 5, refused: 1, strays: 2 });
+        let error = console.draw("abrash38-1", None).unwrap_err().to_string();
+        assert_eq!(error, "`CLEAR 0` answered OK \"clear 1\", another colour");
+        let error = format!("{:#}", console.draw("abrash38-1", None).unwrap_err());
+        assert_eq!(
+            error,
+            "`DRAW abrash38-1` answered OK \"drawn\": malformed DRAW reply: expected the field `polygons=` next"
+        );
+        assert_eq!(
+            sent.0.lock().unwrap().as_slice(),
+            b"CLEAR 0\nDRAW abrash38-1 wgt\nCLEAR 0\nCLEAR 0\nDRAW abrash38-1\n"
+        );
     }
 
     #[test]
     fn a_list_line_of_no_known_shape_is_an_error() {
-        assert!(Listing::parse("show race many\n").is_err());
-        assert!(Listing::parse("show race\n").is_err());
-        assert!(Listing::parse("colour 4\n").is_err());
+        let (mut console, _, _keep) = console(&[(FrameKind::List, b"colour 4\n")]);
+        let error = format!("{:#}", console.list().unwrap_err());
+        let expected = "waiting for the reply to `LIST`: LIST \"colour 4\\n\": malformed LIST reply: expected lines";
+        assert!(error.starts_with(expected), "{error}");
     }
 
     #[test]
@@ -506,17 +418,15 @@ mod tests {
             (FrameKind::Ok, stranger.as_bytes()),
         ]);
         assert_eq!(console.show("race", 30, None).unwrap(), reply);
-        let error = console.show("race", 0, Some(MethodId::Exact)).unwrap_err().to_string();
-        assert_eq!(error, "`SHOW race 0 exact` answered OK \"drawn\", not a SHOW reply");
+        let error = format!("{:#}", console.show("race", 0, Some(MethodId::Exact)).unwrap_err());
+        assert_eq!(
+            error,
+            "`SHOW race 0 exact` answered OK \"drawn\", not a SHOW reply: malformed SHOW reply: expected the field \
+             `entry=` next"
+        );
         let error = console.show("race", 30, None).unwrap_err().to_string();
         assert_eq!(error, format!("`SHOW race 30` answered OK \"{stranger}\", naming an entry the show does not have"));
         assert_eq!(sent.0.lock().unwrap().as_slice(), b"SHOW race 30\nSHOW race 0 exact\nSHOW race 30\n");
-    }
-
-    #[test]
-    fn a_short_dump_is_refused() {
-        let error = Dump::parse(&[0; 10]).unwrap_err().to_string();
-        assert_eq!(error, format!("a dump has {DUMP_LEN} bytes, this one 10"));
     }
 
     #[test]
@@ -524,8 +434,11 @@ mod tests {
         let (mut console, _, _keep) = console(&[(FrameKind::Ready, b"vga: 0 mismatches"), (FrameKind::Ok, b"pong")]);
         let error = console.wait_ready().unwrap_err().to_string();
         assert_eq!(error, "READY \"vga: 0 mismatches\" does not parse");
-        let error = console.ping().unwrap_err().to_string();
-        assert_eq!(error, "`PING` answered OK \"pong\", not a pong");
+        let error = format!("{:#}", console.ping().unwrap_err());
+        assert_eq!(
+            error,
+            "`PING` answered OK \"pong\", not a pong: malformed PING reply: expected `pong` and its fields"
+        );
     }
 
     #[test]

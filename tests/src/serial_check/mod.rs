@@ -22,7 +22,8 @@ use scenes::{builtin, show};
 use crate::line::LineStats;
 use crate::picture::compare::{compare_images, differing_palette_entries, differing_pixel_count};
 use crate::picture::render::{builtin_scene, render, render_show, show_entry};
-use crate::qemu::console::{Console, Dump, Reply};
+use crate::qemu::console::Console;
+use crate::qemu::reply::{Dump, Reply};
 use crate::Image;
 use bench::{BenchTable, TickUnit};
 pub use report::write_reports;
@@ -171,7 +172,7 @@ pub fn run(
                 console.draw(page, Some(method))?;
                 console.dump()
             })?;
-            let expected = render(&scene, method.method());
+            let expected = render(&scene, method);
             pictures.push(judge(page, None, method, &expected, &dump, &VGA_DEFAULT));
         }
     }
@@ -182,7 +183,7 @@ pub fn run(
         let (reply, dump) = console.retrying(|console| Ok((console.show(entry.name, 0, None)?, console.dump()?)))?;
         let said = (reply.entry, reply.frame, reply.method);
         ensure!(said == (entry.name, 0, method), "SHOW {name} 0: the kernel says it showed {said:?}");
-        let expected = render_show(entry, 0, method.method(), reply.cycles);
+        let expected = render_show(entry, 0, method, reply.cycles);
         pictures.push(judge(entry.name, Some(0), method, &expected, &dump, &show::PALETTE));
     }
     step("VGACHECK", console);

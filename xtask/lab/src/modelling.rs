@@ -227,7 +227,7 @@ pub struct ShowRow {
 /// Every shaded entry of the show, every frame, drawn by `exact` as the
 /// entry needs and over-modelled, the two timed in turn.
 pub fn measure_show(timing: Timing) -> Vec<ShowRow> {
-    let method = MethodId::Exact.method();
+    let method = MethodId::Exact;
     let (mut as_needed, mut forced) = (Stage::new(), Stage::new());
     let mut rows = Vec::new();
     for entry in ENTRIES_IN_ORDER {

@@ -16,12 +16,11 @@ use crate::target::SpanSink;
 ///
 /// The trait is object safe, so methods can be listed and picked at run
 /// time (`&dyn Method`); through it, every span is a call through the
-/// sink's vtable. [`fill_into`](#method.fill_into) takes the sink's own
-/// type instead, and for this crate's methods (those with an [`id`]) fills
-/// through [`MethodId::fill`], where the sink's store is compiled into the
-/// method's loops.
-///
-/// [`id`]: Method::id
+/// sink's vtable. A caller that names one of this crate's methods by its
+/// [`MethodId`] fills through [`MethodId::fill`] instead, where the sink's
+/// store is compiled into the method's loops; a `MethodId` becomes a
+/// `&dyn Method` ([`MethodId::method`]) and never the other way, except
+/// through [`Method::id`] for a caller that holds methods of any kind.
 ///
 /// # Examples
 ///
@@ -48,18 +47,6 @@ pub trait Method: Sync {
     /// stand-in).
     fn id(&self) -> Option<MethodId> {
         None
-    }
-}
-
-impl dyn Method + '_ {
-    /// [`Method::fill`] into a sink of a known type: statically dispatched
-    /// for this crate's methods, so the sink's `span` is inlined into the
-    /// fill; through the vtable for any other method.
-    pub fn fill_into<S: SpanSink>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
-        match self.id() {
-            Some(id) => id.fill(polygon, sink),
-            None => self.fill(polygon, sink),
-        }
     }
 }
 

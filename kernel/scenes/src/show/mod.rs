@@ -30,7 +30,7 @@ use alloc::vec::Vec;
 use crate::scene::{DrawReport, Scene};
 use entries::Kind;
 use raster::sink;
-use raster::{Framebuffer, Method, SpanSink, SCREEN};
+use raster::{Framebuffer, MethodId, SpanSink, SCREEN};
 use scratch::Scratch;
 
 pub use entries::{entry, Entry, ENTRIES_IN_ORDER};
@@ -63,19 +63,20 @@ impl Stage {
     /// Draws frame `frame` (modulo `entry.frames`) of `entry` with `method`
     /// onto a black screen. Allocates only when a still page other than the
     /// last one is built.
-    pub fn draw(&mut self, entry: &Entry, frame: u32, method: &dyn Method) -> DrawReport {
+    pub fn draw(&mut self, entry: &Entry, frame: u32, method: MethodId) -> DrawReport {
         let frame = entry.wrap(frame);
+        let animated = method.method();
         sink::clear(&mut self.target, 0);
         match entry.kind {
             Kind::Still(_) => draw_page(&mut self.still, entry, method, &mut self.target),
-            Kind::LamotheRotate => lamothe::draw(frame, method, &mut self.scratch, &mut self.target),
-            Kind::WgtGouraud => shaded::gouraud(frame, method, &mut self.scratch, &mut self.target),
-            Kind::WgtTexture => shaded::texture(frame, method, &mut self.scratch, &mut self.target),
+            Kind::LamotheRotate => lamothe::draw(frame, animated, &mut self.scratch, &mut self.target),
+            Kind::WgtGouraud => shaded::gouraud(frame, animated, &mut self.scratch, &mut self.target),
+            Kind::WgtTexture => shaded::texture(frame, animated, &mut self.scratch, &mut self.target),
             Kind::PendletonDepth => {
                 let (scratch, depth, target) = (&mut self.scratch, &mut self.depth, &mut self.target);
-                shaded::draw(shaded::Shaded::Depth, Modelling::Needed, frame, method, scratch, depth, target)
+                shaded::draw(shaded::Shaded::Depth, Modelling::Needed, frame, animated, scratch, depth, target)
             }
-            Kind::Race => race::draw(frame, method, &mut self.scratch, &mut self.target),
+            Kind::Race => race::draw(frame, animated, &mut self.scratch, &mut self.target),
         }
     }
 
@@ -83,7 +84,7 @@ impl Stage {
     /// first, as [`Stage::draw`] draws it onto the stage: for a target
     /// other than the stage, such as the screen itself. An animated entry
     /// draws nothing but the black.
-    pub fn draw_still<S: SpanSink>(&mut self, entry: &Entry, method: &dyn Method, target: &mut S) -> DrawReport {
+    pub fn draw_still<S: SpanSink>(&mut self, entry: &Entry, method: MethodId, target: &mut S) -> DrawReport {
         sink::clear(target, 0);
         draw_page(&mut self.still, entry, method, target)
     }
@@ -97,7 +98,7 @@ impl Stage {
         &mut self,
         entry: &Entry,
         frame: u32,
-        method: &dyn Method,
+        method: MethodId,
         modelling: Modelling,
     ) -> Option<DrawReport> {
         let shaded = match entry.kind {
@@ -108,11 +109,11 @@ impl Stage {
         };
         sink::clear(&mut self.target, 0);
         let (scratch, depth, target) = (&mut self.scratch, &mut self.depth, &mut self.target);
-        Some(shaded::draw(shaded, modelling, entry.wrap(frame), method, scratch, depth, target))
+        Some(shaded::draw(shaded, modelling, entry.wrap(frame), method.method(), scratch, depth, target))
     }
 
     /// Draws the labels over the frame (see [`draw_labels`]).
-    pub fn label(&mut self, entry: &Entry, frame: u32, method: &dyn Method, cycles: u64) {
+    pub fn label(&mut self, entry: &Entry, frame: u32, method: MethodId, cycles: u64) {
         draw_labels(&mut self.target, entry, frame, method, cycles);
     }
 
@@ -131,7 +132,7 @@ impl Stage {
 /// Draws the still page of `entry` with `method` onto `target`, building
 /// the page into `built` unless it is the one built last; nothing for an
 /// entry that is not a still.
-fn draw_page<S: SpanSink>(built: &mut Option<Scene>, entry: &Entry, method: &dyn Method, target: &mut S) -> DrawReport {
+fn draw_page<S: SpanSink>(built: &mut Option<Scene>, entry: &Entry, method: MethodId, target: &mut S) -> DrawReport {
     let Kind::Still(page) = entry.kind else { return DrawReport::default() };
     let scene = match built {
         Some(scene) if scene.name == page.name => scene,
@@ -143,8 +144,8 @@ fn draw_page<S: SpanSink>(built: &mut Option<Scene>, entry: &Entry, method: &dyn
 /// Draws the labels of frame `frame` (modulo `entry.frames`) of `entry`
 /// over `target`: the entry and frame number at the top, the method and
 /// the cycles its draw took at the bottom.
-pub fn draw_labels(target: &mut dyn SpanSink, entry: &Entry, frame: u32, method: &dyn Method, cycles: u64) {
-    label::draw_labels(target, entry, entry.wrap(frame), method.info().name, cycles);
+pub fn draw_labels(target: &mut dyn SpanSink, entry: &Entry, frame: u32, method: MethodId, cycles: u64) {
+    label::draw_labels(target, entry, entry.wrap(frame), method.name(), cycles);
 }
 
 #[cfg(test)]
@@ -152,14 +153,13 @@ mod tests {
     use alloc::vec::Vec;
 
     use super::*;
-    use raster::methods::Exact;
 
     fn animations() -> impl Iterator<Item = &'static Entry> {
         ENTRIES_IN_ORDER.iter().filter(|entry| entry.is_animated())
     }
 
     /// Frame `frame` of `entry` with `method` on `stage`, and its report.
-    fn frame_of(stage: &mut Stage, entry: &Entry, frame: u32, method: &dyn Method) -> (Vec<u8>, DrawReport) {
+    fn frame_of(stage: &mut Stage, entry: &Entry, frame: u32, method: MethodId) -> (Vec<u8>, DrawReport) {
         let report = stage.draw(entry, frame, method);
         (stage.pixels().to_vec(), report)
     }
@@ -169,15 +169,26 @@ mod tests {
         for entry in animations() {
             let frames: Vec<u32> = (0..entry.frames).step_by(11).collect();
             let mut stage = Stage::new();
-            let first: Vec<Vec<u8>> = frames.iter().map(|&f| frame_of(&mut stage, entry, f, &Exact).0).collect();
+            let first: Vec<Vec<u8>> =
+                frames.iter().map(|&f| frame_of(&mut stage, entry, f, MethodId::Exact).0).collect();
             // A stage that drew other frames, in another order, draws the
             // same pixels: nothing carries over from one frame to the next.
             let mut other = Stage::new();
             for (&f, pixels) in frames.iter().zip(&first).rev() {
-                assert_eq!(&frame_of(&mut other, entry, f, &Exact).0, pixels, "{} frame {f}", entry.name);
+                assert_eq!(&frame_of(&mut other, entry, f, MethodId::Exact).0, pixels, "{} frame {f}", entry.name);
             }
-            assert_eq!(frame_of(&mut stage, entry, entry.frames, &Exact).0, first[0], "{} does not loop", entry.name);
-            assert_ne!(frame_of(&mut stage, entry, 1, &Exact).0, first[0], "{}: frame 1 is frame 0", entry.name);
+            assert_eq!(
+                frame_of(&mut stage, entry, entry.frames, MethodId::Exact).0,
+                first[0],
+                "{} does not loop",
+                entry.name
+            );
+            assert_ne!(
+                frame_of(&mut stage, entry, 1, MethodId::Exact).0,
+                first[0],
+                "{}: frame 1 is frame 0",
+                entry.name
+            );
         }
     }
 
@@ -185,8 +196,8 @@ mod tests {
     fn every_method_draws_every_animation_whole_and_inside_the_screen() {
         let mut stage = Stage::new();
         for entry in animations() {
-            for &method in raster::methods::ALL {
-                let name = method.info().name;
+            for method in MethodId::ALL {
+                let name = method.name();
                 let (_, first) = frame_of(&mut stage, entry, 0, method);
                 for frame in (0..entry.frames).step_by(13) {
                     let strays = stage.stray_spans();
@@ -205,7 +216,7 @@ mod tests {
     fn a_still_drawn_onto_another_target_is_the_stage_s_frame_and_an_animation_is_black() {
         let mut stage = Stage::new();
         for entry in ENTRIES_IN_ORDER.iter().filter(|e| !e.is_animated()) {
-            let method = entry.method_at(0).method();
+            let method = entry.method_at(0);
             let mut elsewhere = Framebuffer::new(SCREEN);
             // Not black: the still clears its target first.
             sink::clear(&mut elsewhere, 9);
@@ -220,7 +231,7 @@ mod tests {
         let rotate = entry("lamothe-rotate").unwrap();
         let mut elsewhere = Framebuffer::new(SCREEN);
         sink::clear(&mut elsewhere, 9);
-        assert_eq!(stage.draw_still(rotate, &Exact, &mut elsewhere).polygons, 0);
+        assert_eq!(stage.draw_still(rotate, MethodId::Exact, &mut elsewhere).polygons, 0);
         assert!(elsewhere.pixels().iter().all(|&p| p == 0));
     }
 }

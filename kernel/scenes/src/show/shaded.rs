@@ -318,7 +318,7 @@ mod tests {
     use crate::show::ramp::{RAMP_BASE, RAMP_LEVELS};
     use crate::show::Stage;
     use raster::methods::Exact;
-    use raster::{CoverageSink, Polygon, SCREEN};
+    use raster::{CoverageSink, MethodId, Polygon, SCREEN};
 
     /// The three entries drawn here.
     fn entries() -> [&'static Entry; 3] {
@@ -327,7 +327,7 @@ mod tests {
 
     /// Frame `frame` of `entry` drawn by `method` on a stage that has drawn
     /// before (the stage must not carry anything from one frame over).
-    fn frame_of(stage: &mut Stage, entry: &Entry, frame: u32, method: &dyn Method) -> Vec<u8> {
+    fn frame_of(stage: &mut Stage, entry: &Entry, frame: u32, method: MethodId) -> Vec<u8> {
         let report = stage.draw(entry, frame, method);
         assert_eq!(report.refused, 0, "{} frame {frame}: {report:?}", entry.name);
         stage.pixels().to_vec()
@@ -340,14 +340,14 @@ mod tests {
         let mut stage = Stage::new();
         for entry in entries() {
             for frame in [0, 37, entry.frames - 1] {
-                let needed = frame_of(&mut stage, entry, frame, &Exact);
-                let report = stage.draw_modelled(entry, frame, &Exact, Modelling::Forced).unwrap();
+                let needed = frame_of(&mut stage, entry, frame, MethodId::Exact);
+                let report = stage.draw_modelled(entry, frame, MethodId::Exact, Modelling::Forced).unwrap();
                 assert_eq!(report.refused, 0, "{} frame {frame}", entry.name);
                 assert!(stage.pixels() == needed.as_slice(), "{} frame {frame} differs", entry.name);
             }
         }
         let still = entry("abrash38-1").unwrap();
-        assert_eq!(stage.draw_modelled(still, 0, &Exact, Modelling::Forced), None);
+        assert_eq!(stage.draw_modelled(still, 0, MethodId::Exact, Modelling::Forced), None);
     }
 
     /// The ramp a palette index belongs to, if any.
@@ -361,13 +361,13 @@ mod tests {
         let mut stage = Stage::new();
         for entry in entries() {
             let quarters: Vec<Vec<u8>> =
-                (0..4).map(|q| frame_of(&mut stage, entry, q * entry.frames / 4, &Exact)).collect();
+                (0..4).map(|q| frame_of(&mut stage, entry, q * entry.frames / 4, MethodId::Exact)).collect();
             for a in 0..4 {
                 for b in a + 1..4 {
                     assert!(quarters[a] != quarters[b], "{}: quarters {a} and {b} are the same", entry.name);
                 }
             }
-            let next = frame_of(&mut stage, entry, 1, &Exact);
+            let next = frame_of(&mut stage, entry, 1, MethodId::Exact);
             assert!(next != quarters[0], "{}: frame 1 is frame 0", entry.name);
         }
     }
@@ -381,7 +381,7 @@ mod tests {
             let mut shown = [0; 4];
             let frames: Vec<u32> = (0..entry.frames).step_by(5).collect();
             for &frame in &frames {
-                let pixels = frame_of(&mut stage, entry, frame, &Exact);
+                let pixels = frame_of(&mut stage, entry, frame, MethodId::Exact);
                 let used: Vec<Option<Ramp>> = pixels.iter().map(|&p| ramp_of(p)).collect();
                 let allowed = |(&p, r): (&u8, &Option<Ramp>)| p == 0 || r.is_some_and(|r| ramps.contains(&r));
                 assert!(pixels.iter().zip(&used).all(allowed), "{} frame {frame}: a stray colour", entry.name);

@@ -69,7 +69,7 @@ pub fn render(explorer: &mut Explorer, method: MethodId, view: View, judge: Judg
     let reference_work: u64 = explorer.polygons().map(reference_work).sum();
     let judge = if reference_work > REFERENCE_BUDGET { Judge::Exact } else { judge };
     let mut framebuffer = Framebuffer::new(SCREEN);
-    let drawn = explorer.scene().draw(method.method(), &mut framebuffer);
+    let drawn = explorer.scene().draw(method, &mut framebuffer);
     rgba.clear();
     rgba.reserve(RGBA_BYTES);
     for &index in framebuffer.pixels() {

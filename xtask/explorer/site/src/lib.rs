@@ -11,8 +11,8 @@ use std::thread::JoinHandle;
 use anyhow::{anyhow, Context, Result};
 use tiny_http::{Header, Response, Server};
 
+use boot_image::process::run_streaming;
 use harness::prerequisites::{ensure_wasm_target, WASM_TARGET};
-use harness::process::run_streaming;
 use harness::workspace;
 
 /// The hand-written files of the page, in `xtask/explorer/web`.
@@ -29,7 +29,7 @@ fn wasm_target_dir() -> PathBuf {
 }
 
 fn wasm_build_command() -> std::process::Command {
-    let mut command = harness::cargo::host();
+    let mut command = boot_image::cargo::host();
     command.args(["build", "--package", "explorer", "--lib", "--release", "--target", WASM_TARGET]);
     // The workspace keeps line tables in release builds for profiling; the
     // page has no use for them and they would triple the module.
@@ -175,7 +175,7 @@ fn page_file(url: &str) -> Option<(&str, &'static str)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use harness::process::command_line;
+    use boot_image::process::command_line;
 
     #[test]
     fn the_module_is_built_for_wasm32_in_its_own_target_dir() {

@@ -5,7 +5,8 @@
 
 use core::fmt;
 
-use crate::replies::{Fields, LineLosses};
+use super::fields::{Expected, Fields, Malformed};
+use super::pong::LineLosses;
 
 /// A PCI function's vendor and device IDs, written `vvvv:dddd` in hex as
 /// `lspci -n` does.
@@ -199,46 +200,46 @@ impl fmt::Display for Ready {
 }
 
 impl Ready {
-    /// Parses the text written by `Display`.
-    pub fn parse(text: &str) -> Option<Self> {
-        let mut fields = Fields::new(text);
-        let firmware = Firmware::from_name(fields.text("firmware")?)?;
+    /// Parses the text written by `Display` (an older kernel's has no
+    /// `machine`, `display_at` or `memory`).
+    pub fn parse(text: &str) -> Result<Self, Malformed> {
+        let mut fields = Fields::new("READY", text);
+        let firmware = fields.read("firmware", Firmware::from_name)?;
         let machine = match fields.next_is("machine") {
-            true => Some(Machine::from_name(fields.text("machine")?)?),
+            true => Some(fields.read("machine", Machine::from_name)?),
             false => None,
         };
-        let display = match fields.text("display")? {
-            "none" => None,
-            id => Some(PciId::parse(id)?),
-        };
+        let display = fields.read("display", |id| match id {
+            "none" => Some(None),
+            id => PciId::parse(id).map(Some),
+        })?;
         let display_at = match fields.next_is("display_at") {
-            true => Some(PciAddress::parse(fields.text("display_at")?)?),
+            true => Some(fields.read("display_at", PciAddress::parse)?),
             false => None,
         };
         let video = match fields.text("video")? {
             "vga13h" => Video::Vga13h { mismatches: fields.parsed("vga_mismatches")? },
             "framebuffer" => {
-                let (width, height) = fields.text("screen")?.split_once('x')?;
-                let scale = fields.parsed("scale")?;
-                let (left, top) = fields.text("offset")?.split_once(',')?;
                 let number = |text: &str| text.parse().ok();
-                Video::Framebuffer(Presentation {
-                    width: number(width)?,
-                    height: number(height)?,
-                    scale,
-                    left: number(left)?,
-                    top: number(top)?,
-                })
+                let (width, height) = fields.read("screen", |screen| {
+                    screen.split_once('x').and_then(|(w, h)| Some((number(w)?, number(h)?)))
+                })?;
+                let scale = fields.parsed("scale")?;
+                let (left, top) = fields.read("offset", |offset| {
+                    offset.split_once(',').and_then(|(x, y)| Some((number(x)?, number(y)?)))
+                })?;
+                Video::Framebuffer(Presentation { width, height, scale, left, top })
             }
             "none" => Video::None,
-            _ => return None,
+            _ => return Err(fields.malformed(Expected::Value("video"))),
         };
         let memory = match fields.next_is("memory") {
-            true => Some(MemoryType::from_name(fields.text("memory")?)?),
+            true => Some(fields.read("memory", MemoryType::from_name)?),
             false => None,
         };
         let losses = LineLosses::read(&mut fields)?;
-        fields.end().then_some(Self { firmware, machine, display, display_at, video, memory, losses })
+        fields.end()?;
+        Ok(Self { firmware, machine, display, display_at, video, memory, losses })
     }
 }
 
@@ -341,7 +342,7 @@ mod tests {
             "firmware=bios machine=qemu display=none video=none overruns=2 dropped=0 framing=4 parity=0 breaks=1"
         );
         for ready in [ready, framed, headless] {
-            assert_eq!(Ready::parse(&ready.to_string()), Some(ready));
+            assert_eq!(Ready::parse(&ready.to_string()), Ok(ready));
         }
         for garbage in [
             "firmware=bios display=1013:b8 video=vga13h vga_mismatches=3 overruns=2 dropped=0",
@@ -362,8 +363,15 @@ mod tests {
             "firmware=bios display=none video=none memory=ram overruns=2 dropped=0",
             "firmware=bios display=none video=none overruns=2 dropped=0 memory=uc",
         ] {
-            assert_eq!(Ready::parse(garbage), None, "{garbage}");
+            assert!(Ready::parse(garbage).is_err(), "{garbage}");
         }
+        let malformed = |expected| Err(Malformed { reply: "READY", expected });
+        let text = "firmware=coreboot display=none video=none overruns=2 dropped=0";
+        assert_eq!(Ready::parse(text), malformed(Expected::Value("firmware")));
+        let text = "firmware=bios display=none video=vga13h overruns=2 dropped=0";
+        assert_eq!(Ready::parse(text), malformed(Expected::Field("vga_mismatches")));
+        let text = "firmware=bios display=none video=none overruns=2 dropped=0 machine=qemu";
+        assert_eq!(Ready::parse(text), malformed(Expected::End));
         for memory in MemoryType::ALL {
             assert_eq!(MemoryType::from_name(memory.name()), Some(memory));
         }
@@ -381,6 +389,6 @@ mod tests {
             memory: None,
             losses: LineLosses { overruns: 0, dropped: 0, errors: None },
         };
-        assert_eq!(ready, Some(expected));
+        assert_eq!(ready, Ok(expected));
     }
 }
