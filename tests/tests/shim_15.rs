@@ -52,8 +52,16 @@ fn shim_15_dir() -> PathBuf {
     harness::workspace::target_dir().join("shim-15.8")
 }
 
-/// shim 15.8 and its MokManager, fetched and checked once, then unpacked.
+/// shim 15.8 and its MokManager, fetched and checked once, then unpacked,
+/// once per process: the tests run side by side, and two unpacking into
+/// one folder would take each other's files away.
 fn shim_15_packages() -> Result<Unpacked> {
+    static UNPACKED: OnceLock<Result<PathBuf, String>> = OnceLock::new();
+    once_per_process(&UNPACKED, fetch_and_unpack).map(Unpacked::given)
+}
+
+/// [`shim_15_packages`]'s work: the folder they are unpacked in.
+fn fetch_and_unpack() -> Result<PathBuf> {
     let dir = shim_15_dir();
     let unpacked = Unpacked::given(dir.join("unpacked"));
     for (package, pool_path, sha256) in PACKAGES {
@@ -72,7 +80,7 @@ fn shim_15_packages() -> Result<Unpacked> {
             unpacked.unpack_deb(package, &deb)?;
         }
     }
-    Ok(unpacked)
+    Ok(dir.join("unpacked"))
 }
 
 /// Downloads `url` to `to` with apt's downloader, failing with what it

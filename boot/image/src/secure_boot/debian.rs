@@ -39,6 +39,9 @@ pub const MOK_MANAGER: DebianFile =
 pub const SBSIGN: DebianFile = DebianFile { package: "sbsigntool", path: "usr/bin/sbsign" };
 pub const SBATTACH: DebianFile = DebianFile { package: "sbsigntool", path: "usr/bin/sbattach" };
 
+/// Held while the archive is asked for a package and it is unpacked.
+static FETCHING: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 /// The unpacked packages.
 pub struct Unpacked {
     dir: PathBuf,
@@ -65,6 +68,10 @@ impl Unpacked {
     pub fn get(&self, file: DebianFile) -> Result<PathBuf> {
         let root = self.dir.join(file.package);
         if self.from_archive {
+            // Tests ask for files side by side (sbsign and sbattach share
+            // a package): one asks apt and unpacks at a time, and the
+            // others find its work done.
+            let _one_at_a_time = FETCHING.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
             let unpacked = if root.is_dir() { self.version(file.package).ok() } else { None };
             match refresh_for(file.package, unpacked.as_deref(), self.archive_version(file.package))? {
                 Refresh::Keep => {}
