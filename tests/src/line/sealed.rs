@@ -21,7 +21,7 @@ use anyhow::{bail, Context, Result};
 use protocol::{Command, FrameKind, Sealed, DUMP_LEN};
 
 use super::BAUD;
-use crate::qemu::channel::Channel;
+use crate::qemu::channel::{log_event, Channel};
 use crate::qemu::reply::{Reply, REPLY_TIMEOUT};
 use crate::qemu::serial::{ReadError, ReadErrorKind};
 
@@ -219,7 +219,7 @@ impl Sealing {
                 }
             };
             match (frame.kind, frame.seq) {
-                (FrameKind::Log, _) => channel.logs.push(frame.text()),
+                (FrameKind::Log, _) => channel.logs.push(log_event(&frame.text())?),
                 (_, Some(echoed)) if echoed == seq => {
                     return Reply::decode(frame).with_context(|| format!("the reply to `{command}`"))
                 }
