@@ -82,8 +82,15 @@ pub fn build_image_with(enrollment: &Enrollment, debian: &Unpacked, image: &Path
 /// bootloader, made first if need be, else checked), in order. Both are
 /// no-ops when nothing changed: tests/tests/image_build.rs runs them twice.
 pub fn stage_builds() -> Result<Vec<Command>> {
+    stage_builds_with(&PatchedBootloader::in_target_dir())
+}
+
+/// [`stage_builds`] against the patched copy `patched` (a test's, for
+/// one): it is made first if need be, else checked file by file, and a
+/// copy edited by hand stops the build here, before anything compiles.
+pub fn stage_builds_with(patched: &PatchedBootloader) -> Result<Vec<Command>> {
     ensure_toolchain()?;
-    let patched = patched_copy::prepare()?;
+    patched_copy::prepare(patched)?;
     eprintln!("image: building the kernel and the image writer (the first build takes minutes)");
     let mut writer = NightlyBuild::IMAGE_WRITER.command();
     patched.configure(&mut writer)?;
