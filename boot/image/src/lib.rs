@@ -20,6 +20,7 @@ pub mod cargo;
 pub mod once;
 pub mod patched_copy;
 pub mod process;
+pub mod provenance;
 pub mod secure_boot;
 pub mod sources;
 pub mod toolchain;
@@ -30,7 +31,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use anyhow::{ensure, Context, Result};
+use anyhow::{Context, Result};
 
 use crate::cargo::NightlyBuild;
 use crate::once::once_per_process;
@@ -49,16 +50,15 @@ use crate::toolchain::ensure_toolchain;
 /// in their package's directory.
 pub const IMAGE_ENV: &str = "POLYLAB_IMAGE";
 
-/// The raw image, built once per process (or taken from [`IMAGE_ENV`]),
-/// its loader to be enrolled by its hash ([`Enrollment::Hash`]). Installs
-/// the pinned nightly first when it is missing.
+/// The raw image, built once per process (or taken from [`IMAGE_ENV`] if
+/// it is this tree's build, or [`provenance::MEANT_ENV`] says it is
+/// meant), its loader to be enrolled by its hash ([`Enrollment::Hash`]).
+/// Installs the pinned nightly first when it is missing.
 pub fn build_image() -> Result<PathBuf> {
     static IMAGE: OnceLock<Result<PathBuf, String>> = OnceLock::new();
     once_per_process(&IMAGE, || {
-        if let Some(image) = std::env::var_os(IMAGE_ENV) {
-            let image = workspace::root().join(image);
-            ensure!(image.is_file(), "{IMAGE_ENV} names {}, which is not a file", image.display());
-            eprintln!("image: using {} from {IMAGE_ENV}", image.display());
+        let given = provenance::image_given(std::env::var_os(IMAGE_ENV), std::env::var_os(provenance::MEANT_ENV))?;
+        if let Some(image) = given {
             return Ok(image);
         }
         build_image_with(&Enrollment::Hash, &debian_packages(), &image_path())
@@ -69,11 +69,13 @@ pub fn build_image() -> Result<PathBuf> {
 /// says, shim and MokManager from `debian`.
 pub fn build_image_with(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Result<PathBuf> {
     key::warn_of_old_key();
+    let sources = provenance::sources_digest(workspace::root())?;
     for mut build in stage_builds()? {
         run_streaming(&mut build).context("failed to build the kernel or the image writer")?;
     }
     PatchedBootloader::in_target_dir().ensure_used()?;
     write_image(enrollment, debian, image)?;
+    provenance::record(image, &sources)?;
     eprintln!("image: built {}", image.display());
     Ok(image.to_path_buf())
 }
