@@ -25,11 +25,10 @@ use boot_image::build_image;
 use boot_image::process::command_line;
 use protocol::Ready;
 
+use crate::client::{forward_bytes, Console, FrameReader};
 use crate::prerequisites::{
     ensure_bochs, system_file, BOCHS, BOCHS_BIOS, BOCHS_BIOS_ENV, BOCHS_CIRRUS_VGA_BIOS, BOCHS_CIRRUS_VGA_BIOS_ENV,
 };
-use crate::qemu::console::Console;
-use crate::qemu::serial::{forward_bytes, FrameReader};
 use crate::supervisor::Supervised;
 
 /// Longest wait for Bochs to connect COM1 to the harness.

@@ -17,8 +17,9 @@
 
 pub mod bochs;
 pub mod browser;
+pub mod cable;
 pub mod checks;
-pub mod line;
+pub mod client;
 pub mod packages;
 pub mod picture;
 pub mod prerequisites;
@@ -29,8 +30,7 @@ pub mod soak;
 pub mod supervisor;
 pub mod workspace;
 
+pub use client::{Console, Dump, Reply};
 pub use picture::compare::compare_images;
 pub use picture::{render, Image};
-pub use qemu::console::Console;
-pub use qemu::reply::{Dump, Reply};
 pub use qemu::{Adapter, Board, Clock, Cpu, Display, DisplayAhead, ExitDevice, Medium, Qemu, QemuOptions, SerialLine};

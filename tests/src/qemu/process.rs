@@ -15,10 +15,9 @@ use protocol::{Firmware, Ready};
 
 use super::arguments::{qemu_arguments, qmp_socket, uefi_variables, CARD_BEHIND_ID};
 use super::board::AHEAD_ID;
-use super::console::Console;
 use super::options::{Adapter, QemuOptions, SerialLine};
 use super::qmp::{Qmp, QMP_TIMEOUT};
-use super::serial::{forward_bytes, FrameReader};
+use crate::client::{forward_bytes, Console, FrameReader};
 use crate::picture::Image;
 use crate::prerequisites::{
     ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_secure_boot_ovmf, ovmf_microsoft_vars, ovmf_vars, QEMU,
