@@ -1,6 +1,6 @@
 //! `reference`: the rule of `docs/conventions.md#what-exact-means`
 //! computed the plainest way, to judge every method by. Not a method (it is
-//! not in [`crate::methods::ALL`]): it is slow on purpose, visiting every
+//! not one of [`crate::MethodId::ALL`]): it is slow on purpose, visiting every
 //! pixel of the polygon's bounding box within the target and testing every
 //! edge at its sample point, with products in `i128` so that no `i32`
 //! input can overflow.

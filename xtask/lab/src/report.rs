@@ -89,7 +89,7 @@ fn exact_goals(out: &mut String, results: &Results) {
     let _ = writeln!(out, "## `{EXACT}` against its goals\n");
     let rows: Vec<&Row> = results.rows_of(EXACT).collect();
     if rows.is_empty() {
-        let _ = writeln!(out, "No `{EXACT}` method in `raster::methods::ALL` yet.\n");
+        let _ = writeln!(out, "No `{EXACT}` method in `raster::MethodId::ALL` yet.\n");
         return;
     }
     let sum = |pick: fn(&Row) -> Option<u64>| rows.iter().filter_map(|r| pick(r)).sum::<u64>();

@@ -22,7 +22,7 @@ use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
 use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::interface::{Builtin, MethodId};
+use crate::methods::interface::Builtin;
 use crate::target::SpanSink;
 
 /// Listing 38.1.
@@ -46,7 +46,6 @@ static INFO: MethodInfo = MethodInfo {
 };
 
 impl Builtin for AbrashFloat {
-    const ID: MethodId = MethodId::AbrashFloat;
     const INFO: &'static MethodInfo = &INFO;
 
     fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {

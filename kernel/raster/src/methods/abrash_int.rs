@@ -29,7 +29,7 @@ use core::ops::Range;
 use super::abrash_float::{fill_with, Segment, CONVENTION};
 use crate::geometry::{FillRule, Polygon};
 use crate::methods::info::{Class, Heap, MethodInfo, Refusal};
-use crate::methods::interface::{Builtin, MethodId};
+use crate::methods::interface::Builtin;
 use crate::target::SpanSink;
 
 /// Listings 38.1, 39.1 and 39.2.
@@ -46,7 +46,6 @@ static INFO: MethodInfo = MethodInfo {
 };
 
 impl Builtin for AbrashInt {
-    const ID: MethodId = MethodId::AbrashInt;
     const INFO: &'static MethodInfo = &INFO;
 
     fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {

@@ -51,7 +51,7 @@ use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Point, Polygon, SUBPIXEL_BITS};
 use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::interface::{Builtin, MethodId};
+use crate::methods::interface::Builtin;
 use crate::target::SpanSink;
 
 /// `poly()` and its helpers.
@@ -73,7 +73,6 @@ static INFO: MethodInfo = MethodInfo {
 };
 
 impl Builtin for Pendleton {
-    const ID: MethodId = MethodId::Pendleton;
     const INFO: &'static MethodInfo = &INFO;
 
     fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {

@@ -49,7 +49,7 @@ use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Polygon};
 use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::interface::{Builtin, MethodId};
+use crate::methods::interface::Builtin;
 use crate::target::SpanSink;
 
 /// The tutorial's `fillpoly`.
@@ -73,7 +73,6 @@ static INFO: MethodInfo = MethodInfo {
 };
 
 impl Builtin for Wgt {
-    const ID: MethodId = MethodId::Wgt;
     const INFO: &'static MethodInfo = &INFO;
 
     fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {

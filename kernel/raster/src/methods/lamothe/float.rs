@@ -21,7 +21,7 @@
 
 use crate::geometry::{FillRule, PixelPoint, Polygon};
 use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::interface::{Builtin, MethodId};
+use crate::methods::interface::Builtin;
 use crate::target::SpanSink;
 
 use super::halves::{fill_polygon, EdgePair, FlatHalves};
@@ -44,7 +44,6 @@ static INFO: MethodInfo = MethodInfo {
 };
 
 impl Builtin for Lamothe {
-    const ID: MethodId = MethodId::Lamothe;
     const INFO: &'static MethodInfo = &INFO;
 
     fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
