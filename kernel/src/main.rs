@@ -7,10 +7,12 @@
 //! show), and serves the host's commands over COM1 as soon as one arrives
 //! (`server`).
 //!
-//! Hardware access lives in small modules with `// SAFETY:` notes
-//! (`port`, `video`, `paging`, `pat`, `apic`, `timers`, `heap`, `gdt`,
-//! `interrupts`, `fault`, and `clock`'s one RDTSC); everything above them
-//! is safe code.
+//! `unsafe` code lives in these modules alone, each block with a
+//! `// SAFETY:` note: hardware access in `port`, `video`, `paging`, `pat`,
+//! `apic`, `timers`, `heap`, `gdt`, `interrupts` and `fault`; `clock`'s one
+//! RDTSC; and `serial`'s one forced unlock of COM1's driver, when a fatal
+//! error interrupted the code that held it. Everything above them is safe
+//! code.
 #![no_std]
 #![no_main]
 #![feature(abi_x86_interrupt)]
