@@ -16,7 +16,7 @@
 //!   imageproc's `draw_polygon_mut` (`imageproc.rs`). Each samples
 //!   whole-pixel points and includes both ends of every span, so its own
 //!   convention is the closed polygon at whole-pixel points
-//!   ([`Own::Closed`]); Allegro and imageproc draw the outline too. These
+//!   ([`Own::Closed`](crate::convention::Own::Closed)); Allegro and imageproc draw the outline too. These
 //!   four are driven alike (`integer.rs`): each file gives its library's
 //!   target as an `integer::Canvas`, and an `integer::IntegerPeer` over it
 //!   is the peer.
@@ -24,8 +24,8 @@
 //! Each file's own notes say how its peer is called and what it computes
 //! in. A peer's picture is read back as spans by `rows.rs`.
 //!
-//! Adding a peer: a file with a value implementing [`Peer`] (a unit
-//! struct, or an `IntegerPeer` over a `Canvas` for a library taking
+//! Adding a peer: a file with a value implementing [`Peer`] (`peer.rs`: a
+//! unit struct, or an `IntegerPeer` over a `Canvas` for a library taking
 //! whole-pixel contours), its `mod` line here and its place in [`ALL`].
 
 mod allegro;
@@ -34,6 +34,7 @@ mod embedded_graphics;
 mod gd;
 mod imageproc;
 mod integer;
+mod peer;
 mod rows;
 mod sdl_gfx;
 #[cfg(test)]
@@ -41,43 +42,7 @@ mod test_support;
 mod tiny_skia;
 mod vello_cpu;
 
-use raster::{Polygon, SpanSink};
-
-use crate::convention::Own;
-use crate::corpus::Family;
-
-/// What a peer is, as data: the peers' counterpart of a method's
-/// `raster::MethodInfo`.
-#[derive(Clone, Copy, Debug)]
-pub struct PeerInfo {
-    /// Its name in the results and the charts.
-    pub name: &'static str,
-    /// The library, its version and the call made.
-    pub source: &'static str,
-    /// Arithmetic and convention, in words.
-    pub summary: &'static str,
-    /// How it decides which pixels are in: what it is judged against
-    /// "under its own convention".
-    pub own: Own,
-}
-
-/// A peer library, as the lab runs it.
-pub trait Peer: Sync {
-    fn info(&self) -> &PeerInfo;
-
-    /// Whether it runs on `family` at all; every family, unless it says
-    /// otherwise.
-    fn takes(&self, _family: &Family) -> bool {
-        true
-    }
-
-    /// Draws `polygon` into `sink`, or says why nothing could be drawn.
-    fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str>;
-
-    /// One timed pass: fills every polygon it accepts of `polygons`, in
-    /// order, into its own target. Inputs are converted before the pass.
-    fn pass<'a>(&self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a>;
-}
+pub use peer::{Peer, PeerInfo};
 
 /// Every peer, in the order the results and the charts list them.
 pub static ALL: [&dyn Peer; 8] = [
@@ -93,10 +58,11 @@ pub static ALL: [&dyn Peer; 8] = [
 
 #[cfg(test)]
 mod tests {
-    use raster::{CoverageSink, FillRule, SCREEN};
+    use raster::{CoverageSink, FillRule, Polygon, SCREEN};
 
     use super::test_support::{family, square, Spans};
     use super::*;
+    use crate::convention::Own;
 
     const INTEGER_PEERS: [&dyn Peer; 4] = [&allegro::ALLEGRO, &sdl_gfx::SDL_GFX, &gd::GD, &imageproc::IMAGEPROC];
 
