@@ -90,12 +90,12 @@ pub mod reference;
 pub mod sink;
 mod target;
 
-pub use classify::classify;
+pub use classify::{classify, Class};
 pub use coverage::{CoverageReport, CoverageSink};
 pub use framebuffer::Framebuffer;
 pub use geometry::{FillRule, PixelPoint, Point, Polygon, SUBPIXEL_BITS, SUBPIXEL_ONE};
 pub use methods::exact::{fill_auto, fill_auto_with, ExactPath, Scratch};
-pub use methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
+pub use methods::info::{Heap, MethodInfo, Refusal};
 pub use methods::interface::Method;
 pub use methods::method_id::{MethodId, UnknownMethod};
 pub use target::{Size, SpanSink, SCREEN};

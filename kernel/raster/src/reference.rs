@@ -11,8 +11,19 @@
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Point, Polygon, SUBPIXEL_ONE};
-use crate::methods::info::Convention;
 use crate::target::SpanSink;
+
+/// Where a method samples a pixel, in subpixels from the pixel's top-left
+/// corner: (128, 128) is the centre (our convention), (0, 0) the integer
+/// grid point (Abrash's). The lab judges a method against the reference
+/// under our convention and under its own.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Convention {
+    pub sample_x: i32,
+    pub sample_y: i32,
+    /// One line for people: how the method decides which pixels are in.
+    pub summary: &'static str,
+}
 
 /// Where each pixel is sampled, in subpixels from its top-left corner.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

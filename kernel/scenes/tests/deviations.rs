@@ -1,7 +1,7 @@
 //! How far each classic method is from the exact reference on the pages of
 //! Listing 38.3 (`docs/scenes.md#chapter-38-sample-program`), under our convention (pixel centres,
 //! [`SampleOffset::CENTRE`]) and under the method's own
-//! ([`SampleOffset::of`] its [`Convention`](raster::Convention)): the
+//! ([`SampleOffset::of`] its [`Convention`](raster::reference::Convention)): the
 //! measured counts are pinned, each with the reason it is what it is.
 //!
 //! Counted polygon by polygon: each polygon the method draws is compared

@@ -27,8 +27,9 @@
 use core::ops::Range;
 
 use super::abrash_float::{fill_with, Segment, CONVENTION};
+use crate::classify::Class;
 use crate::geometry::{FillRule, Polygon};
-use crate::methods::info::{Class, Heap, MethodInfo, Refusal};
+use crate::methods::info::{Heap, MethodInfo, Refusal};
 use crate::methods::interface::Builtin;
 use crate::target::SpanSink;
 

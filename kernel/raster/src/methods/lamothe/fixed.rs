@@ -23,9 +23,11 @@
 //! - Classes: triangles; quads and convex polygons through the parent
 //!   module's split and fan.
 
+use crate::classify::Class;
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
+use crate::methods::info::{Heap, MethodInfo, Refusal};
 use crate::methods::interface::Builtin;
+use crate::reference::Convention;
 use crate::target::SpanSink;
 
 use super::halves::{fill_polygon, EdgePair, FlatHalves};
