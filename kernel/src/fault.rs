@@ -2,12 +2,12 @@
 //! the harness can prove that the handlers in `interrupts.rs` and the
 //! panic handler report it, by its name, and exit QEMU with the failure
 //! code; and raises a stray interrupt, which the kernel must survive.
-//! Answered only on QEMU (`console.rs`).
+//! Answered only on QEMU (`server.rs`).
 
 use core::arch::asm;
 use core::hint::black_box;
 
-use protocol::{Fatal, FaultKind, Raised, StrayRaised};
+use protocol::{FatalReport, FaultKind, Raised, StrayRaised};
 
 use crate::clock::Deadline;
 use crate::fatal::fatal;
@@ -53,13 +53,13 @@ pub fn provoke(kind: FaultKind) -> StrayRaised {
         FaultKind::Panic => panic!("FAULT panic: the host asked for it"),
         FaultKind::StrayInterrupt => return raise_stray_interrupt(),
     }
-    fatal(Fatal::HandlerReturned(kind))
+    fatal(FatalReport::HandlerReturned(kind))
 }
 
 /// Raises [`STRAY_VECTOR`] as a device would, through the local APIC (a
 /// self-IPI, which the APIC then has in service until its end of
 /// interrupt), and waits for it to be taken; with no local APIC, by
-/// `int`. Call with interrupts on (the console runs so).
+/// `int`. Call with interrupts on (the server runs so).
 fn raise_stray_interrupt() -> StrayRaised {
     let before = interrupts::stray_count(STRAY_VECTOR);
     let raised = if apic::send_to_self(STRAY_VECTOR) {

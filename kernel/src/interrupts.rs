@@ -23,13 +23,13 @@
 //!   interrupt of its priority or below.
 //!
 //! Handlers only count (atomics, nothing else is safe to touch from an
-//! NMI): [`report`], from the show's frames and the console, sends a
+//! NMI): [`report`], from the show's frames and the server, sends a
 //! `LOG` frame per NMI and per vector that came again since, and `PING`
 //! tells the totals ([`counts`]).
 
 use core::sync::atomic::{AtomicU32, AtomicU8, Ordering};
 
-use protocol::{EndedAt, Fatal, InterruptCounts, LogEvent, PageFaultCode, PAGE_FAULT_VECTOR};
+use protocol::{EndedAt, FatalReport, InterruptCounts, LogEvent, PageFaultCode, PAGE_FAULT_VECTOR};
 use spin::Lazy;
 use x86_64::registers::control::Cr2;
 use x86_64::set_general_handler;
@@ -135,15 +135,15 @@ fn exception(frame: InterruptStackFrame, vector: u8, error: Option<u64>) {
     match (vector, error) {
         // CR2 holds the address whose access faulted.
         (PAGE_FAULT_VECTOR, Some(code)) => {
-            fatal(Fatal::PageFault { address: Cr2::read_raw(), code: PageFaultCode::new(code), at })
+            fatal(FatalReport::PageFault { address: Cr2::read_raw(), code: PageFaultCode::new(code), at })
         }
-        _ => fatal(Fatal::Exception { vector, error, at }),
+        _ => fatal(FatalReport::Exception { vector, error, at }),
     }
 }
 
 extern "x86-interrupt" fn double_fault(frame: InterruptStackFrame, error: u64) -> ! {
     let (at, stack) = (frame.instruction_pointer.as_u64(), frame.stack_pointer.as_u64());
-    fatal(Fatal::DoubleFault { error, at, stack })
+    fatal(FatalReport::DoubleFault { error, at, stack })
 }
 
 /// Stray interrupts taken on `vector` since boot.

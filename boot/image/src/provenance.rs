@@ -14,7 +14,9 @@ use std::ffi::OsString;
 use anyhow::{bail, ensure, Context, Result};
 use sha2::{Digest, Sha256};
 
-use crate::{workspace, IMAGE_ENV};
+use install::workspace;
+
+use crate::IMAGE_ENV;
 
 /// Set to `1`: the image [`IMAGE_ENV`] names is meant,
 /// whatever it was built from (an image of another build, made by hand to
