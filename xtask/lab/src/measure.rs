@@ -426,7 +426,7 @@ pub fn quietly<T>(f: impl FnOnce() -> T) -> T {
 mod tests {
     use super::*;
     use crate::corpus::Group;
-    use crate::peers::{Peer, PeerInfo};
+    use crate::peers::{Clock, Peer, PeerInfo};
     use raster::{MethodId, Point, SpanSink};
 
     /// A peer that misbehaves on purpose, by colour: 1 draws the exact
@@ -434,8 +434,21 @@ mod tests {
     /// the target.
     struct Misfit;
 
-    static MISFIT: PeerInfo =
-        PeerInfo { name: "misfit", source: "test", summary: "test", own: Own::Sample(SampleOffset::CENTRE) };
+    static MISFIT: PeerInfo = PeerInfo {
+        name: "misfit",
+        source: "test",
+        summary: "test",
+        own: Own::Sample(SampleOffset::CENTRE),
+        clock: Clock {
+            before: "test",
+            setup: "test",
+            fill: "test",
+            surface: "test",
+            pixel_format: "test",
+            anti_aliasing: "test",
+        },
+        variant_of: None,
+    };
 
     impl Peer for Misfit {
         fn info(&self) -> &PeerInfo {

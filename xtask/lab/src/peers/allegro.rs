@@ -25,7 +25,7 @@ use std::sync::{Mutex, MutexGuard, OnceLock};
 use raster::{Polygon, SpanSink, SCREEN};
 
 use super::integer::{whole_pixel_contour, Canvas, Contour, IntegerPeer, Reach};
-use super::peer::PeerInfo;
+use super::peer::{Clock, PeerInfo};
 use super::rows::emit_row;
 use crate::convention::Own;
 
@@ -41,6 +41,15 @@ pub static ALLEGRO: IntegerPeer<AllegroCanvas> = IntegerPeer::new(PeerInfo {
          spans inclusive, each edge's pixels drawn too; even-odd, one contour",
     // The closed polygon at whole-pixel points, its outline drawn too.
     own: Own::Closed { outline: true },
+    clock: Clock {
+        before: "the contour rounded to whole pixels, an `int` array",
+        setup: "none",
+        fill: "`polygon()`",
+        surface: "`create_bitmap_ex(8, 320, 200)`, a memory bitmap",
+        pixel_format: "8-bit index",
+        anti_aliasing: "none; whole-pixel points, spans inclusive, each edge's own pixels too",
+    },
+    variant_of: None,
 });
 
 /// The colour index it fills with (0 is the cleared bitmap).

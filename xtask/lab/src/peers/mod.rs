@@ -4,7 +4,9 @@
 //! [`ALL`]:
 //!
 //! - tiny-skia (`tiny_skia.rs`), Cairo (`cairo.rs`) and vello_cpu
-//!   (`vello_cpu.rs`), aliased, given our subpixel vertices as floats;
+//!   (`vello_cpu.rs`), aliased, given our subpixel vertices as floats, each
+//!   twice: with its paths built before the clock starts (Cairo's kept
+//!   with `copy_path` and appended for each fill) and for every fill;
 //! - embedded-graphics (`embedded_graphics.rs`), a triangle of whole-pixel
 //!   vertices, for triangle families only;
 //! - and the aliased fillers people reach for to fill a byte buffer, each
@@ -16,7 +18,7 @@
 //!   imageproc's `draw_polygon_mut` (`imageproc.rs`). Each samples
 //!   whole-pixel points and includes both ends of every span, so its own
 //!   convention is the closed polygon at whole-pixel points
-//!   ([`Own::Closed`](crate::convention::Own::Closed)); Allegro and imageproc draw the outline too. These
+//!   ([`Own::Closed`]); Allegro and imageproc draw the outline too. These
 //!   four are driven alike (`integer.rs`): each file gives its library's
 //!   target as an `integer::Canvas`, and an `integer::IntegerPeer` over it
 //!   is the peer.
@@ -27,6 +29,8 @@
 //! Adding a peer: a file with a value implementing [`Peer`] (`peer.rs`: a
 //! unit struct, or an `IntegerPeer` over a `Canvas` for a library taking
 //! whole-pixel contours), its `mod` line here and its place in [`ALL`].
+//! Its [`PeerInfo`] says what it does inside the clock ([`Clock`]): a row
+//! of the table in docs/lab.md, which a test holds to these.
 
 mod allegro;
 mod cairo;
@@ -42,14 +46,19 @@ mod test_support;
 mod tiny_skia;
 mod vello_cpu;
 
-pub use peer::{Peer, PeerInfo};
+pub use peer::{Clock, Peer, PeerInfo};
 
-/// Every peer, in the order the results and the charts list them.
-pub static ALL: [&dyn Peer; 8] = [
-    &tiny_skia::TinySkia,
-    &cairo::Cairo,
+/// Every peer, in the order the results and the charts list them. Where a
+/// peer's API lets a program build its path once, it is here twice: with
+/// the paths built before the clock starts and for every fill inside it.
+pub static ALL: [&dyn Peer; 11] = [
+    &tiny_skia::TINY_SKIA,
+    &tiny_skia::TINY_SKIA_PATH_EACH_FILL,
+    &cairo::CAIRO,
+    &cairo::CAIRO_PATH_KEPT,
     &embedded_graphics::EmbeddedGraphics,
-    &vello_cpu::VelloCpu,
+    &vello_cpu::VELLO_CPU,
+    &vello_cpu::VELLO_CPU_PATH_EACH_FILL,
     &allegro::ALLEGRO,
     &sdl_gfx::SDL_GFX,
     &gd::GD,
