@@ -107,7 +107,11 @@ pub fn cycles() -> u64 {
 /// took (`BENCH` and `SHOW` both time their draws with it). RDTSC is not
 /// serializing: the fences only keep the compiler from moving `work`
 /// across the reads, which is enough for whole draws of thousands of
-/// cycles.
+/// cycles. Always inlined, so that what is timed is compiled as part of
+/// its caller wherever this helper lives: moved here from `bench.rs`
+/// without it, the draws it times compiled differently and `cargo xtask
+/// kbench` counted from 1.0% fewer to 1.25% more instructions.
+#[inline(always)]
 pub fn timed<R>(work: impl FnOnce() -> R) -> (R, u64) {
     let start = cycles();
     compiler_fence(Ordering::SeqCst);
