@@ -40,11 +40,7 @@ use install::process::run_streaming;
 use install::toolchain::ensure_toolchain;
 use install::workspace;
 
-/// Names a prebuilt image to use instead of building one (`cargo xtask
-/// test` builds once and hands it to every test binary this way). A
-/// relative path is taken from the workspace root, since test binaries run
-/// in their package's directory.
-pub const IMAGE_ENV: &str = "POLYLAB_IMAGE";
+pub use provenance::IMAGE_ENV;
 
 /// The raw image, built once per process (or taken from [`IMAGE_ENV`] if
 /// it is this tree's build, or [`provenance::MEANT_ENV`] says it is

@@ -7,16 +7,19 @@
 //! session would have every QEMU test judge an old kernel, saying so only
 //! on a standard error the test harness captures.
 
-use std::path::{Path, PathBuf};
-
 use std::ffi::OsString;
+use std::path::{Path, PathBuf};
 
 use anyhow::{bail, ensure, Context, Result};
 use sha2::{Digest, Sha256};
 
 use install::workspace;
 
-use crate::IMAGE_ENV;
+/// Names a prebuilt image to use instead of building one (`cargo xtask
+/// test` builds once and hands it to every test binary this way). A
+/// relative path is taken from the workspace root, since test binaries run
+/// in their package's directory.
+pub const IMAGE_ENV: &str = "POLYLAB_IMAGE";
 
 /// Set to `1`: the image [`IMAGE_ENV`] names is meant,
 /// whatever it was built from (an image of another build, made by hand to
