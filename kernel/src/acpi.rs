@@ -1,6 +1,7 @@
-//! The ACPI tables, read only as far as the clock needs them: where the
-//! power management timer's port is (the FADT) and where the HPET's
-//! registers are (the HPET table).
+//! The ACPI tables, read only as far as the kernel needs them: where the
+//! power management timer's port is (the FADT), where the HPET's
+//! registers are (the HPET table), and where the I/O APICs are and which
+//! of their pins an ISA IRQ reaches (the MADT).
 //!
 //! The bootloader hands over the RSDP's physical address: under UEFI from
 //! the firmware's configuration table, under a BIOS found in the BIOS
@@ -85,6 +86,46 @@ pub fn hpet(rsdp: u64) -> Option<u64> {
     let gas = table.get(HPET_BASE..HPET_BASE + GAS_LEN)?;
     let address = u64_at(gas, GAS_ADDRESS)?;
     (gas[0] == GAS_SYSTEM_MEMORY && address != 0).then_some(address)
+}
+
+/// The MADT: after the header, the local APIC's address and flags (8
+/// bytes), then entries of a type byte and a length byte each: type 1 an
+/// I/O APIC (its address at byte 4, the first global system interrupt it
+/// takes at byte 8), type 2 an interrupt source override (the ISA IRQ at
+/// byte 3, the global system interrupt it reaches at byte 4).
+const MADT_ENTRIES: usize = HEADER_LEN + 8;
+const MADT_IO_APIC: u8 = 1;
+const MADT_OVERRIDE: u8 = 2;
+
+/// An I/O APIC as the MADT describes it.
+#[derive(Clone, Copy)]
+pub struct IoApicEntry {
+    /// Its registers' physical address.
+    pub address: u64,
+    /// The global system interrupt its pin 0 takes.
+    pub first_interrupt: u32,
+}
+
+/// The I/O APICs the MADT under `rsdp` lists, and the global system
+/// interrupt ISA IRQ `irq` reaches (the IRQ's own number unless an
+/// override says otherwise).
+pub fn io_apics(rsdp: u64, irq: u8) -> Option<(Vec<IoApicEntry>, u32)> {
+    let madt = table(rsdp, b"APIC")?;
+    let mut io_apics = Vec::new();
+    let mut interrupt = u32::from(irq);
+    let mut at = MADT_ENTRIES;
+    while let [kind, len, ..] = *madt.get(at..)? {
+        let entry = madt.get(at..at + usize::from(len).max(2))?;
+        match kind {
+            MADT_IO_APIC => {
+                io_apics.push(IoApicEntry { address: u64::from(u32_at(entry, 4)?), first_interrupt: u32_at(entry, 8)? })
+            }
+            MADT_OVERRIDE if entry.get(3) == Some(&irq) => interrupt = u32_at(entry, 4)?,
+            _ => {}
+        }
+        at += entry.len();
+    }
+    Some((io_apics, interrupt))
 }
 
 /// The table with `signature` the root table under `rsdp` lists, checked.

@@ -9,10 +9,10 @@
 //!
 //! `unsafe` code lives in these modules alone, each block with a
 //! `// SAFETY:` note: hardware access in `port`, `video`, `paging`, `pat`,
-//! `apic`, `timers`, `heap`, `gdt`, `interrupts` and `fault`; `clock`'s one
-//! RDTSC; and `serial`'s one forced unlock of COM1's driver, when a fatal
-//! error interrupted the code that held it. Everything above them is safe
-//! code.
+//! `apic`, `ioapic`, `timers`, `heap`, `gdt`, `interrupts` and `fault`;
+//! `clock`'s one RDTSC; and `serial`'s one forced unlock of COM1's driver,
+//! when a fatal error interrupted the code that held it.
+//! Everything above them is safe code.
 #![no_std]
 #![no_main]
 #![feature(abi_x86_interrupt)]
@@ -33,6 +33,7 @@ mod firmware;
 mod gdt;
 mod heap;
 mod interrupts;
+mod ioapic;
 mod keyboard;
 mod line;
 mod machine;
@@ -44,8 +45,10 @@ mod pit;
 mod player;
 mod port;
 mod presenter;
+mod rtc;
 mod serial;
 mod server;
+mod storm;
 mod timers;
 mod vga;
 mod video;
@@ -76,6 +79,7 @@ fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
     clock::init(boot_info.rsdp_addr.into_option());
     serial::init();
     apic::init();
+    ioapic::init(boot_info.rsdp_addr.into_option());
     let firmware = firmware::of(boot_info);
     let displays = pci::Displays::scan();
     let mut screen = video::Screen::open(boot_info, firmware, &displays);

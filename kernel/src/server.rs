@@ -181,6 +181,10 @@ impl Server<'_> {
             },
             Command::Ready => Ok((FrameKind::Ready, ready(self.screen).to_string().into_bytes())),
             Command::Clock => ok(clock::rate()),
+            Command::ForceClock { source, stalled } => {
+                on_qemu(command.name())?;
+                clock::force(source, stalled).map(ok).ok_or(ErrorReply::NoTimer(source))?
+            }
             Command::Exit(code) => {
                 on_qemu(command.name())?;
                 exit::stop(code)

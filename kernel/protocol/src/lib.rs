@@ -27,10 +27,10 @@ mod frames;
 mod replies;
 mod sealed;
 
-pub use commands::{Command, CommandError, FaultKind};
+pub use commands::{Command, CommandError, FaultKind, FIRST_INTERRUPT_VECTOR, STORM_VECTOR, STRAY_VECTOR};
 pub use events::{
-    EndedAt, ErrorReply, FatalReport, LogEvent, MachineEvidence, PageFaultCode, DOUBLE_FAULT_VECTOR, EXCEPTION_NAMES,
-    PAGE_FAULT_VECTOR,
+    EndedAt, ErrorReply, FatalReport, LogEvent, MachineEvidence, MaskedAt, PageFaultCode, DOUBLE_FAULT_VECTOR,
+    EXCEPTION_NAMES, PAGE_FAULT_VECTOR,
 };
 pub use frames::{FrameHeader, FrameKind};
 pub use replies::{
