@@ -10,14 +10,18 @@
 //! length, checksum) before anything in it is used, and only addresses a
 //! checked table names are read, through the bootloader's map of physical
 //! memory (`paging::read_physical`): a corrupt table is refused, not
-//! followed. The layouts are the ACPI specification's (6.5: "Root System
+//! followed; and a table is read only where the memory map says the
+//! firmware keeps its own memory (reserved, ACPI, ACPI NVS:
+//! `memory_map.rs`), never at an address a root table names in RAM or in
+//! a device's registers, which reading can disturb. The layouts are the
+//! ACPI specification's (6.5: "Root System
 //! Description Pointer", "Fixed ACPI Description Table"; the IA-PC HPET
 //! specification for the HPET table).
 
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::paging;
+use crate::{memory_map, paging};
 
 /// The RSDP: its signature, the bytes its first checksum covers (ACPI
 /// 1.0's structure), and the revision, RSDT, length and XSDT fields.
@@ -134,7 +138,9 @@ fn table(rsdp: u64, signature: &[u8; 4]) -> Option<Vec<u8>> {
     let entries = root.get(HEADER_LEN..)?.chunks_exact(entry_len).filter_map(entry_address);
     let is_it = |&address: &u64| {
         let mut found = [0; 4];
-        paging::read_physical(address, &mut found).is_some() && found == *signature
+        memory_map::holds_firmware_tables(address, HEADER_LEN as u64)
+            && paging::read_physical(address, &mut found).is_some()
+            && found == *signature
     };
     entries.filter(is_it).find_map(read_table)
 }
@@ -160,13 +166,17 @@ fn root_table(rsdp: u64) -> Option<(Vec<u8>, usize)> {
     Some((rsdt, 4))
 }
 
-/// The table at physical address `address`, whole, if its header's length
-/// is sane and its bytes sum to zero.
+/// The table at physical address `address`, whole, if it lies in the
+/// firmware's memory, its header's length is sane and its bytes sum to
+/// zero.
 fn read_table(address: u64) -> Option<Vec<u8>> {
+    if !memory_map::holds_firmware_tables(address, HEADER_LEN as u64) {
+        return None;
+    }
     let mut header = [0; HEADER_LEN];
     paging::read_physical(address, &mut header)?;
     let length = u32_at(&header, HEADER_LENGTH)? as usize;
-    if !(HEADER_LEN..=MAX_TABLE_LEN).contains(&length) {
+    if !(HEADER_LEN..=MAX_TABLE_LEN).contains(&length) || !memory_map::holds_firmware_tables(address, length as u64) {
         return None;
     }
     let mut table = vec![0; length];

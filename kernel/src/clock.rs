@@ -36,7 +36,7 @@
 use core::arch::x86_64::__cpuid;
 use core::sync::atomic::{compiler_fence, AtomicU64, AtomicU8, Ordering};
 
-use protocol::{ClockReadings, ClockSource, TscRate};
+use protocol::{ClockReadings, ClockSource, HpetRefusal, TscRate};
 use spin::Once;
 
 use crate::pit::Stopwatch;
@@ -79,6 +79,8 @@ static SOURCE: AtomicU8 = AtomicU8::new(ClockSource::Assumed as u8);
 static READINGS: Once<ClockReadings> = Once::new();
 /// The ACPI root pointer `init` was given, for [`force`].
 static RSDP: Once<Option<u64>> = Once::new();
+/// The HPET the ACPI tables named and the kernel did not use, and why.
+static HPET_REFUSED: Once<(u64, HpetRefusal)> = Once::new();
 
 /// Measures the TSC's rate against every timer there is, `rsdp` (the
 /// bootloader's ACPI root pointer) leading to those the ACPI tables
@@ -114,9 +116,21 @@ fn rate_of(source: ClockSource, stalls: Stalls) -> Option<u64> {
     match source {
         ClockSource::Pit => rate_against(Stopwatch::start(), stalls),
         ClockSource::PmTimer => rsdp.and_then(PmTimer::find).and_then(|timer| rate_against(timer, stalls)),
-        ClockSource::Hpet => rsdp.and_then(Hpet::find).and_then(|timer| rate_against(timer, stalls)),
+        ClockSource::Hpet => match rsdp.and_then(Hpet::find)? {
+            Ok(timer) => rate_against(timer, stalls),
+            Err(refused) => {
+                HPET_REFUSED.call_once(|| refused);
+                None
+            }
+        },
         ClockSource::Cpuid | ClockSource::Assumed => None,
     }
+}
+
+/// Where the HPET the ACPI tables named is, and why the kernel did not
+/// use it, if it did not: for a `LOG` frame at boot.
+pub fn hpet_refused() -> Option<(u64, HpetRefusal)> {
+    HPET_REFUSED.get().copied()
 }
 
 /// Test only (`CLOCK SOURCE [stalled]`, on QEMU): measures the TSC against

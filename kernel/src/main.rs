@@ -37,6 +37,7 @@ mod ioapic;
 mod keyboard;
 mod line;
 mod machine;
+mod memory_map;
 mod paging;
 mod pat;
 mod pci;
@@ -74,6 +75,7 @@ fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
     interrupts::init();
     heap::init();
     paging::init(boot_info);
+    memory_map::init(boot_info);
     // After the page tables, through which it reaches the ACPI tables and
     // the HPET; before anything that waits.
     clock::init(boot_info.rsdp_addr.into_option());

@@ -45,6 +45,9 @@ pub fn announce(screen: &Screen, firmware: Firmware, identity: &Identity) {
     if !pic::timer_arrives() {
         serial::send_log(LogEvent::NoTimerTick);
     }
+    if let Some((address, why)) = clock::hpet_refused() {
+        serial::send_log(LogEvent::HpetRefused { address, why });
+    }
     for &finding in screen.findings() {
         serial::send_log(finding);
     }

@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::{ensure, Result};
 use harness::{Board, Qemu, QemuOptions};
-use protocol::{ClockReadings, ClockSource, Command, ErrorReply, Firmware, LogEvent, TscRate};
+use protocol::{ClockReadings, ClockSource, Command, ErrorReply, Firmware, HpetRefusal, LogEvent, TscRate};
 
 /// How far two rates of the same TSC may differ.
 const AGREEMENT: f64 = 0.01;
@@ -166,6 +166,30 @@ fn stalls_inside_readings_and_windows_leave_the_rate_as_it_was() -> Result<()> {
         stalled.hz,
         at_boot.hz
     );
+    Ok(())
+}
+
+/// A firmware's HPET table naming an address no HPET can have, played by
+/// an HPET table of the test's own on a board without QEMU's HPET: in RAM
+/// (16 MiB, which the memory map gives the kernel or its loader), and off
+/// the 1 KiB boundary an HPET's registers start on (QEMU's HPET address
+/// plus 4). The kernel must refuse each before it maps or writes anything
+/// there, say why in a `LOG` frame, and measure no HPET; the PM timer and
+/// the PIT, from the same ACPI tables and board, still count.
+#[test]
+fn an_hpet_table_placing_it_in_ram_or_off_its_boundary_is_refused() -> Result<()> {
+    for (address, why) in [(0x100_0000, HpetRefusal::InRam), (0xfed0_0004, HpetRefusal::Misaligned)] {
+        let options =
+            QemuOptions { board: Board::PcWithoutHpet, hpet_table_at: Some(address), ..QemuOptions::default() };
+        let mut qemu = Qemu::boot(options)?;
+        let rate = qemu.console.tsc_rate()?;
+        let on = format!("an HPET table at {address:#x}");
+        eprintln!("harness: {on}: CLOCK {rate}");
+        ensure!(rate.readings.hpet.is_none(), "{on}: CLOCK gives an HPET reading: {rate}");
+        ensure!(rate.source == ClockSource::Pit && rate.readings.pm_timer.is_some(), "{on}: CLOCK {rate}");
+        let refused = LogEvent::HpetRefused { address, why };
+        ensure!(qemu.console.logs().contains(&refused), "{on}: no LOG {refused:?}: {:?}", qemu.console.logs());
+    }
     Ok(())
 }
 

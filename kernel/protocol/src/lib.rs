@@ -29,8 +29,8 @@ mod sealed;
 
 pub use commands::{Command, CommandError, FaultKind, FIRST_INTERRUPT_VECTOR, STORM_VECTOR, STRAY_VECTOR};
 pub use events::{
-    EndedAt, ErrorReply, FatalReport, LogEvent, MachineEvidence, MaskedAt, PageFaultCode, DOUBLE_FAULT_VECTOR,
-    EXCEPTION_NAMES, PAGE_FAULT_VECTOR,
+    EndedAt, ErrorReply, FatalReport, HpetRefusal, LogEvent, MachineEvidence, MaskedAt, PageFaultCode,
+    DOUBLE_FAULT_VECTOR, EXCEPTION_NAMES, PAGE_FAULT_VECTOR,
 };
 pub use frames::{FrameHeader, FrameKind};
 pub use replies::{

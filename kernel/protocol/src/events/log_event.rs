@@ -41,6 +41,27 @@ pub enum LogEvent {
     /// source that fires again after every end of interrupt (a
     /// level-triggered line left high), stopped where `masked` says.
     InterruptStorm { vector: u8, count: u32, window_ms: u32, masked: MaskedAt },
+    /// At boot, the HPET the ACPI tables place at `address` was not used,
+    /// for `why`: nothing of it was mapped or written where the address
+    /// itself was wrong.
+    HpetRefused { address: u64, why: HpetRefusal },
+}
+
+/// Why the kernel did not use the HPET its ACPI table names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HpetRefusal {
+    /// The address is not on a 1 KiB boundary, as an HPET's register
+    /// block is.
+    Misaligned,
+    /// The registers would lie in RAM the memory map gives the kernel or
+    /// its loader.
+    InRam,
+    /// The capabilities register read `capabilities`: no revision (bits
+    /// 0-7 zero), or all ones (nothing answers there).
+    NotAnHpet { capabilities: u32 },
+    /// The counter's period, in femtoseconds, is outside 100 ps to 100 ns
+    /// (the specification's longest; Linux refuses shorter than 100 ps).
+    Period { femtoseconds: u32 },
 }
 
 /// Where the kernel masked a storming vector's source.
@@ -111,6 +132,11 @@ const BESIDE_THE_VGA: [&str; 2] = [
     "video: the firmware's framebuffer is not in the memory of the VGA at ",
     ": the frame goes to the framebuffer, where the firmware showed its screen",
 ];
+const HPET_AT: &str = "HPET: its ACPI table places it at ";
+const MISALIGNED: &str = ", not on a 1 KiB boundary; not used";
+const IN_RAM: &str = ", in RAM the memory map gives the kernel or its loader; not used";
+const NOT_AN_HPET: &str = ": no HPET there; not used";
+const BAD_PERIOD: &str = ", outside 100000 fs to 100000000 fs; not used";
 const NOWHERE: &str = "no entry sends it, so nothing was masked";
 const SERR: [&str; 2] = ["no SERR#", "SERR# (a PCI system error)"];
 const IOCHK: [&str; 2] = ["no IOCHK#", "IOCHK# (an I/O channel check)"];
@@ -155,6 +181,19 @@ impl fmt::Display for LogEvent {
                     MaskedAt::IoApic { interrupt } => write!(f, "masked at the I/O APIC, interrupt {interrupt}"),
                     MaskedAt::LocalApic => write!(f, "masked in the local APIC's vector table"),
                     MaskedAt::Nowhere => write!(f, "{NOWHERE}"),
+                }
+            }
+            LogEvent::HpetRefused { address, why } => {
+                write!(f, "{HPET_AT}{address:#x}")?;
+                match why {
+                    HpetRefusal::Misaligned => write!(f, "{MISALIGNED}"),
+                    HpetRefusal::InRam => write!(f, "{IN_RAM}"),
+                    HpetRefusal::NotAnHpet { capabilities } => {
+                        write!(f, ", where its capabilities read {capabilities:#010x}{NOT_AN_HPET}")
+                    }
+                    HpetRefusal::Period { femtoseconds } => {
+                        write!(f, ", where its period reads {femtoseconds} fs{BAD_PERIOD}")
+                    }
                 }
             }
         }
@@ -225,6 +264,24 @@ impl LogEvent {
                 MaskedAt::Nowhere
             };
             LogEvent::InterruptStorm { vector, count, window_ms, masked }
+        } else if prose.next_is(HPET_AT) {
+            let address = prose.hex("HPET address")?;
+            let why = if prose.next_is(MISALIGNED) {
+                HpetRefusal::Misaligned
+            } else if prose.next_is(IN_RAM) {
+                HpetRefusal::InRam
+            } else if prose.next_is(", where its capabilities read ") {
+                let capabilities = prose.hex_of("capabilities")?;
+                prose.expect(NOT_AN_HPET, "`no HPET there`")?;
+                HpetRefusal::NotAnHpet { capabilities }
+            } else {
+                prose.expect(", where its period reads ", "why the HPET was not used")?;
+                let femtoseconds = prose.number("period")?;
+                prose.expect(" fs", "`fs`")?;
+                prose.expect(BAD_PERIOD, "`outside`")?;
+                HpetRefusal::Period { femtoseconds }
+            };
+            LogEvent::HpetRefused { address, why }
         } else {
             LogEvent::VgaMismatch(Mismatch::parse(text).map_err(|_| prose.malformed(Expected::Shape("a LOG text")))?)
         };
@@ -275,7 +332,7 @@ mod tests {
     use crate::replies::RegisterGroup;
     use std::string::ToString;
 
-    fn events() -> [LogEvent; 17] {
+    fn events() -> [LogEvent; 21] {
         let qemu = MachineEvidence {
             machine: Machine::Qemu,
             hypervisor: Some(*b"TCGTCGTCGTCG"),
@@ -307,6 +364,10 @@ mod tests {
             },
             LogEvent::InterruptStorm { vector: 0xfe, count: 5000, window_ms: 10, masked: MaskedAt::LocalApic },
             LogEvent::InterruptStorm { vector: 0x30, count: 1001, window_ms: 1, masked: MaskedAt::Nowhere },
+            LogEvent::HpetRefused { address: 0x100_0000, why: HpetRefusal::InRam },
+            LogEvent::HpetRefused { address: 0xfed0_0004, why: HpetRefusal::Misaligned },
+            LogEvent::HpetRefused { address: 0xfed0_0000, why: HpetRefusal::NotAnHpet { capabilities: u32::MAX } },
+            LogEvent::HpetRefused { address: 0xfed0_0000, why: HpetRefusal::Period { femtoseconds: 99_999 } },
         ]
     }
 
