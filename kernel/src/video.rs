@@ -13,14 +13,12 @@
 //! is `video/canvas.rs`'s [`Canvas`].
 
 use alloc::boxed::Box;
-use alloc::format;
-use alloc::string::String;
 use alloc::vec;
 use alloc::vec::Vec;
 use core::ptr::{self, NonNull};
 
 use bootloader_api::BootInfo;
-use protocol::{Firmware, MemoryType, Video, DUMP_LEN, FRAMEBUFFER_LEN};
+use protocol::{Firmware, LogEvent, MemoryType, Mismatch, VgaCheck, Video, Window, DUMP_LEN, FRAMEBUFFER_LEN};
 use raster::{sink, MethodId};
 use scenes::palette::VGA_DEFAULT;
 use scenes::{DrawReport, Scene};
@@ -61,7 +59,7 @@ pub struct Screen {
     output: Output,
     /// See [`Screen::display`] and [`Screen::findings`].
     display: Option<DisplayController>,
-    findings: Vec<String>,
+    findings: Vec<LogEvent>,
 }
 
 impl Screen {
@@ -99,11 +97,7 @@ impl Screen {
             // answered at its standard ports.
             Firmware::Uefi => match vga.filter(DisplayController::is_the_vga) {
                 Some(display) if physical.is_some() && head != Some(display) => {
-                    findings.push(format!(
-                        "video: the firmware's framebuffer is not in the memory of the VGA at {}: the frame goes \
-                         to the framebuffer, where the firmware showed its screen",
-                        display.address
-                    ));
+                    findings.push(LogEvent::FramebufferBesideTheVga { vga_at: display.address });
                     false
                 }
                 Some(display) if vga::responds() => match card::identify(&display) {
@@ -117,10 +111,7 @@ impl Screen {
             },
         };
         if firmware == Firmware::Uefi && framebuffer.is_none() {
-            findings.push(String::from(
-                "video: the loader handed over no framebuffer (the firmware's graphics mode has none it can draw \
-                 in: a PixelBitmask or BltOnly mode, or no graphics output at all)",
-            ));
+            findings.push(LogEvent::NoFramebuffer);
         }
         let (mut screen, display) = if vga_usable {
             vga::set_mode_13h();
@@ -159,7 +150,7 @@ impl Screen {
     }
 
     /// What [`Screen::open`] found worth a `LOG` line before `READY`.
-    pub fn findings(&self) -> &[String] {
+    pub fn findings(&self) -> &[LogEvent] {
         &self.findings
     }
 
@@ -185,45 +176,29 @@ impl Screen {
     }
 
     /// The `VGACHECK` answer for the path in use: on the VGA path every
-    /// mode-13h register and DAC entry read back (`Err` listing what
-    /// differs), and how the window is mapped (page size and memory type,
-    /// read back from the page tables and the PAT); on the others there
-    /// are no VGA registers in use to check.
-    pub fn check(&self) -> Result<String, String> {
+    /// mode-13h register and DAC entry read back, and how the window is
+    /// mapped (page size and memory type, read back from the page tables
+    /// and the PAT); on the framebuffer path how the framebuffer is mapped
+    /// (`framebuffer.rs`); with nothing to show the frame, that.
+    pub fn check(&self) -> VgaCheck {
         match &self.output {
-            Output::Vga { .. } => {
-                let mismatches = vga::verify(self.palette);
-                let end = WINDOW_PHYSICAL + WINDOW_LEN - 1;
-                let mapping = match paging::mapping(window_start(), WINDOW_LEN) {
-                    Some(mapping) => format!("window {WINDOW_PHYSICAL:#x}-{end:#x}: {mapping}"),
-                    None => String::from("window not mapped"),
-                };
-                let summary = format!("{}; {mapping}; PAT {:#018x}", vga::summary(&mismatches), pat::read());
-                if mismatches.is_empty() {
-                    Ok(summary)
-                } else {
-                    Err(summary)
-                }
-            }
-            Output::Framebuffer(presenter) => {
-                let p = presenter.presentation();
-                Ok(format!(
-                    "vga: none in use, the frame is presented in the firmware's {}x{} framebuffer at scale {}; {}; \
-                     PAT {:#018x}",
-                    p.width,
-                    p.height,
-                    p.scale,
-                    presenter.describe(),
-                    pat::read()
-                ))
-            }
-            Output::Nothing => Err(String::from("vga: none, and no framebuffer: nothing shows the frame")),
+            Output::Vga { .. } => VgaCheck::Vga {
+                mismatches: vga::verify(self.palette),
+                window: paging::mapping(window_start(), WINDOW_LEN).map(|mapping| Window {
+                    start: WINDOW_PHYSICAL,
+                    end: WINDOW_PHYSICAL + WINDOW_LEN - 1,
+                    mapping,
+                }),
+                pat: pat::read(),
+            },
+            Output::Framebuffer(presenter) => VgaCheck::Framebuffer(presenter.check()),
+            Output::Nothing => VgaCheck::Nothing,
         }
     }
 
     /// The `LOG` lines of [`Screen::check`] before `READY`: each register
     /// or DAC entry of the VGA path that did not read back as written.
-    pub fn mismatches(&self) -> Vec<vga::Mismatch> {
+    pub fn mismatches(&self) -> Vec<Mismatch> {
         match self.output {
             Output::Vga { .. } => vga::verify(self.palette),
             Output::Framebuffer(_) | Output::Nothing => Vec::new(),

@@ -20,7 +20,7 @@ use std::time::{Duration, Instant, SystemTime};
 use anyhow::{bail, Context, Result};
 use protocol::{Command, FrameKind, Sealed, DUMP_LEN};
 
-use super::channel::Channel;
+use super::channel::{log_event, Channel};
 use super::frame_reader::{ReadError, ReadErrorKind};
 use super::reply::{Reply, REPLY_TIMEOUT};
 
@@ -220,7 +220,7 @@ impl Sealing {
                 }
             };
             match (frame.kind, frame.seq) {
-                (FrameKind::Log, _) => channel.logs.push(frame.text()),
+                (FrameKind::Log, _) => channel.logs.push(log_event(&frame.text())?),
                 (_, Some(echoed)) if echoed == seq => {
                     return Reply::decode(frame).with_context(|| format!("the reply to `{command}`"))
                 }
