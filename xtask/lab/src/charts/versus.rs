@@ -35,7 +35,10 @@ where
             .filter_map(|f| row(peer, f)?.time.vs_exact)
             .flat_map(|r| [r.low.unwrap_or(r.ratio), r.high.unwrap_or(r.ratio)])
     });
-    let y_range = log_range(ends.chain([0.8, 2.5]), 0.1);
+    let data = log_range(ends.chain([0.8, 2.5]), 0.1);
+    // Headroom above the data for the legend: the data take the lower
+    // three fifths of the (logarithmic) axis.
+    let y_range = data.start..data.start * (data.end / data.start).powf(5.0 / 3.0);
     let mut chart = ChartBuilder::on(root)
         .caption(
             "Each peer's time over exact's, family by family (bars: the 95% interval from the paired repeats)",

@@ -217,7 +217,7 @@ mod tests {
         assert_eq!(b.contours.len(), 3);
         // Between the baseline and an em above it.
         let ys: Vec<i32> = b.contours.iter().flatten().map(|p| p.y).collect();
-        assert!(ys.iter().all(|&y| (20 - 8) * 256 <= y && y <= 20 * 256), "{ys:?}");
+        assert!(ys.iter().all(|y| ((20 - 8) * 256..=20 * 256).contains(y)), "{ys:?}");
     }
 
     #[test]

@@ -110,11 +110,10 @@ pub(super) fn runs_disagreement(out: &mut String, results: &Results) {
     let columns: Vec<String> = (1..=runs).map(|r| format!("run {r}")).collect();
     let _ = writeln!(
         out,
-        "| family | `{EXACT}`, {} | disagree | closest peer | its time / `{EXACT}`'s, {} | disagree |\n|---|{}---:|---|{}---:|",
+        "| family | `{EXACT}`, {} | disagree | closest peer | its time / `{EXACT}`'s, {} | disagree |\n\
+         |---|---:|---:|---|---:|---:|",
         columns.join(", "),
         columns.join(", "),
-        "---:|".repeat(1),
-        "---:|".repeat(1),
     );
     for f in &results.families {
         let Some(exact) = results.row(EXACT, f.name) else { continue };
