@@ -2,7 +2,7 @@
 //! the harness can prove that the handlers in `interrupts.rs` and the
 //! panic handler report it, by its name, and exit QEMU with the failure
 //! code; and raises a stray interrupt, which the kernel must survive.
-//! Answered only on QEMU (`console.rs`).
+//! Answered only on QEMU (`server.rs`).
 
 use core::arch::asm;
 use core::hint::black_box;
@@ -61,7 +61,7 @@ pub fn provoke(kind: FaultKind) -> String {
 /// Raises [`STRAY_VECTOR`] as a device would, through the local APIC (a
 /// self-IPI, which the APIC then has in service until its end of
 /// interrupt), and waits for it to be taken; with no local APIC, by
-/// `int`. Call with interrupts on (the console runs so).
+/// `int`. Call with interrupts on (the server runs so).
 fn raise_stray_interrupt() -> String {
     let before = interrupts::stray_count(STRAY_VECTOR);
     let how = if apic::send_to_self(STRAY_VECTOR) {

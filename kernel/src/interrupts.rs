@@ -23,7 +23,7 @@
 //!   interrupt of its priority or below.
 //!
 //! Handlers only count (atomics, nothing else is safe to touch from an
-//! NMI): [`report`], from the show's frames and the console, sends a
+//! NMI): [`report`], from the show's frames and the server, sends a
 //! `LOG` frame per NMI and per vector that came again since, and `PING`
 //! tells the totals ([`counts`]).
 

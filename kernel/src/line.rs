@@ -1,4 +1,4 @@
-//! A command line as its bytes arrive, for the show and the console
+//! A command line as its bytes arrive, for the show and the server
 //! alike: the show keeps playing while a line is incomplete (bytes
 //! accumulate between its frames, `demo.rs`), and only a complete line
 //! stops it. A line is kept up to `protocol::MAX_LINE` bytes; an overlong

@@ -1,7 +1,7 @@
 //! COM1, the protocol channel (kernel/protocol): frames out, command bytes
 //! in, through the `uart_16550` crate's driver. Sending polls the UART.
 //! Receiving moves every waiting byte into a ring buffer, so bytes
-//! arriving while the demo draws a frame or the console answers a command
+//! arriving while the demo draws a frame or the server answers a command
 //! are kept (the UART's own FIFO holds only 16, about 1.4 ms at 115200
 //! baud): from IRQ 4's handler (`interrupts.rs`), and by polling wherever
 //! the kernel waits ([`poll`]: the demo's frame pacing, the retrace, the

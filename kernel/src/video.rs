@@ -5,12 +5,12 @@
 //!   palette is in the DAC, both set by the kernel's own register writes;
 //! - a firmware's framebuffer: the frame is the kernel's own memory, drawn
 //!   exactly as video memory would be, and presented scaled in the
-//!   framebuffer (`framebuffer.rs`) at the moments a VGA would show it;
+//!   framebuffer (`presenter.rs`) at the moments a VGA would show it;
 //! - nothing: the frame is the kernel's own memory, shown nowhere.
 //!
 //! Drawing, the methods, the demo and the protocol are the same on every
-//! path. What the methods draw into, the frame as a span sink, is
-//! `video/frame.rs`'s [`Frame`].
+//! path. What the methods draw into, the frame's memory as a span sink,
+//! is `video/canvas.rs`'s [`Canvas`].
 
 use alloc::boxed::Box;
 use alloc::format;
@@ -28,12 +28,12 @@ use volatile::{VolatilePtr, VolatileRef};
 
 use x86_64::VirtAddr;
 
-mod frame;
+mod canvas;
 
-pub use frame::Frame;
+pub use canvas::Canvas;
 
-use crate::framebuffer::Presenter;
 use crate::pci::{DisplayController, Displays};
+use crate::presenter::Presenter;
 use crate::vga::{self, Palette};
 use crate::{card, paging, pat};
 
@@ -50,10 +50,11 @@ enum Output {
     Nothing,
 }
 
-/// The screen: the frame, where it is shown, and in what palette.
+/// The screen: the frame's canvas, where it is shown, and in what palette.
 pub struct Screen {
-    /// The frame: 0xA0000 on the VGA path, the kernel's memory otherwise.
-    frame: Frame,
+    /// The frame's memory: 0xA0000 on the VGA path, the kernel's memory
+    /// otherwise.
+    canvas: Canvas,
     /// The palette the frame is shown in, set by [`Screen::use_palette`]:
     /// in the DAC on the VGA path.
     palette: &'static Palette,
@@ -147,7 +148,7 @@ impl Screen {
         if let Output::Vga { .. } = output {
             vga::load_dac(&VGA_DEFAULT);
         }
-        Self { frame: Frame::new(pixels), palette: &VGA_DEFAULT, output, display: None, findings: Vec::new() }
+        Self { canvas: Canvas::new(pixels), palette: &VGA_DEFAULT, output, display: None, findings: Vec::new() }
     }
 
     /// The display controller the frame goes to: on the framebuffer path
@@ -246,8 +247,8 @@ impl Screen {
     /// all of it; nothing to do on the other paths.
     pub fn present(&mut self) {
         match &mut self.output {
-            Output::Vga { cirrus: true } => vga::rewrite_through_latches(self.frame.pixels()),
-            Output::Framebuffer(presenter) => presenter.show(self.frame.pixels(), self.palette),
+            Output::Vga { cirrus: true } => vga::rewrite_through_latches(self.canvas.pixels()),
+            Output::Framebuffer(presenter) => presenter.show(self.canvas.pixels(), self.palette),
             Output::Vga { cirrus: false } | Output::Nothing => {}
         }
     }
@@ -261,28 +262,28 @@ impl Screen {
         }
     }
 
-    /// The frame the methods draw into, for a drawing that is not a
+    /// The canvas the methods draw into, for a drawing that is not a
     /// scene's (a still page of the show and its labels).
-    pub fn frame(&mut self) -> &mut Frame {
-        &mut self.frame
+    pub fn canvas(&mut self) -> &mut Canvas {
+        &mut self.canvas
     }
 
     /// Fills the screen with `color` of the VGA default palette.
     pub fn clear(&mut self, color: u8) {
         self.use_palette(&VGA_DEFAULT);
-        sink::clear(&mut self.frame, color);
+        sink::clear(&mut self.canvas, color);
         self.present();
     }
 
     /// Draws `scene` with `method` in the VGA default palette and says how
-    /// it went. The frame's type is known to the fill, so each span is
-    /// stored by [`Frame`]'s `fill` inline, with no call.
+    /// it went. The canvas's type is known to the fill, so each span is
+    /// stored by [`Canvas`]'s `fill` inline, with no call.
     pub fn draw(&mut self, scene: &Scene, method: MethodId) -> Drawn {
         self.use_palette(&VGA_DEFAULT);
-        let strays = self.frame.stray_spans();
-        let report = scene.draw(method, &mut self.frame);
+        let strays = self.canvas.stray_spans();
+        let report = scene.draw(method, &mut self.canvas);
         self.present();
-        Drawn { report, stray_spans: self.frame.stray_spans().wrapping_sub(strays) }
+        Drawn { report, stray_spans: self.canvas.stray_spans().wrapping_sub(strays) }
     }
 
     /// Puts a whole frame on the screen with one volatile copy (a `memcpy`
@@ -290,7 +291,7 @@ impl Screen {
     /// row after row; bytes past 64,000 are ignored, a shorter frame
     /// replaces only the top of the screen.
     pub fn blit(&mut self, frame: &[u8]) {
-        self.frame.copy_from(frame);
+        self.canvas.copy_from(frame);
         self.present();
     }
 
@@ -301,7 +302,7 @@ impl Screen {
     pub fn dump(&self) -> Vec<u8> {
         let mut dump = vec![0; DUMP_LEN];
         let (framebuffer, dac) = dump.split_at_mut(FRAMEBUFFER_LEN);
-        self.frame.copy_into(framebuffer);
+        self.canvas.copy_into(framebuffer);
         match self.output {
             Output::Vga { .. } => dac.copy_from_slice(&vga::read_dac()),
             Output::Framebuffer(_) | Output::Nothing => dac.copy_from_slice(self.palette.as_flattened()),

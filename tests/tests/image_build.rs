@@ -11,8 +11,8 @@ use std::path::Path;
 
 use anyhow::{ensure, Context, Result};
 use boot_image::patched_copy::{check_copy, PatchedBootloader, COPY_BUILD_FOLDER};
-use boot_image::process::command_line;
 use boot_image::stage_builds;
+use install::process::command_line;
 
 /// Runs every stage build, failing on a failed one; returns what cargo
 /// printed on its standard error, build by build.

@@ -12,7 +12,8 @@ use std::time::Duration;
 
 use anyhow::{ensure, Context, Result};
 use boot_image::build_image;
-use harness::line::{open_console, FaultRates, Relay, TroubleKind};
+use harness::cable::{open_console, FaultRates, Relay};
+use harness::client::TroubleKind;
 use harness::serial_check::{self, write_reports, CheckOptions, CheckReport, Scope};
 use harness::{Qemu, QemuOptions, Reply, SerialLine};
 use protocol::{Command, Sealed, BENCH_DEFAULT_REPEATS};

@@ -4,13 +4,14 @@ use std::process::Command;
 
 use anyhow::Result;
 use boot_image::cargo::NIGHTLY_ONLY;
-use boot_image::process::run_streaming;
-use boot_image::toolchain::ensure_toolchain;
 use boot_image::{build_image, IMAGE_ENV};
-use harness::prerequisites::{
-    ensure_bochs, ensure_cairo, ensure_chromium, ensure_ovmf, ensure_peer_libraries, ensure_qemu, ensure_qemu_qxl,
-    ensure_secure_boot_ovmf, ensure_virt_fw_vars, ensure_wasm_target,
-};
+use install::browser::ensure_chromium;
+use install::emulators::{ensure_bochs, ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_secure_boot_ovmf};
+use install::libraries::{ensure_cairo, ensure_peer_libraries};
+use install::process::run_streaming;
+use install::toolchain::ensure_toolchain;
+use install::toolchain::ensure_wasm_target;
+use install::virt_firmware::ensure_virt_fw_vars;
 
 use crate::opt::TestOpt;
 
@@ -18,7 +19,7 @@ pub fn test(opt: &TestOpt) -> Result<()> {
     ensure_toolchain()?;
     // A whole run installs what its tests need up front, so that nothing
     // installs in the middle of their output; a chosen few install their
-    // own, when they start QEMU, Bochs or a browser (`prerequisites`).
+    // own, when they start QEMU, Bochs or a browser (`install`).
     if is_whole_run(&opt.cargo_args) {
         ensure_qemu()?;
         // The adapter matrix runs QEMU's QXL card, a module of its own in
@@ -85,7 +86,7 @@ fn values_of<'a>(args: &'a [String], flags: &'a [&str]) -> impl Iterator<Item = 
 /// `cargo test` over every host crate of the workspace, run by the cargo
 /// (the stable toolchain) that runs the xtask.
 fn test_command(cargo_args: &[String]) -> Command {
-    let mut command = boot_image::cargo::host();
+    let mut command = install::toolchain::host();
     command.args(["test", "--workspace"]);
     for package in NIGHTLY_ONLY {
         command.args(["--exclude", package]);
@@ -97,7 +98,7 @@ fn test_command(cargo_args: &[String]) -> Command {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use boot_image::process::command_line;
+    use install::process::command_line;
 
     fn args(line: &str) -> Vec<String> {
         line.split_whitespace().map(String::from).collect()
@@ -112,7 +113,7 @@ mod tests {
             "{}",
             command_line(&command)
         );
-        assert_eq!(command.get_current_dir(), Some(boot_image::workspace::root()));
+        assert_eq!(command.get_current_dir(), Some(install::workspace::root()));
     }
 
     #[test]

@@ -14,17 +14,12 @@
 //! # }
 //! ```
 
-pub mod apt;
 pub mod bootloader;
 pub mod cargo;
-pub mod once;
 pub mod patched_copy;
-pub mod process;
 pub mod secure_boot;
 pub mod sources;
-pub mod toolchain;
 pub mod tree;
-pub mod workspace;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -33,15 +28,16 @@ use std::sync::OnceLock;
 use anyhow::{ensure, Context, Result};
 
 use crate::cargo::NightlyBuild;
-use crate::once::once_per_process;
 use crate::patched_copy::PatchedBootloader;
-use crate::process::run_streaming;
 use crate::secure_boot::debian::{self, Unpacked};
 use crate::secure_boot::key::{self, SigningKey};
 use crate::secure_boot::{
     loader, shim, Enrollment, CERTIFICATE_PATH, HASH_ENROLL_PATH, LOADER_PATH, MOK_MANAGER_PATH, SHIM_PATH,
 };
-use crate::toolchain::ensure_toolchain;
+use install::once::once_per_process;
+use install::process::run_streaming;
+use install::toolchain::ensure_toolchain;
+use install::workspace;
 
 /// Names a prebuilt image to use instead of building one (`cargo xtask
 /// test` builds once and hands it to every test binary this way). A

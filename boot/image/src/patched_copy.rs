@@ -20,7 +20,8 @@ use anyhow::{ensure, Context, Result};
 
 use crate::bootloader::{apply_edits, Patch, PATCHES, VERSION};
 use crate::sources::{self, BOOTLOADER};
-use crate::{tree, workspace};
+use crate::tree;
+use install::workspace;
 
 /// Folders `bootloader`'s build script watches (`cargo:rerun-if-changed`)
 /// that the copy has no crate in: they exist, empty, so that cargo does not

@@ -1,5 +1,5 @@
 //! The protocol server on COM1 (the `protocol` crate is the spec):
-//! one command line in, one frame out. Whatever arrives, the console
+//! one command line in, one frame out. Whatever arrives, the server
 //! answers and keeps serving: a bad line gets an `ERR` frame naming the
 //! problem, an over-long one is thrown away up to its newline, a line
 //! left unfinished for `PARTIAL_LINE_IDLE_SECONDS` is dropped and the
@@ -30,7 +30,7 @@ static BOOTED: spin::Once<Ready> = spin::Once::new();
 /// Tells the host the kernel is up: a `LOG` frame saying which machine it
 /// found and by what signs, one if COM1's interrupt did not arrive (the
 /// kernel then receives by polling alone), one if the PIT's did not (the
-/// console then never halts), one per thing the screen found on its way
+/// server then never halts), one per thing the screen found on its way
 /// (a framebuffer missing, or not the VGA's), on the VGA path one per
 /// register or DAC entry that did not read back as written, then `READY`
 /// naming the firmware, the machine, the display controller and where it
@@ -75,20 +75,20 @@ fn ready(screen: &Screen) -> Ready {
 /// the demo), taking the lines that follow from `pending`. `SHOW` draws
 /// on `stage`.
 pub fn serve(screen: &mut Screen, stage: &mut Stage, mut pending: PendingLine, first: Complete) -> ! {
-    let mut console = Console { screen, stage, demo: None };
+    let mut server = Server { screen, stage, demo: None };
     let mut complete = first;
     loop {
         match complete {
             Complete::Line(line) => {
-                console.execute(&line);
+                server.execute(&line);
                 pending.recycle(line);
             }
             Complete::TooLong => serial::send_frame(FrameKind::Err, CommandError::TooLong.to_string().as_bytes()),
         }
         // `DEMO` was answered: play until the host's next line.
-        complete = match console.demo.take() {
-            Some(start) => demo::run(console.screen, console.stage, start, &mut pending),
-            None => console.next_line(&mut pending),
+        complete = match server.demo.take() {
+            Some(start) => demo::run(server.screen, server.stage, start, &mut pending),
+            None => server.next_line(&mut pending),
         };
     }
 }
@@ -97,7 +97,7 @@ pub fn serve(screen: &mut Screen, stage: &mut Stage, mut pending: PendingLine, f
 /// `ERR` frames.
 type Reply = Result<(FrameKind, Vec<u8>), String>;
 
-struct Console<'a> {
+struct Server<'a> {
     screen: &'a mut Screen,
     /// Where `SHOW` draws its frames, allocated once.
     stage: &'a mut Stage,
@@ -105,7 +105,7 @@ struct Console<'a> {
     demo: Option<demo::Start>,
 }
 
-impl Console<'_> {
+impl Server<'_> {
     /// Waits for the next complete line; a line left unfinished for its
     /// bound is dropped and the show plays again, until one comes.
     fn next_line(&mut self, pending: &mut PendingLine) -> Complete {

@@ -9,9 +9,9 @@ use raster::MethodId;
 use scenes::show;
 
 use super::channel::Channel;
+use super::frame_reader::FrameReader;
 use super::reply::{Dump, Reply, REPLY_TIMEOUT};
-use super::serial::FrameReader;
-use crate::line::{LineStats, Sealing};
+use super::sealing::{LineStats, Sealing};
 use crate::picture::render::SceneFile;
 
 /// Longest wait for the READY frame: SeaBIOS, the bootloader's stages and
@@ -33,7 +33,7 @@ impl Console {
         Self { channel: Channel::new(input, frames), sealing: None }
     }
 
-    /// A console that seals every command (`crate::line`) and retries a
+    /// A console that seals every command (`sealing.rs`) and retries a
     /// step the line damaged up to `retries` times.
     pub fn sealed(input: impl Write + Send + 'static, frames: FrameReader, retries: u32) -> Self {
         Self { sealing: Some(Sealing::new(retries)), ..Self::new(input, frames) }
@@ -240,7 +240,7 @@ impl Console {
     }
 
     /// Runs `step`, and while it fails for what the line did (a
-    /// [`Trouble`](crate::line::Trouble)) runs it again, up to the
+    /// [`Trouble`](super::Trouble)) runs it again, up to the
     /// console's retry bound, after letting the line settle. Any other
     /// failure, and a console that does not seal, fail at once.
     pub fn retrying<T>(&mut self, mut step: impl FnMut(&mut Console) -> Result<T>) -> Result<T> {

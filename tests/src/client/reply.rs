@@ -8,7 +8,7 @@ use protocol::{BenchReply, BenchRow, FrameKind, Listing, DUMP_LEN, FRAMEBUFFER_L
 use raster::SCREEN;
 use scenes::palette::ENTRIES;
 
-use super::serial::Frame;
+use super::frame_reader::Frame;
 use crate::picture::Image;
 
 /// Longest wait for the answer to one command (a dump is 64 KB through an

@@ -7,8 +7,8 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, Result};
 use protocol::FrameKind;
 
+use super::frame_reader::FrameReader;
 use super::reply::Reply;
-use super::serial::FrameReader;
 
 /// Bytes out to the kernel, frames in from it, and the `LOG` frames
 /// received so far.
