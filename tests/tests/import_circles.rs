@@ -9,7 +9,9 @@
 //! followed through re-exports to the file that defines it, so a module's
 //! `pub use` of its own submodules' items (its face) is no import of its
 //! own; any other re-export is. Each crate is read from its roots (the
-//! files no `mod` declares); paths inside macro calls are not read.
+//! files no `mod` declares); paths inside macro calls are not read, nor
+//! are imports from one crate of the workspace into another (Cargo keeps
+//! those acyclic crate by crate, not folder by folder).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};

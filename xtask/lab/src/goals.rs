@@ -71,8 +71,19 @@ fn against_peers(results: &Results) -> GoalRow {
     if let Some(closest) = closest {
         let _ = write!(note, "; {closest}");
     }
-    if !unsure.is_empty() {
-        let _ = write!(note, "; the interval reaches below 1 for {}", unsure.join(", "));
+    match unsure.as_slice() {
+        [] => {}
+        [one] => {
+            let _ = write!(note, "; the interval reaches below 1 for {one}");
+        }
+        [first, ..] => {
+            let _ = write!(
+                note,
+                "; the interval reaches below 1 for {} peers on families ({first} the first; report.md's \
+                 closest peer on every family)",
+                unsure.len()
+            );
+        }
     }
     GoalRow {
         measure: "exact against every peer (time over exact's, paired repeats)".into(),

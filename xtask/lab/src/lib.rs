@@ -168,7 +168,8 @@ fn sample_scene(family: &corpus::Family) -> String {
         .take(MAX_OPS - 1)
         .collect();
     let mut text = format!(
-        "# The lab's {} family: {}.\n# Its first {} of {} polygons, as many as the explorer takes.\nclear 0\n",
+        "# The lab's {} family: {}.\n# Its first {} of {} polygons (the explorer takes {MAX_SCENE_VERTICES} vertices a \
+         scene).\nclear 0\n",
         family.name,
         family.description,
         polygons.len(),

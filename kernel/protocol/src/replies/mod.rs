@@ -15,8 +15,8 @@
 //! | `DEMO`           | `OK`    | [`DemoReply`]       | `demo_reply.rs`   |
 //! | `BENCH`          | `BENCH` | [`BenchReply`]      | `bench_reply.rs`  |
 //! | `LIST`           | `LIST`  | [`Listing`]         | `listing.rs`      |
-//! | `VGACHECK`       | `OK`, `ERR` | [`VgaCheck`]  | `vga_check.rs`    |
-//! | `FAULT strayinterrupt` | `OK` | [`StrayRaised`] | `stray_raised.rs` |
+//! | `VGACHECK`       | `OK`, `ERR` | [`VgaCheck`] | `vga_check.rs`  |
+//! | `FAULT strayinterrupt` | `OK` | [`StrayRaised`] | `fault_reply.rs` |
 //!
 //! The `key=value` reader they share is in `fields.rs`; the reader of the
 //! texts written as sentences (`VGACHECK`'s, `FAULT`'s and the
@@ -25,25 +25,25 @@
 mod bench_reply;
 mod demo_reply;
 mod draw_reply;
+mod fault_reply;
 mod fields;
 mod listing;
 mod pong;
 mod prose;
 mod ready;
 mod show_reply;
-mod stray_raised;
 mod tsc_rate;
 mod vga_check;
 
 pub use bench_reply::{BenchReply, BenchRow, BENCH_UNIT_LINE};
 pub use demo_reply::{DemoReply, OWN_METHOD};
 pub use draw_reply::{Cleared, DrawReply};
+pub use fault_reply::{Raised, StrayRaised};
 pub use fields::{Expected, Malformed};
 pub use listing::Listing;
 pub use pong::{HeapState, InterruptCounts, LineErrors, LineLosses, Pong, PONG};
 pub(crate) use prose::{writes, Prose};
 pub use ready::{Firmware, Machine, MemoryType, PciAddress, PciId, Presentation, Ready, Video};
 pub use show_reply::ShowReply;
-pub use stray_raised::{Raised, StrayRaised};
 pub use tsc_rate::{ClockReadings, ClockSource, TscRate};
 pub use vga_check::{FramebufferCheck, Mismatch, PageMapping, RegisterGroup, VgaCheck, Window};

@@ -31,6 +31,10 @@ const PIXELS: &str = "8-bit alpha (A8)";
 const ALIASED: &str = "off (`Antialias::None`); a pixel is in by its centre";
 const FILL: &str = "`Context::fill`";
 
+/// What both ways do alike inside the clock.
+const BOTH_WAYS: Clock =
+    Clock { before: "", setup: "", fill: FILL, surface: SURFACE, pixel_format: PIXELS, anti_aliasing: ALIASED };
+
 /// Its path set up for each polygon inside the clock.
 pub static CAIRO: Cairo = Cairo {
     info: PeerInfo {
@@ -42,10 +46,7 @@ pub static CAIRO: Cairo = Cairo {
         clock: Clock {
             before: "nothing",
             setup: "`set_fill_rule`, `move_to`, `line_to` a vertex, `close_path` a contour (f64)",
-            fill: FILL,
-            surface: SURFACE,
-            pixel_format: PIXELS,
-            anti_aliasing: ALIASED,
+            ..BOTH_WAYS
         },
         variant_of: None,
     },
@@ -63,10 +64,7 @@ pub static CAIRO_PATH_KEPT: Cairo = Cairo {
         clock: Clock {
             before: "a `cairo::Path` (f64), made once (`copy_path`), and its fill rule",
             setup: "`set_fill_rule`, `append_path` (Cairo copies the path into the context)",
-            fill: FILL,
-            surface: SURFACE,
-            pixel_format: PIXELS,
-            anti_aliasing: ALIASED,
+            ..BOTH_WAYS
         },
         variant_of: Some("cairo"),
     },

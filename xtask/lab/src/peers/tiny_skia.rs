@@ -26,6 +26,10 @@ const PIXELS: &str = "8-bit coverage (A8)";
 const ALIASED: &str = "off (`anti_alias` false); a pixel is in by its centre";
 const FILL: &str = "`Mask::fill_path`";
 
+/// What both ways do alike inside the clock.
+const BOTH_WAYS: Clock =
+    Clock { before: "", setup: "", fill: FILL, surface: SURFACE, pixel_format: PIXELS, anti_aliasing: ALIASED };
+
 /// Its paths built once, before the clock starts.
 pub static TINY_SKIA: TinySkia = TinySkia {
     info: PeerInfo {
@@ -33,14 +37,7 @@ pub static TINY_SKIA: TinySkia = TinySkia {
         source: "tiny-skia 0.12 Mask::fill_path, anti_alias false; paths built before timing",
         summary: "f32 path, 26.6 fixed-point edges; pixel centres",
         own: Own::Sample(SampleOffset::CENTRE),
-        clock: Clock {
-            before: "a `Path` (f32 pixels) and its fill rule",
-            setup: "none",
-            fill: FILL,
-            surface: SURFACE,
-            pixel_format: PIXELS,
-            anti_aliasing: ALIASED,
-        },
+        clock: Clock { before: "a `Path` (f32 pixels) and its fill rule", setup: "none", ..BOTH_WAYS },
         variant_of: None,
     },
     path_each_fill: false,
@@ -56,10 +53,7 @@ pub static TINY_SKIA_PATH_EACH_FILL: TinySkia = TinySkia {
         clock: Clock {
             before: "nothing",
             setup: "`PathBuilder`: `move_to`, `line_to` a vertex, `close` a contour, `finish` (f32)",
-            fill: FILL,
-            surface: SURFACE,
-            pixel_format: PIXELS,
-            anti_aliasing: ALIASED,
+            ..BOTH_WAYS
         },
         variant_of: Some("tiny-skia"),
     },

@@ -42,6 +42,10 @@ const SURFACE: &str = "320x200 `Pixmap`";
 const PIXELS: &str = "RGBA, 8 bits a channel, premultiplied";
 const ALIASED: &str = "area coverage computed, then thresholded: in above 127/255 of the pixel";
 
+/// What both ways do alike inside the clock.
+const BOTH_WAYS: Clock =
+    Clock { before: "", setup: "", fill: FILL, surface: SURFACE, pixel_format: PIXELS, anti_aliasing: ALIASED };
+
 /// Its paths built once, before the clock starts.
 pub static VELLO_CPU: VelloCpu = VelloCpu {
     info: PeerInfo {
@@ -52,14 +56,7 @@ pub static VELLO_CPU: VelloCpu = VelloCpu {
         summary: SUMMARY,
         // By the part of the pixel covered.
         own: Own::Coverage { threshold: VELLO_THRESHOLD },
-        clock: Clock {
-            before: "a kurbo `BezPath` (f64 pixels) and its fill rule",
-            setup: "none",
-            fill: FILL,
-            surface: SURFACE,
-            pixel_format: PIXELS,
-            anti_aliasing: ALIASED,
-        },
+        clock: Clock { before: "a kurbo `BezPath` (f64 pixels) and its fill rule", setup: "none", ..BOTH_WAYS },
         variant_of: None,
     },
     path_each_fill: false,
@@ -77,10 +74,7 @@ pub static VELLO_CPU_PATH_EACH_FILL: VelloCpu = VelloCpu {
         clock: Clock {
             before: "nothing",
             setup: "`BezPath`: `move_to`, `line_to` a vertex, `close_path` a contour (f64)",
-            fill: FILL,
-            surface: SURFACE,
-            pixel_format: PIXELS,
-            anti_aliasing: ALIASED,
+            ..BOTH_WAYS
         },
         variant_of: Some("vello_cpu"),
     },
