@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, ensure, Result};
 use harness::checks::{distinct_screens, dump_matches_host_render};
 use harness::{Qemu, QemuOptions, Reply, SerialLine};
-use protocol::{LineErrors, LogEvent, PARTIAL_LINE_IDLE_SECONDS};
+use protocol::{Cleared, LineErrors, LogEvent, PARTIAL_LINE_IDLE_SECONDS};
 use scenes::builtin;
 
 /// Telnet's "interpret as command" and "break".
@@ -79,9 +79,10 @@ fn with_com1_on_irq_3_the_kernel_hears_every_command_by_polling() -> Result<()> 
     let burst: String = (0..BURST).map(|i| format!("CLEAR {i}\n")).collect();
     qemu.console.send_bytes(burst.as_bytes())?;
     for i in 0..BURST {
+        let expected = Cleared { color: u8::try_from(i)? };
         match qemu.console.reply()? {
-            Reply::Ok(text) if text == format!("clear {i}") => {}
-            other => bail!("reply {i} of the burst is {other:?}, expected OK \"clear {i}\""),
+            Reply::Ok(text) if Cleared::parse(&text)? == expected => {}
+            other => bail!("reply {i} of the burst is {other:?}, expected OK {expected:?}"),
         }
     }
     let losses = qemu.console.ping()?;
