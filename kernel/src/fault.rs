@@ -2,14 +2,12 @@
 //! the harness can prove that the handlers in `interrupts.rs` and the
 //! panic handler report it, by its name, and exit QEMU with the failure
 //! code; and raises a stray interrupt, which the kernel must survive.
-//! Answered only on QEMU (`console.rs`).
+//! Answered only on QEMU (`server.rs`).
 
 use core::arch::asm;
 use core::hint::black_box;
 
-use alloc::format;
-use alloc::string::String;
-use protocol::FaultKind;
+use protocol::{Fatal, FaultKind, Raised, StrayRaised};
 
 use crate::clock::Deadline;
 use crate::fatal::fatal;
@@ -36,7 +34,7 @@ const DELIVERY_TIMEOUT_MICROS: u64 = 100_000;
 /// return, the run ends here, reported all the same. A stray interrupt
 /// is survived: the answer says how it was raised and how many the
 /// kernel has taken on its vector.
-pub fn provoke(kind: FaultKind) -> String {
+pub fn provoke(kind: FaultKind) -> StrayRaised {
     match kind {
         FaultKind::DivideError => {
             black_box(divide_by_zero());
@@ -55,30 +53,29 @@ pub fn provoke(kind: FaultKind) -> String {
         FaultKind::Panic => panic!("FAULT panic: the host asked for it"),
         FaultKind::StrayInterrupt => return raise_stray_interrupt(),
     }
-    fatal(format_args!("FAULT {}: the fault handler returned", kind.name()))
+    fatal(Fatal::HandlerReturned(kind))
 }
 
 /// Raises [`STRAY_VECTOR`] as a device would, through the local APIC (a
 /// self-IPI, which the APIC then has in service until its end of
 /// interrupt), and waits for it to be taken; with no local APIC, by
-/// `int`. Call with interrupts on (the console runs so).
-fn raise_stray_interrupt() -> String {
+/// `int`. Call with interrupts on (the server runs so).
+fn raise_stray_interrupt() -> StrayRaised {
     let before = interrupts::stray_count(STRAY_VECTOR);
-    let how = if apic::send_to_self(STRAY_VECTOR) {
-        "sent through the local APIC"
+    let raised = if apic::send_to_self(STRAY_VECTOR) {
+        Raised::LocalApic
     } else {
         // SAFETY: `int` calls the vector's handler on this stack (the
         // kernel's target has no red zone to clobber), which counts and
         // returns; it touches no Rust object.
         unsafe { asm!("int {vector}", vector = const STRAY_VECTOR) };
-        "raised by INT (no enabled local APIC)"
+        Raised::Int
     };
     let give_up = Deadline::after_micros(DELIVERY_TIMEOUT_MICROS);
     while interrupts::stray_count(STRAY_VECTOR) == before && !give_up.passed() {
         core::hint::spin_loop();
     }
-    let count = interrupts::stray_count(STRAY_VECTOR);
-    format!("strayinterrupt: vector {STRAY_VECTOR:#04x} {how}; {count} taken on it so far")
+    StrayRaised { vector: STRAY_VECTOR, raised, taken: interrupts::stray_count(STRAY_VECTOR) }
 }
 
 /// Divides by zero with `div`: a divide error. (In asm: Rust's `/` checks

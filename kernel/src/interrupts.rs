@@ -23,18 +23,17 @@
 //!   interrupt of its priority or below.
 //!
 //! Handlers only count (atomics, nothing else is safe to touch from an
-//! NMI): [`report`], from the show's frames and the console, sends a
+//! NMI): [`report`], from the show's frames and the server, sends a
 //! `LOG` frame per NMI and per vector that came again since, and `PING`
 //! tells the totals ([`counts`]).
 
-use alloc::format;
 use core::sync::atomic::{AtomicU32, AtomicU8, Ordering};
 
-use protocol::{FrameKind, InterruptCounts};
+use protocol::{EndedAt, Fatal, InterruptCounts, LogEvent, PageFaultCode, PAGE_FAULT_VECTOR};
 use spin::Lazy;
 use x86_64::registers::control::Cr2;
 use x86_64::set_general_handler;
-use x86_64::structures::idt::{InterruptDescriptorTable, InterruptStackFrame, PageFaultErrorCode};
+use x86_64::structures::idt::{InterruptDescriptorTable, InterruptStackFrame};
 
 use crate::fatal::fatal;
 use crate::gdt::DOUBLE_FAULT_IST_INDEX;
@@ -45,7 +44,6 @@ use crate::{apic, pic, serial};
 const EXCEPTIONS: core::ops::Range<u8> = 0..32;
 /// The rest: interrupts.
 const INTERRUPTS: core::ops::RangeInclusive<u8> = 32..=255;
-const PAGE_FAULT_VECTOR: u8 = 14;
 
 /// Port 0x61 (system control port B) bits: read, the NMI's reasons; written,
 /// the latches that clear them (and mask them while set).
@@ -56,43 +54,6 @@ const CLEAR_IOCHK: u8 = 1 << 3;
 /// The bits of port 0x61 that read back what was written (timer 2 gate,
 /// speaker data, the two latches).
 const WRITABLE: u8 = 0x0F;
-
-/// The exceptions' names, by vector, as the manuals give them; the
-/// reserved vectors have none.
-const EXCEPTION_NAMES: [&str; 32] = [
-    "divide error",
-    "debug exception",
-    "non-maskable interrupt",
-    "breakpoint",
-    "overflow",
-    "bound range exceeded",
-    "invalid opcode",
-    "device not available",
-    "double fault",
-    "coprocessor segment overrun",
-    "invalid TSS",
-    "segment not present",
-    "stack-segment fault",
-    "general protection fault",
-    "page fault",
-    "reserved exception 15",
-    "x87 floating-point error",
-    "alignment check",
-    "machine check",
-    "SIMD floating-point exception",
-    "virtualization exception",
-    "control protection exception",
-    "reserved exception 22",
-    "reserved exception 23",
-    "reserved exception 24",
-    "reserved exception 25",
-    "reserved exception 26",
-    "reserved exception 27",
-    "hypervisor injection exception",
-    "VMM communication exception",
-    "security exception",
-    "reserved exception 31",
-];
 
 /// Stray interrupts by vector, and what ended each vector's last one
 /// (`ENDED_BY_*` bits); NMIs and the port 0x61 value the last one read.
@@ -170,26 +131,19 @@ fn stray_interrupt(_frame: InterruptStackFrame, vector: u8, _error: Option<u64>)
 /// Every exception but the double fault and the NMI: reports it by name
 /// and ends the run.
 fn exception(frame: InterruptStackFrame, vector: u8, error: Option<u64>) {
-    let name = EXCEPTION_NAMES[usize::from(vector % 32)];
     let at = frame.instruction_pointer.as_u64();
     match (vector, error) {
+        // CR2 holds the address whose access faulted.
         (PAGE_FAULT_VECTOR, Some(code)) => {
-            // CR2 holds the address whose access faulted.
-            let address = Cr2::read_raw();
-            let code = PageFaultErrorCode::from_bits_truncate(code);
-            fatal(format_args!("page fault at {address:#x} ({code:?}), instruction at {at:#x}"))
+            fatal(Fatal::PageFault { address: Cr2::read_raw(), code: PageFaultCode::new(code), at })
         }
-        (_, Some(code)) => fatal(format_args!("{name} (error code {code:#x}) at {at:#x}")),
-        (_, None) => fatal(format_args!("{name} at {at:#x}")),
+        _ => fatal(Fatal::Exception { vector, error, at }),
     }
 }
 
 extern "x86-interrupt" fn double_fault(frame: InterruptStackFrame, error: u64) -> ! {
-    fatal(format_args!(
-        "double fault (error code {error:#x}) at {:#x}, stack pointer {:#x}",
-        frame.instruction_pointer.as_u64(),
-        frame.stack_pointer.as_u64()
-    ))
+    let (at, stack) = (frame.instruction_pointer.as_u64(), frame.stack_pointer.as_u64());
+    fatal(Fatal::DoubleFault { error, at, stack })
 }
 
 /// Stray interrupts taken on `vector` since boot.
@@ -205,28 +159,20 @@ pub fn counts() -> InterruptCounts {
 
 /// Sends a `LOG` frame for each NMI, and each vector's stray interrupts,
 /// taken since the last call: `NMI 1 (port 0x61 = 0x20: no SERR#, no
-/// IOCHK#); the show plays on` or `stray interrupt: vector 0x99, 2 so
+/// IOCHK#); the kernel carries on` or `stray interrupt: vector 0x99, 2 so
 /// far, ended at the local APIC; returned`. Call from the main flow only.
 pub fn report() {
     let nmis = NMIS.load(Ordering::Acquire);
     if REPORTED_NMIS.swap(nmis, Ordering::Relaxed) != nmis {
         let reason = NMI_REASON.load(Ordering::Relaxed);
-        let serr = if reason & SERR != 0 { "SERR# (a PCI system error)" } else { "no SERR#" };
-        let iochk = if reason & IOCHK != 0 { "IOCHK# (an I/O channel check)" } else { "no IOCHK#" };
-        let text = format!("NMI {nmis} (port 0x61 = {reason:#04x}: {serr}, {iochk}); the kernel carries on");
-        serial::send_frame(FrameKind::Log, text.as_bytes());
+        serial::send_log(LogEvent::Nmi { count: nmis, reason, serr: reason & SERR != 0, iochk: reason & IOCHK != 0 });
     }
-    for (vector, (count, reported)) in STRAY.iter().zip(&REPORTED_STRAY).enumerate() {
+    for (vector, (count, reported)) in (0..=u8::MAX).zip(STRAY.iter().zip(&REPORTED_STRAY)) {
         let count = count.load(Ordering::Acquire);
         if reported.swap(count, Ordering::Relaxed) != count {
-            let ended = match ENDED_BY[vector].load(Ordering::Relaxed) {
-                0 => "in service nowhere, so no end of interrupt",
-                ENDED_BY_APIC => "ended at the local APIC",
-                ENDED_BY_PIC => "ended at the 8259",
-                _ => "ended at the local APIC and the 8259",
-            };
-            let text = format!("stray interrupt: vector {vector:#04x}, {count} so far, {ended}; returned");
-            serial::send_frame(FrameKind::Log, text.as_bytes());
+            let ended = ENDED_BY[usize::from(vector)].load(Ordering::Relaxed);
+            let ended = EndedAt::of(ended & ENDED_BY_APIC != 0, ended & ENDED_BY_PIC != 0);
+            serial::send_log(LogEvent::StrayInterrupt { vector, count, ended });
         }
     }
 }

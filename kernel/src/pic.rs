@@ -1,5 +1,5 @@
 //! The two 8259 interrupt controllers: where their IRQs land, which ones
-//! pass, the end of an interrupt, and the console's halt, which counts on
+//! pass, the end of an interrupt, and the server's halt, which counts on
 //! the PIT's IRQ 0 to end it.
 //!
 //! The BIOS leaves the master on vectors 8-15, the CPU's own exception

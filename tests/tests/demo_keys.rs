@@ -24,7 +24,7 @@ use harness::checks::{as_on_screen, SCREEN_SCALE};
 use harness::picture::compare::{compare_image_rows, images_match_in_rows};
 use harness::render::{render_show, show_entry};
 use harness::{Image, Qemu, QemuOptions, Reply};
-use protocol::Command;
+use protocol::{Command, ErrorReply};
 use raster::MethodId;
 use scenes::show::{ENTRIES_IN_ORDER, FRAMES_PER_SECOND, STILL_FRAMES};
 
@@ -322,7 +322,7 @@ fn demo_resumes_the_show_on_the_named_entry_and_method_and_stays_there() -> Resu
     let losses = qemu.console.ping()?;
     ensure!(losses.none(), "PING after DEMO says the serial line lost bytes: {losses}");
     match qemu.console.request(&Command::Demo { entry: Some("no-such-entry"), method: None })? {
-        Reply::Err(text) if text.contains("no-such-entry") => Ok(()),
+        Reply::Err(text) if ErrorReply::parse(&text)? == ErrorReply::UnknownShowEntry("no-such-entry") => Ok(()),
         other => bail!("DEMO of an unknown entry answered {other:?}, expected an ERR naming it"),
     }
 }

@@ -12,7 +12,8 @@ use std::time::Duration;
 
 use anyhow::{ensure, Context, Result};
 use boot_image::build_image;
-use harness::line::{open_console, FaultRates, Relay, TroubleKind};
+use harness::cable::{open_console, FaultRates, Relay};
+use harness::client::TroubleKind;
 use harness::serial_check::{self, write_reports, CheckOptions, CheckReport, Scope};
 use harness::{Qemu, QemuOptions, Reply, SerialLine};
 use protocol::{Command, Sealed, BENCH_DEFAULT_REPEATS};
@@ -203,7 +204,7 @@ fn a_damaged_command_is_refused_and_changes_nothing_while_plain_commands_still_w
     let damaged = sealed(8, &Command::Clear(9)).replace("CLEAR 9", "CLEAR 1");
     qemu.console.send_bytes(damaged.as_bytes())?;
     match qemu.console.reply()? {
-        Reply::Err(text) if text == protocol::Damaged.to_string() => {}
+        Reply::Err(text) if protocol::ErrorReply::parse(&text)? == protocol::ErrorReply::Damaged => {}
         other => anyhow::bail!("`{}` answered {other:?}, expected ERR for a damaged line", damaged.trim_end()),
     }
     let dump = qemu.console.dump()?;

@@ -20,14 +20,14 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use anyhow::{ensure, Context, Result};
-use boot_image::once::once_per_process;
-use boot_image::process::output_of;
 use boot_image::secure_boot::debian::Unpacked;
 use boot_image::secure_boot::key::SigningKey;
 use boot_image::secure_boot::{shim, Enrollment, SHIM_PATH};
 use boot_image::sources::sha256_hex;
 use harness::secure_boot::{boot, loader_hash, ready_and_page_1_exact, scratch, FatImage, MokEntry};
 use harness::Adapter;
+use install::once::once_per_process;
+use install::process::output_of;
 
 /// Debian's pool, where every package version lives until it is dropped.
 const POOL: &str = "http://deb.debian.org/debian/pool/main/s";

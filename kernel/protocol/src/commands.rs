@@ -5,6 +5,7 @@ use core::fmt;
 
 use raster::MethodId;
 
+use crate::replies::{Malformed, Prose};
 use crate::{BENCH_DEFAULT_REPEATS, BENCH_MAX_REPEATS, EVERY_ENTRY, MAX_LINE};
 
 /// Which CPU fault the test-only `FAULT` command provokes.
@@ -107,7 +108,8 @@ pub enum CommandError<'a> {
     NotAscii,
     TooLong,
     Unknown(&'a str),
-    MissingArgument(&'static str),
+    /// What the line lacks, in words (`colour`, `fault kind`).
+    MissingArgument(&'a str),
     BadArgument(&'a str),
     /// A method name that is none of [`MethodId::ALL`]'s.
     UnknownMethod(&'a str),
@@ -126,6 +128,37 @@ impl fmt::Display for CommandError<'_> {
             CommandError::UnknownMethod(word) => write!(f, "`{word}`: {}", raster::UnknownMethod),
             CommandError::ExtraArgument(word) => write!(f, "unexpected argument `{word}`"),
         }
+    }
+}
+
+impl<'a> CommandError<'a> {
+    /// Parses the text written by `Display`.
+    pub fn parse(text: &'a str) -> Result<Self, Malformed> {
+        let mut prose = Prose::new("ERR", text);
+        let sentences = [
+            ("empty command", CommandError::Empty),
+            ("command is not printable ASCII", CommandError::NotAscii),
+            ("command longer than ", CommandError::TooLong),
+        ];
+        let error = if let Some((_, error)) = sentences.into_iter().find(|(words, _)| prose.next_is(words)) {
+            if error == CommandError::TooLong {
+                prose.rest();
+            }
+            error
+        } else if prose.next_is("unknown command ") {
+            CommandError::Unknown(prose.quoted("")?)
+        } else if prose.next_is("missing argument: ") {
+            CommandError::MissingArgument(prose.rest())
+        } else if prose.next_is("bad argument ") {
+            CommandError::BadArgument(prose.quoted("")?)
+        } else if prose.next_is("unexpected argument ") {
+            CommandError::ExtraArgument(prose.quoted("")?)
+        } else {
+            let word = prose.quoted(": ")?;
+            prose.rest();
+            CommandError::UnknownMethod(word)
+        };
+        prose.written_by(error)
     }
 }
 
@@ -209,6 +242,28 @@ fn parse_method(word: &str) -> Result<MethodId, CommandError<'_>> {
     word.parse().map_err(|_| CommandError::UnknownMethod(word))
 }
 
+impl Command<'_> {
+    /// The command's name, the first word of its line.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Command::Ping => "PING",
+            Command::List => "LIST",
+            Command::Draw { .. } => "DRAW",
+            Command::Show { .. } => "SHOW",
+            Command::Clear(_) => "CLEAR",
+            Command::Poly { .. } => "POLY",
+            Command::Dump => "DUMP",
+            Command::VgaCheck => "VGACHECK",
+            Command::Demo { .. } => "DEMO",
+            Command::Bench { .. } => "BENCH",
+            Command::Exit(_) => "EXIT",
+            Command::Fault(_) => "FAULT",
+            Command::Ready => "READY",
+            Command::Clock => "CLOCK",
+        }
+    }
+}
+
 impl fmt::Display for Command<'_> {
     /// The command line as the host sends it (no terminator).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -273,6 +328,7 @@ mod tests {
         for command in commands {
             let text = command.to_string();
             assert_eq!(Command::parse(text.as_bytes()), Ok(command), "{text}");
+            assert_eq!(text.split(' ').next(), Some(command.name()), "{text}");
         }
     }
 

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use protocol::Firmware;
 
 use super::options::{Clock, Cpu, Display, ExitDevice, Medium, QemuOptions, SerialLine};
-use crate::prerequisites::{ovmf_code, ovmf_secure_boot_code};
+use install::emulators::{ovmf_code, ovmf_secure_boot_code};
 
 /// The slot `QemuOptions::display_ahead` puts the card in, and the QEMU
 /// id screendumps name it by.

@@ -9,13 +9,14 @@ mod selection;
 mod units;
 
 use anyhow::Result;
-use boot_image::process::run_streaming;
-use boot_image::toolchain::ensure_toolchain;
 use boot_image::{build_image, IMAGE_ENV};
-use harness::prerequisites::{
-    ensure_bochs, ensure_cairo, ensure_chromium, ensure_ovmf, ensure_peer_libraries, ensure_qemu, ensure_qemu_qxl,
-    ensure_secure_boot_ovmf, ensure_virt_fw_vars, ensure_wasm_target,
-};
+use install::browser::ensure_chromium;
+use install::emulators::{ensure_bochs, ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_secure_boot_ovmf};
+use install::libraries::{ensure_cairo, ensure_peer_libraries};
+use install::process::run_streaming;
+use install::toolchain::ensure_toolchain;
+use install::toolchain::ensure_wasm_target;
+use install::virt_firmware::ensure_virt_fw_vars;
 
 use crate::opt::TestOpt;
 use selection::{cargo_part, Selection};
@@ -65,7 +66,7 @@ pub fn test(opt: &TestOpt) -> Result<()> {
 
 /// For a whole run, installs what its tests need (so that nothing
 /// installs in the middle of their output; a chosen few install their
-/// own, when they start QEMU, Bochs or a browser: `prerequisites`); then
+/// own, when they start QEMU, Bochs or a browser: `install`); then
 /// builds the image.
 fn install_and_build_image(whole: bool) -> Result<std::path::PathBuf> {
     if whole {
@@ -119,7 +120,7 @@ fn values_of<'a>(args: &'a [String], flags: &'a [&str]) -> impl Iterator<Item = 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use boot_image::process::command_line;
+    use install::process::command_line;
 
     fn args(line: &str) -> Vec<String> {
         line.split_whitespace().map(String::from).collect()
@@ -134,7 +135,7 @@ mod tests {
             "{}",
             command_line(&command)
         );
-        assert_eq!(command.get_current_dir(), Some(boot_image::workspace::root()));
+        assert_eq!(command.get_current_dir(), Some(install::workspace::root()));
         // With --workspace, cargo would test every package whatever -p says.
         for chosen in ["-p harness --lib", "--package=raster -- --nocapture"] {
             let line = command_line(&cargo_test(&args(chosen)));

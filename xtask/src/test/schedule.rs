@@ -15,7 +15,7 @@ use std::sync::mpsc::{channel, Receiver, RecvTimeoutError, Sender};
 use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context, Result};
-use boot_image::process::command_line;
+use install::process::command_line;
 use harness::supervisor::Supervised;
 
 use super::units::Unit;

@@ -11,8 +11,9 @@ use std::thread::JoinHandle;
 
 use anyhow::{bail, Context, Result};
 use boot_image::cargo::NIGHTLY_ONLY;
-use boot_image::process::{command_line, output_of};
-use boot_image::{workspace, IMAGE_ENV};
+use boot_image::IMAGE_ENV;
+use install::process::{command_line, output_of};
+use install::workspace;
 use cargo_metadata::{Message, MetadataCommand};
 
 use super::order::expected_seconds;
@@ -74,7 +75,7 @@ impl Unit {
 /// name packages (with `--workspace`, cargo would take every package
 /// whatever `-p` says).
 pub fn cargo_test(args: &[String]) -> Command {
-    let mut command = boot_image::cargo::host();
+    let mut command = install::toolchain::host();
     command.arg("test");
     let names_packages = cargo_part(args)
         .iter()

@@ -19,8 +19,8 @@ use std::process::Command;
 
 use anyhow::{bail, ensure, Context, Result};
 
-use crate::apt::PrivateApt;
-use crate::process::{find_in_path, run_streaming};
+use install::apt::PrivateApt;
+use install::process::{find_in_path, run_streaming};
 
 /// One Debian package and the file the build takes from it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

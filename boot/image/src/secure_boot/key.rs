@@ -27,7 +27,7 @@ use std::process::{Command, Stdio};
 use anyhow::{bail, ensure, Context, Result};
 use sha2::{Digest, Sha256};
 
-use crate::process::{command_line, find_in_path, output_of};
+use install::process::{command_line, find_in_path, output_of};
 
 /// A private key (PEM, encrypted) to sign with instead of the generated one; needs [`CERT_ENV`].
 pub const KEY_ENV: &str = "POLYLAB_SECURE_BOOT_KEY";

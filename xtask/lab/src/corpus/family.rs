@@ -7,8 +7,6 @@ use rand::SeedableRng;
 use rand_pcg::Pcg64Mcg;
 use raster::Polygon;
 
-use super::SEED;
-
 /// How a family is read in the report and the charts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -21,13 +19,16 @@ pub enum Group {
     Tiling,
     /// Sweeps and hostile input: where methods break.
     Stress,
+    /// Shapes no one here drew: a real font's glyphs, a real icon set.
+    Real,
 }
 
 impl Group {
-    /// The demo scenes, random polygons and tilings: the work a program
-    /// does every day, where speed and accuracy are weighed together.
+    /// The demo scenes, random polygons, tilings and real shapes: the work
+    /// a program does every day, where speed and accuracy are weighed
+    /// together.
     pub const fn is_everyday(self) -> bool {
-        matches!(self, Group::Scene | Group::Random | Group::Tiling)
+        matches!(self, Group::Scene | Group::Random | Group::Tiling | Group::Real)
     }
 }
 
@@ -96,6 +97,9 @@ pub struct Family {
     pub tilings: Vec<Range<usize>>,
     pub sweep: Option<Sweep>,
 }
+
+/// The corpus seed. Changing it changes every family.
+pub const SEED: u64 = 0x1AB_5EED;
 
 /// The generator for the family called `name`.
 pub(super) fn rng_for(name: &str) -> Pcg64Mcg {

@@ -4,7 +4,9 @@
 //! [`ALL`]:
 //!
 //! - tiny-skia (`tiny_skia.rs`), Cairo (`cairo.rs`) and vello_cpu
-//!   (`vello_cpu.rs`), aliased, given our subpixel vertices as floats;
+//!   (`vello_cpu.rs`), aliased, given our subpixel vertices as floats, each
+//!   twice: with its paths built before the clock starts (Cairo's kept
+//!   with `copy_path` and appended for each fill) and for every fill;
 //! - embedded-graphics (`embedded_graphics.rs`), a triangle of whole-pixel
 //!   vertices, for triangle families only;
 //! - and the aliased fillers people reach for to fill a byte buffer, each
@@ -24,9 +26,11 @@
 //! Each file's own notes say how its peer is called and what it computes
 //! in. A peer's picture is read back as spans by `rows.rs`.
 //!
-//! Adding a peer: a file with a value implementing [`Peer`] (a unit
-//! struct, or an `IntegerPeer` over a `Canvas` for a library taking
+//! Adding a peer: a file with a value implementing [`Peer`] (`peer.rs`: a
+//! unit struct, or an `IntegerPeer` over a `Canvas` for a library taking
 //! whole-pixel contours), its `mod` line here and its place in [`ALL`].
+//! Its [`PeerInfo`] says what it does inside the clock ([`Clock`]): a row
+//! of the table in docs/lab.md, which a test holds to these.
 
 mod allegro;
 mod cairo;
@@ -34,6 +38,7 @@ mod embedded_graphics;
 mod gd;
 mod imageproc;
 mod integer;
+mod peer;
 mod rows;
 mod sdl_gfx;
 #[cfg(test)]
@@ -41,50 +46,19 @@ mod test_support;
 mod tiny_skia;
 mod vello_cpu;
 
-use raster::{Polygon, SpanSink};
+pub use peer::{Clock, Peer, PeerInfo};
 
-use crate::convention::Own;
-use crate::corpus::Family;
-
-/// What a peer is, as data: the peers' counterpart of a method's
-/// `raster::MethodInfo`.
-#[derive(Clone, Copy, Debug)]
-pub struct PeerInfo {
-    /// Its name in the results and the charts.
-    pub name: &'static str,
-    /// The library, its version and the call made.
-    pub source: &'static str,
-    /// Arithmetic and convention, in words.
-    pub summary: &'static str,
-    /// How it decides which pixels are in: what it is judged against
-    /// "under its own convention".
-    pub own: Own,
-}
-
-/// A peer library, as the lab runs it.
-pub trait Peer: Sync {
-    fn info(&self) -> &PeerInfo;
-
-    /// Whether it runs on `family` at all; every family, unless it says
-    /// otherwise.
-    fn takes(&self, _family: &Family) -> bool {
-        true
-    }
-
-    /// Draws `polygon` into `sink`, or says why nothing could be drawn.
-    fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str>;
-
-    /// One timed pass: fills every polygon it accepts of `polygons`, in
-    /// order, into its own target. Inputs are converted before the pass.
-    fn pass<'a>(&self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a>;
-}
-
-/// Every peer, in the order the results and the charts list them.
-pub static ALL: [&dyn Peer; 8] = [
-    &tiny_skia::TinySkia,
-    &cairo::Cairo,
+/// Every peer, in the order the results and the charts list them. Where a
+/// peer's API lets a program build its path once, it is here twice: with
+/// the paths built before the clock starts and for every fill inside it.
+pub static ALL: [&dyn Peer; 11] = [
+    &tiny_skia::TINY_SKIA,
+    &tiny_skia::TINY_SKIA_PATH_EACH_FILL,
+    &cairo::CAIRO,
+    &cairo::CAIRO_PATH_KEPT,
     &embedded_graphics::EmbeddedGraphics,
-    &vello_cpu::VelloCpu,
+    &vello_cpu::VELLO_CPU,
+    &vello_cpu::VELLO_CPU_PATH_EACH_FILL,
     &allegro::ALLEGRO,
     &sdl_gfx::SDL_GFX,
     &gd::GD,
@@ -93,10 +67,11 @@ pub static ALL: [&dyn Peer; 8] = [
 
 #[cfg(test)]
 mod tests {
-    use raster::{CoverageSink, FillRule, SCREEN};
+    use raster::{CoverageSink, FillRule, Polygon, SCREEN};
 
     use super::test_support::{family, square, Spans};
     use super::*;
+    use crate::convention::Own;
 
     const INTEGER_PEERS: [&dyn Peer; 4] = [&allegro::ALLEGRO, &sdl_gfx::SDL_GFX, &gd::GD, &imageproc::IMAGEPROC];
 

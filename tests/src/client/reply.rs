@@ -4,11 +4,11 @@
 use std::time::Duration;
 
 use anyhow::{bail, ensure, Context, Result};
-use protocol::{BenchReply, BenchRow, FrameKind, Listing, DUMP_LEN, FRAMEBUFFER_LEN};
+use protocol::{BenchReply, BenchRow, ErrorReply, Fatal, FrameKind, Listing, DUMP_LEN, FRAMEBUFFER_LEN};
 use raster::SCREEN;
 use scenes::palette::ENTRIES;
 
-use super::serial::Frame;
+use super::frame_reader::Frame;
 use crate::picture::Image;
 
 /// Longest wait for the answer to one command (a dump is 64 KB through an
@@ -20,11 +20,15 @@ pub const REPLY_TIMEOUT: Duration = Duration::from_secs(60);
 pub enum Reply {
     Ready(String),
     Ok(String),
+    /// An `ERR` frame's text, which [`ErrorReply::parse`] reads (checked
+    /// when the frame was decoded).
     Err(String),
     List(Listing),
     Dump(Box<Dump>),
     /// The answer to `BENCH`: a row per method, in order.
     Bench(Vec<BenchRow>),
+    /// A `FATAL` frame's text, which [`Fatal::parse`] reads (checked when
+    /// the frame was decoded).
     Fatal(String),
 }
 
@@ -33,7 +37,11 @@ impl Reply {
         Ok(match frame.kind {
             FrameKind::Ready => Reply::Ready(frame.text()),
             FrameKind::Ok => Reply::Ok(frame.text()),
-            FrameKind::Err => Reply::Err(frame.text()),
+            FrameKind::Err => {
+                let text = frame.text();
+                ErrorReply::parse(&text).with_context(|| format!("ERR \"{text}\""))?;
+                Reply::Err(text)
+            }
             FrameKind::List => {
                 let text = frame.text();
                 Reply::List(Listing::parse(&text).with_context(|| format!("LIST {text:?}"))?)
@@ -43,7 +51,11 @@ impl Reply {
                 let text = frame.text();
                 Reply::Bench(BenchReply::parse(&text).with_context(|| format!("BENCH {text:?}"))?.rows)
             }
-            FrameKind::Fatal => Reply::Fatal(frame.text()),
+            FrameKind::Fatal => {
+                let text = frame.text();
+                Fatal::parse(&text).with_context(|| format!("FATAL \"{text}\""))?;
+                Reply::Fatal(text)
+            }
             FrameKind::Log => bail!("a LOG frame is not a reply"),
         })
     }

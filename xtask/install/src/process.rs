@@ -1,6 +1,6 @@
-//! Running child processes the way the harness and the xtask want them: the
-//! exact command line printed first, failure turned into an error that says
-//! which command failed.
+//! Running child processes the way the installs, the builds, the harness
+//! and the xtask want them: the exact command line printed first, failure
+//! turned into an error that says which command failed.
 
 use std::ffi::OsStr;
 use std::process::Command;

@@ -1,5 +1,5 @@
-//! The frame as the methods see it: the 64,000 bytes of the 320x200
-//! frame, one byte a pixel, row after row, as a span sink. Every access is
+//! The canvas: the frame as the methods see it, the 64,000 bytes of the
+//! 320x200 frame, one byte a pixel, row after row, as a span sink. Every access is
 //! volatile: the compiler sees stores that nobody reads and would be free
 //! to drop or merge them if they were plain writes. A span is written as
 //! aligned 8-byte stores, with 4-, 2- and 1-byte ones only at its ends: on
@@ -21,18 +21,18 @@ const _: () = assert!((SCREEN.width * SCREEN.height) as usize == FRAMEBUFFER_LEN
 
 /// The frame's memory (video memory at 0xA0000 on the VGA path, the
 /// kernel's own otherwise) and the spans dropped on their way to it.
-pub struct Frame {
+pub struct Canvas {
     pixels: VolatilePtr<'static, [u8]>,
     stray_spans: usize,
 }
 
-impl Frame {
+impl Canvas {
     /// The frame in `pixels`, [`FRAMEBUFFER_LEN`] bytes.
     pub fn new(pixels: VolatilePtr<'static, [u8]>) -> Self {
         Self { pixels, stray_spans: 0 }
     }
 
-    /// The frame's bytes, for what shows them (`vga`, `framebuffer`).
+    /// The frame's bytes, for what shows them (`vga`, `presenter`).
     pub fn pixels(&self) -> VolatilePtr<'static, [u8]> {
         self.pixels
     }
@@ -93,7 +93,7 @@ impl Frame {
     }
 }
 
-impl SpanSink for Frame {
+impl SpanSink for Canvas {
     fn size(&self) -> Size {
         SCREEN
     }

@@ -1,101 +1,22 @@
-//! Installing the system packages a run needs: which distribution the host
-//! is (`/etc/os-release`), what it calls Debian's packages, and apt-get run
-//! so that it waits for another apt instead of failing and never removes a
-//! package the user has. Where the harness cannot install (not root,
-//! another distribution, a package Ubuntu has only as a snap) it fails
-//! with what to do instead, the exact command where there is one.
+//! Installing Debian's packages a command needs, with apt-get run so
+//! that it waits for another apt instead of failing and never removes a
+//! package the user has. Where it cannot install (not root, another
+//! distribution, a package Ubuntu has only as a snap) it fails with what
+//! to do instead, the exact command where there is one.
 
 use std::path::Path;
 use std::process::Command;
 
 use anyhow::{bail, Context, Result};
 
-use boot_image::apt::PrivateApt;
-
-use crate::prerequisites::{find_in_path, CHROMEDRIVER_ENV, CHROMIUM_ENV};
+use crate::apt::PrivateApt;
+use crate::distribution::Distribution;
+use crate::process::{command_line, find_in_path, is_root, output_of, run_streaming};
 use crate::workspace;
-use boot_image::process::{command_line, is_root, output_of, run_streaming};
 
 /// How long apt-get waits for another apt or dpkg (an unattended upgrade,
 /// a second test run) to release its lock before it gives up.
 const APT_LOCK_TIMEOUT_SECONDS: u32 = 600;
-
-/// The Debian packages Ubuntu has only as snaps: its `chromium-browser`
-/// and `chromium-chromedriver` packages install the snap.
-const UBUNTU_SNAPS: [&str; 2] = ["chromium", "chromium-driver"];
-
-/// The Debian packages Ubuntu has in its universe component, which a
-/// machine may not have enabled.
-const UBUNTU_UNIVERSE: [&str; 4] = ["bochs", "bochs-term", "bochsbios", "vgabios"];
-
-/// The host's distribution family, from `/etc/os-release`'s `ID` and
-/// `ID_LIKE` (Linux Mint and Pop!_OS are Ubuntu's, Raspberry Pi OS is
-/// Debian's).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Distribution {
-    Debian {
-        /// `VERSION_CODENAME` (`bookworm`), naming its backports.
-        codename: Option<String>,
-    },
-    Ubuntu,
-    /// Another, by its `PRETTY_NAME` (or `ID`).
-    Other(String),
-}
-
-impl Distribution {
-    /// This host's, read from `/etc/os-release` (or `/usr/lib/os-release`).
-    pub fn of_host() -> Self {
-        let text =
-            ["/etc/os-release", "/usr/lib/os-release"].iter().find_map(|path| std::fs::read_to_string(path).ok());
-        Self::from_os_release(&text.unwrap_or_default())
-    }
-
-    /// The family `os_release` (the file's text) names.
-    pub fn from_os_release(os_release: &str) -> Self {
-        let field = |key: &str| {
-            os_release.lines().find_map(|line| {
-                let value = line.strip_prefix(key)?.strip_prefix('=')?.trim();
-                let unquoted = value.strip_prefix(['"', '\'']).and_then(|v| v.strip_suffix(['"', '\'']));
-                Some(unquoted.unwrap_or(value).to_string())
-            })
-        };
-        let id = field("ID").unwrap_or_default();
-        let like = field("ID_LIKE").unwrap_or_default();
-        let is = |family: &str| id == family || like.split_whitespace().any(|word| word == family);
-        if is("ubuntu") {
-            Distribution::Ubuntu
-        } else if is("debian") {
-            Distribution::Debian { codename: field("VERSION_CODENAME").filter(|name| !name.is_empty()) }
-        } else {
-            let name = field("PRETTY_NAME").or(Some(id)).filter(|name| !name.is_empty());
-            Distribution::Other(name.unwrap_or_else(|| "a system without /etc/os-release".to_string()))
-        }
-    }
-
-    /// What this distribution calls Debian's `packages`, for `what`; or,
-    /// where the harness cannot install them here, what to do instead.
-    fn packages(&self, what: &str, packages: &[&str]) -> Result<Vec<String>, String> {
-        let names = || packages.iter().map(|package| package.to_string()).collect();
-        match self {
-            Distribution::Debian { .. } => Ok(names()),
-            Distribution::Ubuntu if packages.iter().any(|package| UBUNTU_SNAPS.contains(package)) => Err(format!(
-                "{what} is not installed, and Ubuntu has Chromium only as a snap (its chromium-browser and \
-                 chromium-chromedriver packages install the snap), which the harness does not install: a snap \
-                 needs snapd running, which containers often lack, and sees a /tmp of its own, where the runs' \
-                 folders are not. Install Chromium or Google Chrome and the chromedriver of the same version \
-                 (Chrome for Testing has both), then put them on the PATH as `chromium` and `chromedriver`, or \
-                 name them with {CHROMIUM_ENV} and {CHROMEDRIVER_ENV}"
-            )),
-            Distribution::Ubuntu => Ok(names()),
-            Distribution::Other(name) => Err(format!(
-                "{what} is not installed, and the harness installs packages only on Debian and Ubuntu (and \
-                 their derivatives), not on {name}: install it with your package manager (Debian's packages \
-                 are {}), then run again",
-                packages.join(" ")
-            )),
-        }
-    }
-}
 
 /// Installs Debian's `packages` (or the host's names for them) with
 /// apt-get unless `present` says `what` is there already. Never removes a
@@ -116,12 +37,10 @@ pub fn ensure_debian_packages(what: &str, packages: &[&str], present: impl Fn() 
     }
     let as_root = is_root();
     if as_root {
-        eprintln!("harness: {what} is missing; installing the packages {} with apt-get", packages.join(" "));
+        eprintln!("install: {what} is missing; installing the packages {} with apt-get", packages.join(" "));
         run_streaming(&mut apt_get(&InstallFrom::Machine, ["update"]))?;
     }
-    let in_universe =
-        distribution == Distribution::Ubuntu && packages.iter().any(|p| UBUNTU_UNIVERSE.contains(&p.as_str()));
-    let hint = if in_universe { " (on Ubuntu they are in universe: `sudo add-apt-repository universe`)" } else { "" };
+    let hint = distribution.install_hint(&packages);
     let from = plan(what, &packages, &distribution, as_root).with_context(|| format!("cannot install {what}{hint}"))?;
     if !as_root {
         bail!("{what} is not installed; install it with:\n    {}", by_hand(&from, &packages, false));
@@ -157,14 +76,14 @@ fn plan(what: &str, packages: &[String], distribution: &Distribution, as_root: b
         outcome => outcome,
     };
     let suite = match &first {
-        Ok(removed) => backports_of(removed.iter().map(String::as_str), distribution),
-        Err(_) => backports_of(installed_versions().iter().map(String::as_str), distribution),
+        Ok(removed) => distribution.backports_of(removed.iter().map(String::as_str)),
+        Err(_) => distribution.backports_of(installed_versions().iter().map(String::as_str)),
     };
     let tried = match suite {
         Some(suite) => {
             let apt = PrivateApt::with_suite(workspace::target_dir().join("apt").join(&suite), &suite);
             eprintln!(
-                "harness: the machine has packages from {suite}, which its apt sources do not name; asking apt \
+                "install: the machine has packages from {suite}, which its apt sources do not name; asking apt \
                  whether {} fits from there, with lists of its own in {} (the machine's sources and lists stay as \
                  they are)",
                 packages.join(" "),
@@ -195,32 +114,6 @@ fn installed_versions() -> Vec<String> {
     query.unwrap_or_default().lines().map(str::to_string).collect()
 }
 
-/// The Debian release numbers Debian's backports versions carry
-/// (`~bpo12+1` is bookworm's), and their code names.
-const RELEASES: [(u32, &str); 5] = [(10, "buster"), (11, "bullseye"), (12, "bookworm"), (13, "trixie"), (14, "forky")];
-
-/// The backports suite (`bookworm-backports`) of the first of `packages`
-/// (`NAME VERSION` each) whose version is a Debian backport (`~bpoNN`),
-/// on a Debian host: the host's own release's, where its number matches
-/// (or is unknown), else the release the number names.
-fn backports_of<'a>(packages: impl IntoIterator<Item = &'a str>, distribution: &Distribution) -> Option<String> {
-    let Distribution::Debian { codename } = distribution else {
-        return None;
-    };
-    let release = packages.into_iter().find_map(|package| {
-        let (_, after) = package.split_once("~bpo")?;
-        after.split(|c: char| !c.is_ascii_digit()).next()?.parse::<u32>().ok()
-    })?;
-    let named = RELEASES.iter().find(|(number, _)| *number == release).map(|(_, name)| *name);
-    let host_number = codename.as_deref().and_then(|host| RELEASES.iter().find(|(_, name)| *name == host));
-    let name = match (host_number, named) {
-        (Some((number, host)), _) if *number == release => *host,
-        (None, _) => codename.as_deref().or(named)?,
-        (Some(_), named) => named?,
-    };
-    Some(format!("{name}-backports"))
-}
-
 /// apt-get reading `from`'s sources and lists, with `arguments`, waiting
 /// up to [`APT_LOCK_TIMEOUT_SECONDS`] for another apt's lock, never asking
 /// a question.
@@ -237,7 +130,7 @@ fn apt_get<'a>(from: &InstallFrom, arguments: impl IntoIterator<Item = &'a str>)
 /// `apt-get install` of `packages` and their dependencies from `from`,
 /// without the packages they merely recommend (for QEMU: its GUI, OVMF,
 /// its disk tools and block backends, and what they pull in), which a run
-/// needs only as named in `prerequisites`; with `mode` (`--simulate`,
+/// needs only as the `ensure_*` functions name it; with `mode` (`--simulate`,
 /// `--no-remove`) before the packages.
 fn apt_install(from: &InstallFrom, packages: &[String], mode: Option<&str>) -> Command {
     let mut install = apt_get(from, ["install", "-y", "--no-install-recommends"]);
@@ -335,35 +228,6 @@ mod tests {
     }
 
     #[test]
-    fn the_family_comes_from_id_and_id_like() {
-        let bookworm = "PRETTY_NAME=\"Debian GNU/Linux 12 (bookworm)\"\nVERSION_CODENAME=bookworm\nID=debian\n";
-        assert_eq!(Distribution::from_os_release(bookworm), Distribution::Debian { codename: Some("bookworm".into()) });
-        let ubuntu = "NAME=\"Ubuntu\"\nID=ubuntu\nID_LIKE=debian\nVERSION_CODENAME=noble\n";
-        assert_eq!(Distribution::from_os_release(ubuntu), Distribution::Ubuntu);
-        let mint = "NAME=\"Linux Mint\"\nID=linuxmint\nID_LIKE='ubuntu debian'\n";
-        assert_eq!(Distribution::from_os_release(mint), Distribution::Ubuntu);
-        let raspbian = "ID=raspbian\nID_LIKE=debian\n";
-        assert_eq!(Distribution::from_os_release(raspbian), Distribution::Debian { codename: None });
-        let fedora = "NAME=\"Fedora Linux\"\nID=fedora\nPRETTY_NAME=\"Fedora Linux 40 (Workstation Edition)\"\n";
-        assert_eq!(
-            Distribution::from_os_release(fedora),
-            Distribution::Other("Fedora Linux 40 (Workstation Edition)".into())
-        );
-        assert_eq!(Distribution::from_os_release(""), Distribution::Other("a system without /etc/os-release".into()));
-    }
-
-    #[test]
-    fn ubuntu_is_told_what_to_do_for_chromium_and_other_systems_what_to_install() {
-        let ubuntu = Distribution::Ubuntu;
-        assert_eq!(ubuntu.packages("Bochs", &["bochs", "bochsbios"]), Ok(names(&["bochs", "bochsbios"])));
-        let chromium = ubuntu.packages("Chromium", &["chromium", "chromium-driver"]).unwrap_err();
-        assert!(chromium.contains("only as a snap") && chromium.contains(CHROMIUM_ENV), "{chromium}");
-        let fedora = Distribution::Other("Fedora Linux 40".into());
-        let error = fedora.packages("QEMU", &["qemu-system-x86"]).unwrap_err();
-        assert!(error.contains("not on Fedora Linux 40") && error.contains("qemu-system-x86"), "{error}");
-    }
-
-    #[test]
     fn apt_waits_for_another_apt_and_installs_without_recommendations_or_removals() {
         assert_eq!(
             command_line(&apt_install(
@@ -434,23 +298,8 @@ mod tests {
         Conf qemu-system-x86 (1:7.2+dfsg-7+deb12u18+b3 Debian:12.15/oldstable [amd64])\n";
 
     #[test]
-    fn a_backport_names_the_backports_suite_it_came_from() {
-        let removed = removals(SIMULATION);
-        assert_eq!(removed, ["qemu-utils 1:10.0.2+ds-2+deb13u1~bpo12+1"]);
-        let bookworm = Distribution::Debian { codename: Some("bookworm".into()) };
-        let suite = |packages: &[&str], host: &Distribution| backports_of(packages.iter().copied(), host);
-        assert_eq!(
-            suite(&["qemu-utils 1:10.0.2+ds-2+deb13u1~bpo12+1"], &bookworm).as_deref(),
-            Some("bookworm-backports")
-        );
-        assert_eq!(suite(&["a 1.0", "linux-image 6.12~bpo12+1"], &bookworm).as_deref(), Some("bookworm-backports"));
-        let trixie = Distribution::Debian { codename: Some("trixie".into()) };
-        assert_eq!(suite(&["x 2~bpo13+1"], &trixie).as_deref(), Some("trixie-backports"));
-        assert_eq!(suite(&["x 2~bpo12+1"], &trixie).as_deref(), Some("bookworm-backports"), "a bookworm backport");
-        let unnamed = Distribution::Debian { codename: None };
-        assert_eq!(suite(&["x 2~bpo12+1"], &unnamed).as_deref(), Some("bookworm-backports"));
-        assert_eq!(suite(&["qemu-utils 1:7.2+dfsg-7+deb12u18"], &bookworm), None, "not a backport");
-        assert_eq!(suite(&["x 2~bpo12+1"], &Distribution::Ubuntu), None, "Debian's backports only");
+    fn the_simulations_removals_are_read_with_their_versions() {
+        assert_eq!(removals(SIMULATION), ["qemu-utils 1:10.0.2+ds-2+deb13u1~bpo12+1"]);
     }
 
     #[test]

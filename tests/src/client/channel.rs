@@ -4,18 +4,18 @@
 use std::io::Write;
 use std::time::{Duration, Instant};
 
-use anyhow::{bail, Result};
-use protocol::FrameKind;
+use anyhow::{bail, Context, Result};
+use protocol::{FrameKind, LogEvent};
 
+use super::frame_reader::FrameReader;
 use super::reply::Reply;
-use super::serial::FrameReader;
 
 /// Bytes out to the kernel, frames in from it, and the `LOG` frames
 /// received so far.
 pub(crate) struct Channel {
     pub(crate) frames: FrameReader,
     input: Box<dyn Write + Send>,
-    pub(crate) logs: Vec<String>,
+    pub(crate) logs: Vec<LogEvent>,
 }
 
 impl Channel {
@@ -52,10 +52,16 @@ impl Channel {
                 Err(error) => return Err(error),
             };
             if frame.kind == FrameKind::Log {
-                self.logs.push(frame.text());
+                self.logs.push(log_event(&frame.text())?);
                 continue;
             }
             return Reply::decode(frame);
         }
     }
+}
+
+/// The event a `LOG` frame's `text` tells; an error for a text the
+/// protocol does not write.
+pub(crate) fn log_event(text: &str) -> Result<LogEvent> {
+    LogEvent::parse(text).with_context(|| format!("LOG \"{text}\""))
 }

@@ -4,14 +4,14 @@ use std::io::Write;
 use std::time::Duration;
 
 use anyhow::{bail, ensure, Context, Result};
-use protocol::{BenchRow, Cleared, Command, DrawReply, LineLosses, Listing, Pong, Ready, ShowReply, TscRate};
+use protocol::{BenchRow, Cleared, Command, DrawReply, LineLosses, Listing, LogEvent, Pong, Ready, ShowReply, TscRate};
 use raster::MethodId;
 use scenes::show;
 
 use super::channel::Channel;
+use super::frame_reader::FrameReader;
 use super::reply::{Dump, Reply, REPLY_TIMEOUT};
-use super::serial::FrameReader;
-use crate::line::{LineStats, Sealing};
+use super::sealing::{LineStats, Sealing};
 use crate::picture::render::SceneFile;
 
 /// Longest wait for the READY frame: SeaBIOS, the bootloader's stages and
@@ -33,7 +33,7 @@ impl Console {
         Self { channel: Channel::new(input, frames), sealing: None }
     }
 
-    /// A console that seals every command (`crate::line`) and retries a
+    /// A console that seals every command (`sealing.rs`) and retries a
     /// step the line damaged up to `retries` times.
     pub fn sealed(input: impl Write + Send + 'static, frames: FrameReader, retries: u32) -> Self {
         Self { sealing: Some(Sealing::new(retries)), ..Self::new(input, frames) }
@@ -62,8 +62,9 @@ impl Console {
         self.channel.frames.skip_to_first(texts, timeout)
     }
 
-    /// The LOG frames received so far, in order.
-    pub fn logs(&self) -> &[String] {
+    /// The LOG frames received so far, in order, each read as the event
+    /// it tells.
+    pub fn logs(&self) -> &[LogEvent] {
         &self.channel.logs
     }
 
@@ -105,6 +106,16 @@ impl Console {
         match self.request(command)? {
             Reply::Ok(text) => Ok(text),
             other => bail!("`{command}` answered {}", other.describe()),
+        }
+    }
+
+    /// Sends `command` and expects ERR; returns its text, which
+    /// [`protocol::ErrorReply::parse`] reads (the reply's decoding
+    /// checked it).
+    pub fn refusal(&mut self, command: &Command) -> Result<String> {
+        match self.request(command)? {
+            Reply::Err(text) => Ok(text),
+            other => bail!("`{command}` answered {}, expected ERR", other.describe()),
         }
     }
 
@@ -240,7 +251,7 @@ impl Console {
     }
 
     /// Runs `step`, and while it fails for what the line did (a
-    /// [`Trouble`](crate::line::Trouble)) runs it again, up to the
+    /// [`Trouble`](super::Trouble)) runs it again, up to the
     /// console's retry bound, after letting the line settle. Any other
     /// failure, and a console that does not seal, fail at once.
     pub fn retrying<T>(&mut self, mut step: impl FnMut(&mut Console) -> Result<T>) -> Result<T> {
@@ -269,7 +280,9 @@ impl Console {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use protocol::{BenchReply, Firmware, FrameHeader, FrameKind, HeapState, Video, FRAMEBUFFER_LEN};
+    use protocol::{
+        BenchReply, Firmware, FrameHeader, FrameKind, HeapState, Mismatch, RegisterGroup, Video, FRAMEBUFFER_LEN,
+    };
     use scenes::palette::ENTRIES;
     use std::sync::mpsc::{self, Sender};
     use std::sync::{Arc, Mutex};
@@ -303,7 +316,7 @@ mod tests {
     #[test]
     fn commands_go_out_as_lines_and_replies_come_back_typed() {
         let (mut console, sent, _keep) = console(&[
-            (FrameKind::Log, b"vga: CRTC 0x11 reads 0x0e"),
+            (FrameKind::Log, b"crtc[0x11]: expected 0x8e, read 0x0e"),
             (FrameKind::Ready, b"firmware=uefi display=1234:1111 video=vga13h vga_mismatches=1 overruns=0 dropped=0"),
             (FrameKind::Ok, b"pong overruns=3 dropped=1 heap_used=96 heap_free_largest=4096"),
             (FrameKind::List, b"scene abrash38-1\nshow race 240\nmethod abrash_float\n"),
@@ -323,7 +336,8 @@ mod tests {
             methods: vec!["abrash_float".into()],
         };
         assert_eq!(listing, expected);
-        assert_eq!(console.logs(), ["vga: CRTC 0x11 reads 0x0e"]);
+        let mismatch = Mismatch { group: RegisterGroup::Crtc, index: 0x11, expected: 0x8e, actual: 0x0e };
+        assert_eq!(console.logs(), [LogEvent::VgaMismatch(mismatch)]);
         assert_eq!(sent.0.lock().unwrap().as_slice(), b"PING\nLIST\n");
     }
 
@@ -446,7 +460,7 @@ mod tests {
         let (console, _, sender) = console(&[]);
         // A kernel that logs every 20 ms and never answers.
         std::thread::spawn(move || {
-            let payload = b"still busy";
+            let payload = b"COM1: its interrupt (IRQ 4) did not arrive; receiving by polling alone";
             let mut frame = format!("{}\n", FrameHeader::for_payload(FrameKind::Log, payload)).into_bytes();
             frame.extend_from_slice(payload);
             frame.push(b'\n');
@@ -467,8 +481,21 @@ mod tests {
 
     #[test]
     fn a_first_frame_other_than_ready_is_an_error() {
-        let (mut console, _, _keep) = console(&[(FrameKind::Fatal, b"panic at boot")]);
+        let (mut console, _, _keep) = console(&[(FrameKind::Fatal, b"panic: at boot")]);
         let error = console.wait_ready().unwrap_err().to_string();
-        assert_eq!(error, "the kernel's first frame is FATAL \"panic at boot\", not READY");
+        assert_eq!(error, "the kernel's first frame is FATAL \"panic: at boot\", not READY");
+    }
+
+    #[test]
+    fn a_log_err_or_fatal_text_the_protocol_does_not_write_is_an_error() {
+        for (kind, text) in [
+            (FrameKind::Log, "vga: CRTC 0x11 reads 0x0e"),
+            (FrameKind::Err, "no such thing"),
+            (FrameKind::Fatal, "panic at boot"),
+        ] {
+            let (mut console, _, _keep) = console(&[(kind, text.as_bytes())]);
+            let error = format!("{:#}", console.reply_within(Duration::from_secs(10)).unwrap_err());
+            assert!(error.starts_with(&format!("{} \"{text}\": malformed", kind.name())), "{error}");
+        }
     }
 }

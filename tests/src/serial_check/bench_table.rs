@@ -12,7 +12,7 @@ use protocol::{TscRate, BENCH_UNIT_LINE};
 use raster::{MethodId, Refusal};
 use serde_json::{json, Value};
 
-use crate::qemu::console::Console;
+use crate::client::Console;
 
 /// The pages of the Black Book's Listing 38.3.
 pub const LISTING_38_3: [&str; 3] = ["abrash38-1", "abrash38-2", "abrash38-3"];

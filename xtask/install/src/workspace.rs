@@ -1,13 +1,13 @@
-//! Where the image build reads and writes in the workspace.
+//! Where the installs and the builds read and write in the workspace.
 
 use std::path::{Path, PathBuf};
 
-/// The workspace root: this crate lives in its `boot/image/` folder.
+/// The workspace root: this crate lives in its `xtask/install/` folder.
 pub fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .parent()
         .and_then(Path::parent)
-        .expect("the image build crate is two folders inside the workspace")
+        .expect("the install crate is two folders inside the workspace")
 }
 
 /// The host target directory: `CARGO_TARGET_DIR` when set, as cargo does,

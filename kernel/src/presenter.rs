@@ -21,18 +21,17 @@
 //! the same type: the manual forbids a write-combining page aliased to a
 //! cacheable one.
 
-use alloc::string::String;
+use alloc::vec;
 use alloc::vec::Vec;
-use alloc::{format, vec};
 
 use bootloader_api::info::{FrameBuffer, PixelFormat};
-use protocol::{MemoryType, Presentation};
+use protocol::{FramebufferCheck, MemoryType, PageMapping, Presentation};
 use raster::SCREEN;
 use scenes::palette::{c6_to_8, ENTRIES};
 use volatile::{VolatilePtr, VolatileRef};
 use x86_64::{PhysAddr, VirtAddr};
 
-use crate::paging::{self, Mapping};
+use crate::paging;
 use crate::vga::Palette;
 use crate::{pat, serial};
 
@@ -121,23 +120,33 @@ impl Presenter {
     }
 
     /// How the framebuffer is mapped, read back from the page tables.
-    pub fn mapping(&self) -> Option<Mapping> {
-        paging::mapping(self.start, self.pixels.len() as u64)
+    pub fn mapping(&self) -> Option<PageMapping> {
+        paging::mapping(self.start, self.len())
     }
 
-    /// The `VGACHECK` line: where the framebuffer is, how it is mapped and
-    /// what a frame costs, e.g. `framebuffer 0x80000000-0x8012bfff: 300
-    /// pages of 4 KiB, write-combining (WC), PAT entry 1; 1024000 bytes
-    /// written a frame`.
-    pub fn describe(&self) -> String {
-        let end = self.physical.as_u64() + self.pixels.len() as u64 - 1;
-        let mapping = match self.mapping() {
-            Some(mapping) => format!("{mapping}"),
-            None => String::from("not mapped"),
-        };
-        let Presentation { scale, .. } = self.presentation;
-        let bytes = FRAME_WIDTH * FRAME_HEIGHT * (scale as usize).pow(2) * self.bytes_per_pixel;
-        format!("framebuffer {:#x}-{end:#x}: {mapping}; {bytes} bytes written a frame", self.physical.as_u64())
+    /// Bytes of the framebuffer in use: the rows on the screen.
+    fn len(&self) -> u64 {
+        self.pixels.len() as u64
+    }
+
+    /// The `VGACHECK` answer: where the framebuffer is, how it is mapped
+    /// (the kernel's mapping of it and its alias in the bootloader's map of
+    /// physical memory, both of which [`Presenter::new`] made
+    /// write-combining) and what a frame costs.
+    pub fn check(&self) -> FramebufferCheck {
+        let Presentation { width, height, scale, .. } = self.presentation;
+        let alias = paging::physical(self.physical.as_u64()).and_then(|alias| paging::mapping(alias, self.len()));
+        FramebufferCheck {
+            width,
+            height,
+            scale,
+            start: self.physical.as_u64(),
+            end: self.physical.as_u64() + self.len() - 1,
+            mapping: self.mapping(),
+            alias,
+            bytes_per_frame: (FRAME_WIDTH * FRAME_HEIGHT * (scale as usize).pow(2) * self.bytes_per_pixel) as u64,
+            pat: pat::read(),
+        }
     }
 
     /// Puts `frame` (320x200 palette indices, row after row) on the screen

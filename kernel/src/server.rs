@@ -1,5 +1,5 @@
 //! The protocol server on COM1 (the `protocol` crate is the spec):
-//! one command line in, one frame out. Whatever arrives, the console
+//! one command line in, one frame out. Whatever arrives, the server
 //! answers and keeps serving: a bad line gets an `ERR` frame naming the
 //! problem, an over-long one is thrown away up to its newline, a line
 //! left unfinished for `PARTIAL_LINE_IDLE_SECONDS` is dropped and the
@@ -7,15 +7,15 @@
 //! the show for good), and no byte sequence can make it panic or wait
 //! forever. `EXIT` and `FAULT` are answered only on QEMU (`machine.rs`).
 
-use alloc::format;
 use alloc::string::{String, ToString};
 use alloc::vec;
 use alloc::vec::Vec;
 use protocol::{
-    Cleared, Command, CommandError, DemoReply, DrawReply, Firmware, FrameKind, Listing, Machine, Pong, Ready,
+    Cleared, Command, CommandError, Damaged, DemoReply, DrawReply, ErrorReply, Firmware, FrameKind, Listing, LogEvent,
+    Machine, Pong, Ready,
 };
 use raster::MethodId;
-use scenes::show::{Stage, ENTRIES_IN_ORDER};
+use scenes::show::{Entry, Stage, ENTRIES_IN_ORDER};
 use scenes::{builtin, file, Op, Scene};
 
 use crate::line::{Complete, PendingLine};
@@ -30,7 +30,7 @@ static BOOTED: spin::Once<Ready> = spin::Once::new();
 /// Tells the host the kernel is up: a `LOG` frame saying which machine it
 /// found and by what signs, one if COM1's interrupt did not arrive (the
 /// kernel then receives by polling alone), one if the PIT's did not (the
-/// console then never halts), one per thing the screen found on its way
+/// server then never halts), one per thing the screen found on its way
 /// (a framebuffer missing, or not the VGA's), on the VGA path one per
 /// register or DAC entry that did not read back as written, then `READY`
 /// naming the firmware, the machine, the display controller and where it
@@ -38,20 +38,18 @@ static BOOTED: spin::Once<Ready> = spin::Once::new();
 /// frame is presented) and its memory type, and the bytes the serial
 /// line lost so far.
 pub fn announce(screen: &Screen, firmware: Firmware, identity: &Identity) {
-    serial::send_frame(FrameKind::Log, identity.evidence().as_bytes());
+    serial::send_log(LogEvent::Machine(identity.evidence()));
     if !serial::interrupt_arrives() {
-        let text = "COM1: its interrupt (IRQ 4) did not arrive; receiving by polling alone";
-        serial::send_frame(FrameKind::Log, text.as_bytes());
+        serial::send_log(LogEvent::Com1Polling);
     }
     if !pic::timer_arrives() {
-        let text = "PIT: its interrupt (IRQ 0) did not arrive; the console waits without halting";
-        serial::send_frame(FrameKind::Log, text.as_bytes());
+        serial::send_log(LogEvent::NoTimerTick);
     }
-    for finding in screen.findings() {
-        serial::send_frame(FrameKind::Log, finding.as_bytes());
+    for &finding in screen.findings() {
+        serial::send_log(finding);
     }
     for mismatch in screen.mismatches() {
-        serial::send_frame(FrameKind::Log, mismatch.to_string().as_bytes());
+        serial::send_log(LogEvent::VgaMismatch(mismatch));
     }
     let display = screen.display();
     BOOTED.call_once(|| Ready {
@@ -75,29 +73,31 @@ fn ready(screen: &Screen) -> Ready {
 /// the demo), taking the lines that follow from `pending`. `SHOW` draws
 /// on `stage`.
 pub fn serve(screen: &mut Screen, stage: &mut Stage, mut pending: PendingLine, first: Complete) -> ! {
-    let mut console = Console { screen, stage, demo: None };
+    let mut server = Server { screen, stage, demo: None };
     let mut complete = first;
     loop {
         match complete {
             Complete::Line(line) => {
-                console.execute(&line);
+                server.execute(&line);
                 pending.recycle(line);
             }
-            Complete::TooLong => serial::send_frame(FrameKind::Err, CommandError::TooLong.to_string().as_bytes()),
+            Complete::TooLong => {
+                let error = ErrorReply::Command(CommandError::TooLong);
+                serial::send_frame(FrameKind::Err, error.to_string().as_bytes());
+            }
         }
         // `DEMO` was answered: play until the host's next line.
-        complete = match console.demo.take() {
-            Some(start) => demo::run(console.screen, console.stage, start, &mut pending),
-            None => console.next_line(&mut pending),
+        complete = match server.demo.take() {
+            Some(start) => demo::run(server.screen, server.stage, start, &mut pending),
+            None => server.next_line(&mut pending),
         };
     }
 }
 
-/// A reply: frame kind and payload. Failures are `Err(text)`, sent as
-/// `ERR` frames.
-type Reply = Result<(FrameKind, Vec<u8>), String>;
+/// A reply: frame kind and payload. Failures are sent as `ERR` frames.
+type Reply<'a> = Result<(FrameKind, Vec<u8>), ErrorReply<'a>>;
 
-struct Console<'a> {
+struct Server<'a> {
     screen: &'a mut Screen,
     /// Where `SHOW` draws its frames, allocated once.
     stage: &'a mut Stage,
@@ -105,7 +105,7 @@ struct Console<'a> {
     demo: Option<demo::Start>,
 }
 
-impl Console<'_> {
+impl Server<'_> {
     /// Waits for the next complete line; a line left unfinished for its
     /// bound is dropped and the show plays again, until one comes.
     fn next_line(&mut self, pending: &mut PendingLine) -> Complete {
@@ -130,18 +130,16 @@ impl Console<'_> {
     fn execute(&mut self, line: &[u8]) {
         interrupts::report();
         let (seq, reply) = match protocol::unseal(line) {
-            Ok((seq, command)) => {
-                (seq, Command::parse(command).map_err(|error| error.to_string()).and_then(|command| self.run(command)))
-            }
-            Err(damaged) => (None, Err(damaged.to_string())),
+            Ok((seq, command)) => (seq, Command::parse(command).map_err(ErrorReply::Command).and_then(|c| self.run(c))),
+            Err(Damaged) => (None, Err(ErrorReply::Damaged)),
         };
         match reply {
             Ok((kind, payload)) => serial::send_reply(kind, seq, &payload),
-            Err(text) => serial::send_reply(FrameKind::Err, seq, text.as_bytes()),
+            Err(error) => serial::send_reply(FrameKind::Err, seq, error.to_string().as_bytes()),
         }
     }
 
-    fn run(&mut self, command: Command<'_>) -> Reply {
+    fn run<'a>(&mut self, command: Command<'a>) -> Reply<'a> {
         match command {
             Command::Ping => {
                 ok(Pong { losses: serial::losses(), heap: heap::state(), interrupts: Some(interrupts::counts()) })
@@ -153,7 +151,7 @@ impl Console<'_> {
                 ok(draw_reply(self.screen.draw(&scene, method)))
             }
             Command::Show { entry, frame, method } => {
-                let entry = scenes::show::entry(entry).ok_or_else(|| format!("unknown show entry `{entry}`"))?;
+                let (_, entry) = show_entry(entry)?;
                 let method = method.unwrap_or(entry.method_at(frame));
                 ok(player::play(self.screen, self.stage, entry, frame, method, None))
             }
@@ -162,7 +160,7 @@ impl Console<'_> {
                 ok(Cleared { color })
             }
             Command::Poly { method, spec } => {
-                let polygon = file::parse_poly(spec).map_err(|error| error.to_string())?;
+                let polygon = file::parse_poly(spec).map_err(ErrorReply::Polygon)?;
                 let scene = Scene { name: String::from("POLY"), ops: vec![Op::Fill(polygon)], method };
                 ok(draw_reply(self.screen.draw(&scene, method)))
             }
@@ -172,28 +170,23 @@ impl Console<'_> {
                 Ok((FrameKind::Bench, bench::run(self.screen, &scene, repeats).to_string().into_bytes()))
             }
             Command::Demo { entry, method } => {
-                let index = match entry {
-                    Some(name) => Some(
-                        ENTRIES_IN_ORDER
-                            .iter()
-                            .position(|e| e.name == name)
-                            .ok_or_else(|| format!("unknown show entry `{name}`"))?,
-                    ),
-                    None => None,
-                };
+                let index = entry.map(show_entry).transpose()?.map(|(index, _)| index);
                 let start = demo::Start { entry: index.unwrap_or(0), stay: index.is_some(), method };
                 self.demo = Some(start);
                 ok(DemoReply { from: ENTRIES_IN_ORDER[start.entry].name, stay: start.stay, method })
             }
-            Command::VgaCheck => self.screen.check().and_then(ok),
+            Command::VgaCheck => match self.screen.check() {
+                check if check.passed() => ok(check),
+                check => Err(ErrorReply::VgaCheck(check)),
+            },
             Command::Ready => Ok((FrameKind::Ready, ready(self.screen).to_string().into_bytes())),
             Command::Clock => ok(clock::rate()),
             Command::Exit(code) => {
-                on_qemu("EXIT")?;
+                on_qemu(command.name())?;
                 exit::stop(code)
             }
             Command::Fault(kind) => {
-                on_qemu("FAULT")?;
+                on_qemu(command.name())?;
                 ok(fault::provoke(kind))
             }
         }
@@ -203,20 +196,25 @@ impl Console<'_> {
 /// `Ok` on a machine identified as QEMU; else why `command` is refused.
 /// The test hooks touch nothing elsewhere: QEMU's exit port is a port
 /// nobody identified on a PC, and a fault on request has no place there.
-fn on_qemu(command: &str) -> Result<(), String> {
+fn on_qemu(command: &'static str) -> Result<(), ErrorReply<'static>> {
     match machine::current() {
         Machine::Qemu => Ok(()),
-        Machine::Unknown => Err(format!("{command} refused: the machine is not identified as QEMU (machine=unknown)")),
+        Machine::Unknown => Err(ErrorReply::NotQemu(command)),
     }
 }
 
-fn ok(text: impl core::fmt::Display) -> Reply {
+fn ok(text: impl core::fmt::Display) -> Reply<'static> {
     Ok((FrameKind::Ok, text.to_string().into_bytes()))
 }
 
 /// The built-in scene called `name`, built.
-fn builtin_scene(name: &str) -> Result<Scene, String> {
-    builtin::scene(name).ok_or_else(|| format!("unknown scene `{name}`"))
+fn builtin_scene(name: &str) -> Result<Scene, ErrorReply<'_>> {
+    builtin::scene(name).ok_or(ErrorReply::UnknownScene(name))
+}
+
+/// The show entry called `name`, and its place in the show.
+fn show_entry(name: &str) -> Result<(usize, &'static Entry), ErrorReply<'_>> {
+    ENTRIES_IN_ORDER.iter().enumerate().find(|(_, entry)| entry.name == name).ok_or(ErrorReply::UnknownShowEntry(name))
 }
 
 /// The `DRAW` and `POLY` answer for what [`Screen::draw`] did.

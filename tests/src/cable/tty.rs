@@ -12,9 +12,7 @@ use std::time::Duration;
 use anyhow::{bail, Context, Result};
 use serialport::{DataBits, FlowControl, Parity, SerialPort, StopBits, TTYPort};
 
-use super::BAUD;
-use crate::qemu::console::Console;
-use crate::qemu::serial::FrameReader;
+use crate::client::{Console, FrameReader, BAUD};
 
 /// How long one read waits before the reader thread looks whether anyone
 /// still listens.

@@ -20,10 +20,9 @@ use std::time::{Duration, Instant, SystemTime};
 use anyhow::{bail, Context, Result};
 use protocol::{Command, FrameKind, Sealed, DUMP_LEN};
 
-use super::BAUD;
-use crate::qemu::channel::Channel;
-use crate::qemu::reply::{Reply, REPLY_TIMEOUT};
-use crate::qemu::serial::{ReadError, ReadErrorKind};
+use super::channel::{log_event, Channel};
+use super::frame_reader::{ReadError, ReadErrorKind};
+use super::reply::{Reply, REPLY_TIMEOUT};
 
 /// Longest wait for a reply that takes the kernel no time to speak of, by
 /// default. Generous: under TCG on a loaded 2-core machine a draw can take
@@ -39,6 +38,8 @@ const STALL: Duration = Duration::from_secs(3);
 const SETTLE: Duration = Duration::from_millis(300);
 /// How often the host asks `READY` while it waits for the kernel.
 const ASK_EVERY: Duration = Duration::from_secs(3);
+/// The kernel's line speed.
+pub const BAUD: u32 = 115_200;
 /// Bits per byte on the line: 8N1 is a start bit, 8 data bits, a stop bit.
 const BITS_PER_BYTE: u64 = 10;
 
@@ -219,7 +220,7 @@ impl Sealing {
                 }
             };
             match (frame.kind, frame.seq) {
-                (FrameKind::Log, _) => channel.logs.push(frame.text()),
+                (FrameKind::Log, _) => channel.logs.push(log_event(&frame.text())?),
                 (_, Some(echoed)) if echoed == seq => {
                     return Reply::decode(frame).with_context(|| format!("the reply to `{command}`"))
                 }
