@@ -76,7 +76,7 @@ struct Plan {
 /// What apt-get's simulated install would do to the installed packages:
 /// remove some (`NAME VERSION` each), or install a newer version of some
 /// (`NAME OLD -> NEW` each).
-#[derive(Debug, Default, PartialEq, Eq)]
+#[derive(Debug, PartialEq, Eq)]
 struct Simulation {
     removed: Vec<String>,
     upgraded: Vec<String>,
@@ -116,7 +116,9 @@ fn plan(what: &str, packages: &[String], distribution: &Distribution, as_root: b
             apt.update()?;
             let from = InstallFrom::Suite { apt, suite };
             match simulate(&from, packages) {
-                Ok(simulation) if simulation == Simulation::default() => return Ok(Plan { from, _lists: Some(lists) }),
+                Ok(simulation) if simulation.leaves_the_installed_as_they_are() => {
+                    return Ok(Plan { from, _lists: Some(lists) })
+                }
                 outcome => Some((from, outcome)),
             }
         }
