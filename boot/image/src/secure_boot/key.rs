@@ -472,7 +472,7 @@ mod tests {
     }
 
     /// Set in the copy of this test binary the test below starts.
-    const CHILD: &str = "POLYLAB_TEST_PASSPHRASE_CHILD";
+    const CHILD: &str = "PASSPHRASE_TEST_CHILD";
 
     #[test]
     fn the_passphrase_leaves_the_environment_before_any_child_starts() {
