@@ -58,6 +58,10 @@ pub fn ensure_debian_packages(what: &str, packages: &[&str], present: impl Fn() 
 enum InstallFrom {
     /// The machine's own sources and lists.
     Machine,
+    /// The machine's sources with lists of their own, fetched by a user
+    /// who is not root to ask apt what an install would do: never
+    /// installed from (the commands printed for root use the machine's).
+    MachinesSources(PrivateApt),
     /// The machine's sources plus Debian's `suite` (its release's
     /// backports), preferred (`-t`), with lists of their own in a fresh
     /// folder (mode 0700, the running user's: root's when it installs):
@@ -90,9 +94,19 @@ struct Simulation {
 /// by `apt upgrade` again). Otherwise an error that says what apt would do
 /// and which commands would resolve it.
 fn plan(what: &str, packages: &[String], distribution: &Distribution, as_root: bool) -> Result<Plan> {
-    let machine = InstallFrom::Machine;
-    let first = match simulate(&machine, packages) {
-        Ok(simulation) if simulation.removed.is_empty() => return Ok(Plan { from: machine, _lists: None }),
+    // Root has just refreshed the machine's lists; a user who is not root
+    // cannot, so asks apt over lists of the machine's sources fetched
+    // into a folder of its own (on a machine whose lists were never
+    // fetched, as in a container, the machine's would know no package).
+    let machine_lists = if as_root { None } else { Some(fresh_lists("the machine's sources", None)?) };
+    let machine_view = match &machine_lists {
+        None => InstallFrom::Machine,
+        Some((_, apt)) => InstallFrom::MachinesSources(apt.clone()),
+    };
+    let first = match simulate(&machine_view, packages) {
+        Ok(simulation) if simulation.removed.is_empty() => {
+            return Ok(Plan { from: InstallFrom::Machine, _lists: None })
+        }
         outcome => outcome,
     };
     let suite = match &first {
@@ -101,19 +115,12 @@ fn plan(what: &str, packages: &[String], distribution: &Distribution, as_root: b
     };
     let tried = match suite {
         Some(suite) => {
-            let lists = tempfile::Builder::new()
-                .prefix("polylab-apt-")
-                .tempdir()
-                .context("failed to create a folder for apt's lists")?;
-            let apt = PrivateApt::with_suite(lists.path().to_path_buf(), &suite);
             eprintln!(
                 "install: the machine has packages from {suite}, which its apt sources do not name; asking apt \
-                 whether {} fits from there, with lists of its own in {} (the machine's sources and lists stay as \
-                 they are)",
-                packages.join(" "),
-                lists.path().display()
+                 whether {} fits from there (the machine's sources and lists stay as they are)",
+                packages.join(" ")
             );
-            apt.update()?;
+            let (lists, apt) = fresh_lists(&suite, Some(&suite))?;
             let from = InstallFrom::Suite { apt, suite };
             match simulate(&from, packages) {
                 Ok(simulation) if simulation.leaves_the_installed_as_they_are() => {
@@ -125,6 +132,25 @@ fn plan(what: &str, packages: &[String], distribution: &Distribution, as_root: b
         None => None,
     };
     bail!(refusal(what, packages, &first, tried.as_ref(), as_root))
+}
+
+/// apt over the machine's sources (and Debian's `suite`, if any) with
+/// lists fetched now into a fresh folder (mode 0700, the running
+/// user's), which lives as long as the returned guard; `what` names them
+/// for the user.
+fn fresh_lists(what: &str, suite: Option<&str>) -> Result<(tempfile::TempDir, PrivateApt)> {
+    let lists = tempfile::Builder::new()
+        .prefix("polylab-apt-")
+        .tempdir()
+        .context("failed to create a folder for apt's lists")?;
+    let dir = lists.path().to_path_buf();
+    let apt = match suite {
+        Some(suite) => PrivateApt::with_suite(dir, suite),
+        None => PrivateApt::machines_sources(dir),
+    };
+    eprintln!("install: fetching apt's lists of {what} into {}", lists.path().display());
+    apt.update()?;
+    Ok((lists, apt))
 }
 
 /// What apt-get's simulated install of `packages` from `from` would do to
@@ -146,7 +172,7 @@ fn installed_versions() -> Vec<String> {
 fn apt_get<'a>(from: &InstallFrom, arguments: impl IntoIterator<Item = &'a str>) -> Command {
     let mut apt = match from {
         InstallFrom::Machine => Command::new("apt-get"),
-        InstallFrom::Suite { apt, .. } => apt.command("apt-get"),
+        InstallFrom::MachinesSources(apt) | InstallFrom::Suite { apt, .. } => apt.command("apt-get"),
     };
     apt.args(["-o", &format!("DPkg::Lock::Timeout={APT_LOCK_TIMEOUT_SECONDS}")]);
     apt.args(arguments).env("DEBIAN_FRONTEND", "noninteractive");
@@ -330,6 +356,9 @@ mod tests {
                      -t bookworm-backports --no-remove qemu-system-x86";
         let sandbox = if is_root() { " -o APT::Sandbox::User=root" } else { "" };
         assert_eq!(install, format!("apt-get{sandbox} {lists}"));
+        let own_lists = InstallFrom::MachinesSources(PrivateApt::machines_sources("/t/apt".into()));
+        let asked = command_line(&apt_install(&own_lists, &names(&["qemu-system-x86"]), Some("--simulate")));
+        assert!(asked.contains(" -o Dir::State::Lists=/t/apt/lists ") && !asked.contains(" -t "), "{asked}");
     }
 
     #[test]
