@@ -7,7 +7,7 @@ use core::fmt::{self, Write};
 use core::panic::PanicInfo;
 use core::sync::atomic::{AtomicBool, Ordering};
 
-use protocol::Fatal;
+use protocol::FatalReport;
 
 use crate::exit;
 use crate::serial;
@@ -22,7 +22,7 @@ static REPORTING: AtomicBool = AtomicBool::new(false);
 
 /// Reports `report` in a `FATAL` frame and exits QEMU with the failure
 /// code.
-pub fn fatal(report: Fatal<'_>) -> ! {
+pub fn fatal(report: FatalReport<'_>) -> ! {
     // Nothing runs after this: no interrupt handler either.
     x86_64::instructions::interrupts::disable();
     if !REPORTING.swap(true, Ordering::SeqCst) {
@@ -38,7 +38,7 @@ pub fn fatal(report: Fatal<'_>) -> ! {
 fn panic(info: &PanicInfo<'_>) -> ! {
     let mut message = Message::new();
     let _ = write!(message, "{info}");
-    fatal(Fatal::Panic(message.as_str()))
+    fatal(FatalReport::Panic(message.as_str()))
 }
 
 /// A fixed buffer that keeps the first `MESSAGE_CAPACITY` bytes written.

@@ -13,14 +13,20 @@
 //!   6), clears what it read (bits 2 and 3 set, then cleared again, as
 //!   Linux does), counts it and returns: the show plays on.
 //! - COM1's IRQ 4 moves the received bytes into `serial`'s ring buffer,
-//!   and the PIT's IRQ 0 wakes a halt (`pic.rs`).
+//!   and the PIT's IRQ 0 wakes a halt (`pic.rs`). Each is ended wherever
+//!   it is in service: at the 8259 that raised it, or at the local APIC
+//!   where its vector came through it (an I/O APIC entry the firmware left
+//!   live, a self-IPI): ended at the 8259 alone, it would stay in service
+//!   at the local APIC and hold back its priority class for good.
 //! - Every other vector, 0x20 to 0xFF, is one the kernel did not ask for:
 //!   an LVT entry of the local APIC the firmware left live (thermal,
 //!   CMCI, error, performance counter), its spurious vector, an unmasked
 //!   I/O APIC entry, a spurious 8259 IRQ. Each is counted and returns,
 //!   after an end of interrupt where the local APIC or a PIC has it in
 //!   service (`apic.rs`, `pic.rs`): left in service, it would block every
-//!   interrupt of its priority or below.
+//!   interrupt of its priority or below. A vector that storms (comes again
+//!   at once after each end, unbounded) is masked at its source
+//!   (`storm.rs`).
 //!
 //! Handlers only count (atomics, nothing else is safe to touch from an
 //! NMI): [`report`], from the show's frames and the server, sends a
@@ -29,7 +35,7 @@
 
 use core::sync::atomic::{AtomicU32, AtomicU8, Ordering};
 
-use protocol::{EndedAt, Fatal, InterruptCounts, LogEvent, PageFaultCode, PAGE_FAULT_VECTOR};
+use protocol::{EndedAt, FatalReport, InterruptCounts, LogEvent, PageFaultCode, PAGE_FAULT_VECTOR};
 use spin::Lazy;
 use x86_64::registers::control::Cr2;
 use x86_64::set_general_handler;
@@ -38,7 +44,7 @@ use x86_64::structures::idt::{InterruptDescriptorTable, InterruptStackFrame};
 use crate::fatal::fatal;
 use crate::gdt::DOUBLE_FAULT_IST_INDEX;
 use crate::port::system_control;
-use crate::{apic, pic, serial};
+use crate::{apic, pic, serial, storm};
 
 /// The exceptions: vectors 0 to 31.
 const EXCEPTIONS: core::ops::Range<u8> = 0..32;
@@ -98,11 +104,19 @@ pub fn enable() {
 
 extern "x86-interrupt" fn timer_tick(_frame: InterruptStackFrame) {
     pic::on_timer_tick();
+    end_interrupt(pic::TIMER_VECTOR);
 }
 
 extern "x86-interrupt" fn com1_received(_frame: InterruptStackFrame) {
     serial::on_interrupt();
-    pic::end_of_master_interrupt();
+    end_interrupt(pic::COM1_VECTOR);
+}
+
+/// Ends the interrupt on `vector` wherever it is in service: the local
+/// APIC, an 8259, both or neither; says where, as `ENDED_BY_*` bits.
+fn end_interrupt(vector: u8) -> u8 {
+    (if apic::end_if_in_service(vector) { ENDED_BY_APIC } else { 0 })
+        | (if pic::end_if_in_service(vector) { ENDED_BY_PIC } else { 0 })
 }
 
 /// Reads port 0x61 for the reason, clears the latch of each reason
@@ -122,8 +136,8 @@ extern "x86-interrupt" fn non_maskable_interrupt(_frame: InterruptStackFrame) {
 /// A vector from 0x20 to 0xFF that nothing asked for: counted, ended
 /// where it is in service, and returned from.
 fn stray_interrupt(_frame: InterruptStackFrame, vector: u8, _error: Option<u64>) {
-    let ended = (if apic::end_if_in_service(vector) { ENDED_BY_APIC } else { 0 })
-        | (if pic::end_if_in_service(vector) { ENDED_BY_PIC } else { 0 });
+    storm::guard(vector);
+    let ended = end_interrupt(vector);
     ENDED_BY[usize::from(vector)].store(ended, Ordering::Relaxed);
     STRAY[usize::from(vector)].fetch_add(1, Ordering::Release);
 }
@@ -135,15 +149,15 @@ fn exception(frame: InterruptStackFrame, vector: u8, error: Option<u64>) {
     match (vector, error) {
         // CR2 holds the address whose access faulted.
         (PAGE_FAULT_VECTOR, Some(code)) => {
-            fatal(Fatal::PageFault { address: Cr2::read_raw(), code: PageFaultCode::new(code), at })
+            fatal(FatalReport::PageFault { address: Cr2::read_raw(), code: PageFaultCode::new(code), at })
         }
-        _ => fatal(Fatal::Exception { vector, error, at }),
+        _ => fatal(FatalReport::Exception { vector, error, at }),
     }
 }
 
 extern "x86-interrupt" fn double_fault(frame: InterruptStackFrame, error: u64) -> ! {
     let (at, stack) = (frame.instruction_pointer.as_u64(), frame.stack_pointer.as_u64());
-    fatal(Fatal::DoubleFault { error, at, stack })
+    fatal(FatalReport::DoubleFault { error, at, stack })
 }
 
 /// Stray interrupts taken on `vector` since boot.
@@ -162,6 +176,7 @@ pub fn counts() -> InterruptCounts {
 /// IOCHK#); the kernel carries on` or `stray interrupt: vector 0x99, 2 so
 /// far, ended at the local APIC; returned`. Call from the main flow only.
 pub fn report() {
+    storm::report();
     let nmis = NMIS.load(Ordering::Acquire);
     if REPORTED_NMIS.swap(nmis, Ordering::Relaxed) != nmis {
         let reason = NMI_REASON.load(Ordering::Relaxed);

@@ -9,10 +9,10 @@
 //!
 //! `unsafe` code lives in these modules alone, each block with a
 //! `// SAFETY:` note: hardware access in `port`, `video`, `paging`, `pat`,
-//! `apic`, `timers`, `heap`, `gdt`, `interrupts` and `fault`; `clock`'s one
-//! RDTSC; and `serial`'s one forced unlock of COM1's driver, when a fatal
-//! error interrupted the code that held it. Everything above them is safe
-//! code.
+//! `apic`, `ioapic`, `timers`, `heap`, `gdt`, `interrupts` and `fault`;
+//! `clock`'s one RDTSC; and `serial`'s one forced unlock of COM1's driver,
+//! when a fatal error interrupted the code that held it.
+//! Everything above them is safe code.
 #![no_std]
 #![no_main]
 #![feature(abi_x86_interrupt)]
@@ -33,9 +33,11 @@ mod firmware;
 mod gdt;
 mod heap;
 mod interrupts;
+mod ioapic;
 mod keyboard;
 mod line;
 mod machine;
+mod memory_map;
 mod paging;
 mod pat;
 mod pci;
@@ -44,8 +46,10 @@ mod pit;
 mod player;
 mod port;
 mod presenter;
+mod rtc;
 mod serial;
 mod server;
+mod storm;
 mod timers;
 mod vga;
 mod video;
@@ -71,11 +75,13 @@ fn kernel_main(boot_info: &'static mut BootInfo) -> ! {
     interrupts::init();
     heap::init();
     paging::init(boot_info);
+    memory_map::init(boot_info);
     // After the page tables, through which it reaches the ACPI tables and
     // the HPET; before anything that waits.
     clock::init(boot_info.rsdp_addr.into_option());
     serial::init();
     apic::init();
+    ioapic::init(boot_info.rsdp_addr.into_option());
     let firmware = firmware::of(boot_info);
     let displays = pci::Displays::scan();
     let mut screen = video::Screen::open(boot_info, firmware, &displays);

@@ -45,6 +45,9 @@ pub fn announce(screen: &Screen, firmware: Firmware, identity: &Identity) {
     if !pic::timer_arrives() {
         serial::send_log(LogEvent::NoTimerTick);
     }
+    if let Some((address, why)) = clock::hpet_refused() {
+        serial::send_log(LogEvent::HpetRefused { address, why });
+    }
     for &finding in screen.findings() {
         serial::send_log(finding);
     }
@@ -181,6 +184,10 @@ impl Server<'_> {
             },
             Command::Ready => Ok((FrameKind::Ready, ready(self.screen).to_string().into_bytes())),
             Command::Clock => ok(clock::rate()),
+            Command::ForceClock { source, stalled } => {
+                on_qemu(command.name())?;
+                clock::force(source, stalled).map(ok).ok_or(ErrorReply::NoTimer(source))?
+            }
             Command::Exit(code) => {
                 on_qemu(command.name())?;
                 exit::stop(code)

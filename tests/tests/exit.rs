@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, ensure, Result};
 use harness::{Cpu, ExitDevice, Qemu, QemuOptions, Reply};
 use protocol::{
-    qemu_status, Command, ErrorReply, Fatal, FaultKind, Machine, EXIT_FAILURE as FAILED, EXIT_SUCCESS as SUCCESS,
+    qemu_status, Command, ErrorReply, FatalReport, FaultKind, Machine, EXIT_FAILURE as FAILED, EXIT_SUCCESS as SUCCESS,
 };
 
 /// Longest wait for QEMU to exit once the kernel has asked it to.
@@ -32,12 +32,12 @@ fn exit_16_leaves_qemu_with_status_33() -> Result<()> {
 /// Provokes `kind`, expects a FATAL frame whose report is `reported`
 /// (so the right handler caught it), then QEMU's exit with the failure
 /// status (35).
-fn fault_is_reported_and_fails(kind: FaultKind, reported: fn(&Fatal) -> bool) -> Result<()> {
+fn fault_is_reported_and_fails(kind: FaultKind, reported: fn(&FatalReport) -> bool) -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     qemu.console.send(&Command::Fault(kind))?;
     let cause = format!("FAULT {}", kind.name());
     match qemu.console.reply()? {
-        Reply::Fatal(text) => ensure!(reported(&Fatal::parse(&text)?), "{cause} reported \"{text}\""),
+        Reply::Fatal(text) => ensure!(reported(&FatalReport::parse(&text)?), "{cause} reported \"{text}\""),
         other => bail!("{cause} answered {other:?}, expected FATAL"),
     }
     let status = qemu.wait_exit(EXIT_TIMEOUT)?;
@@ -92,7 +92,7 @@ fn where_qemu_is_not_identified_exit_and_fault_are_refused_and_nothing_is_touche
 #[test]
 fn breakpoint_is_reported_and_exits_with_status_35() -> Result<()> {
     fault_is_reported_and_fails(FaultKind::Breakpoint, |report| {
-        matches!(report, Fatal::Exception { vector: 3, error: None, .. })
+        matches!(report, FatalReport::Exception { vector: 3, error: None, .. })
     })
 }
 
@@ -101,30 +101,30 @@ fn page_fault_is_reported_and_exits_with_status_35() -> Result<()> {
     fault_is_reported_and_fails(FaultKind::PageFault, |report| {
         // A read (no write, no user, no protection bits) of the kernel's
         // unmapped address, `kernel/src/fault.rs`.
-        matches!(report, Fatal::PageFault { address: 0xdeadbeef000, code, .. } if code.bits() == 0)
+        matches!(report, FatalReport::PageFault { address: 0xdeadbeef000, code, .. } if code.bits() == 0)
     })
 }
 
 #[test]
 fn double_fault_is_reported_and_exits_with_status_35() -> Result<()> {
-    fault_is_reported_and_fails(FaultKind::DoubleFault, |report| matches!(report, Fatal::DoubleFault { .. }))
+    fault_is_reported_and_fails(FaultKind::DoubleFault, |report| matches!(report, FatalReport::DoubleFault { .. }))
 }
 
 #[test]
 fn panic_is_reported_and_exits_with_status_35() -> Result<()> {
-    fault_is_reported_and_fails(FaultKind::Panic, |report| matches!(report, Fatal::Panic(_)))
+    fault_is_reported_and_fails(FaultKind::Panic, |report| matches!(report, FatalReport::Panic(_)))
 }
 
 #[test]
 fn divide_error_is_reported_and_exits_with_status_35() -> Result<()> {
     fault_is_reported_and_fails(FaultKind::DivideError, |report| {
-        matches!(report, Fatal::Exception { vector: 0, error: None, .. })
+        matches!(report, FatalReport::Exception { vector: 0, error: None, .. })
     })
 }
 
 #[test]
 fn invalid_opcode_is_reported_and_exits_with_status_35() -> Result<()> {
     fault_is_reported_and_fails(FaultKind::InvalidOpcode, |report| {
-        matches!(report, Fatal::Exception { vector: 6, error: None, .. })
+        matches!(report, FatalReport::Exception { vector: 6, error: None, .. })
     })
 }

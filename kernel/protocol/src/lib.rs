@@ -13,7 +13,7 @@
 //! [`ShowReply`], [`DrawReply`], [`BenchReply`], [`Listing`],
 //! [`VgaCheck`], ...), and in `events` the frames that are sentences for
 //! people, which the host reads back all the same: `ERR`
-//! ([`ErrorReply`]), `LOG` ([`LogEvent`]) and `FATAL` ([`Fatal`]). A host
+//! ([`ErrorReply`]), `LOG` ([`LogEvent`]) and `FATAL` ([`FatalReport`]). A host
 //! on a line that can damage bytes seals its command lines (`#SEQ COMMAND
 //! CRC32`, [`Sealed`], in `sealed`): the kernel refuses a damaged one and
 //! echoes the sequence number in its reply's header.
@@ -27,10 +27,10 @@ mod frames;
 mod replies;
 mod sealed;
 
-pub use commands::{Command, CommandError, FaultKind};
+pub use commands::{Command, CommandError, FaultKind, FIRST_INTERRUPT_VECTOR, STORM_VECTOR, STRAY_VECTOR};
 pub use events::{
-    EndedAt, ErrorReply, Fatal, LogEvent, MachineEvidence, PageFaultCode, DOUBLE_FAULT_VECTOR, EXCEPTION_NAMES,
-    PAGE_FAULT_VECTOR,
+    EndedAt, ErrorReply, FatalReport, HpetRefusal, LogEvent, MachineEvidence, MaskedAt, PageFaultCode,
+    DOUBLE_FAULT_VECTOR, EXCEPTION_NAMES, PAGE_FAULT_VECTOR,
 };
 pub use frames::{FrameHeader, FrameKind};
 pub use replies::{

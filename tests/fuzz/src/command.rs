@@ -9,10 +9,10 @@
 //! command it seals, which seals again to the same line.
 
 use protocol::{
-    unseal, BenchReply, BenchRow, Cleared, Command, CommandError, DemoReply, DrawReply, EndedAt, ErrorReply, Fatal,
-    FaultKind, FrameHeader, FrameKind, LineErrors, LineLosses, Listing, LogEvent, Machine, MachineEvidence, Mismatch,
-    PageFaultCode, PciAddress, PciId, Pong, Raised, Ready, RegisterGroup, Sealed, ShowReply, StrayRaised, TscRate,
-    VgaCheck, BENCH_MAX_REPEATS,
+    unseal, BenchReply, BenchRow, Cleared, Command, CommandError, DemoReply, DrawReply, EndedAt, ErrorReply,
+    FatalReport, FaultKind, FrameHeader, FrameKind, LineErrors, LineLosses, Listing, LogEvent, Machine,
+    MachineEvidence, Mismatch, PageFaultCode, PciAddress, PciId, Pong, Raised, Ready, RegisterGroup, Sealed, ShowReply,
+    StrayRaised, TscRate, VgaCheck, BENCH_MAX_REPEATS,
 };
 use raster::{CoverageSink, MethodId, Refusal, SCREEN};
 use scenes::file;
@@ -69,8 +69,8 @@ pub fn check(data: &[u8]) {
     if let Ok(error) = ErrorReply::parse(text) {
         assert_eq!(ErrorReply::parse(&error.to_string()), Ok(error.clone()), "{text:?}");
     }
-    if let Ok(report) = Fatal::parse(text) {
-        assert_eq!(Fatal::parse(&report.to_string()), Ok(report), "{text:?}");
+    if let Ok(report) = FatalReport::parse(text) {
+        assert_eq!(FatalReport::parse(&report.to_string()), Ok(report), "{text:?}");
     }
     if let Ok(check) = VgaCheck::parse(text) {
         assert_eq!(VgaCheck::parse(&check.to_string()), Ok(check.clone()), "{text:?}");
@@ -193,9 +193,9 @@ pub fn seeds() -> Vec<(String, Vec<u8>)> {
         ErrorReply::Command(CommandError::UnknownMethod("exakt")).to_string(),
         ErrorReply::UnknownShowEntry("nope").to_string(),
         ErrorReply::NotQemu("EXIT").to_string(),
-        Fatal::PageFault { address: 0xdeadbeef000, code: PageFaultCode::new(2), at: 0x20_0000 }.to_string(),
-        Fatal::Exception { vector: 13, error: Some(0x10), at: 0x20_0000 }.to_string(),
-        Fatal::Panic("panicked at src/fault.rs:60:30:\nFAULT panic").to_string(),
+        FatalReport::PageFault { address: 0xdeadbeef000, code: PageFaultCode::new(2), at: 0x20_0000 }.to_string(),
+        FatalReport::Exception { vector: 13, error: Some(0x10), at: 0x20_0000 }.to_string(),
+        FatalReport::Panic("panicked at src/fault.rs:60:30:\nFAULT panic").to_string(),
         VgaCheck::Vga {
             mismatches: vec![Mismatch { group: RegisterGroup::Dac, index: 4, expected: 0, actual: 63 }],
             window: None,

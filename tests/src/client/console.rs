@@ -4,7 +4,9 @@ use std::io::Write;
 use std::time::Duration;
 
 use anyhow::{bail, ensure, Context, Result};
-use protocol::{BenchRow, Cleared, Command, DrawReply, LineLosses, Listing, LogEvent, Pong, Ready, ShowReply, TscRate};
+use protocol::{
+    BenchRow, Cleared, ClockSource, Command, DrawReply, LineLosses, Listing, LogEvent, Pong, Ready, ShowReply, TscRate,
+};
 use raster::MethodId;
 use scenes::show;
 
@@ -222,8 +224,19 @@ impl Console {
 
     /// Sends `CLOCK` and returns the kernel's time-stamp counter rate.
     pub fn tsc_rate(&mut self) -> Result<TscRate> {
-        let text = self.ok(&Command::Clock)?;
-        TscRate::parse(&text).with_context(|| format!("`CLOCK` answered OK \"{text}\", not a TSC rate"))
+        self.clock(&Command::Clock)
+    }
+
+    /// `CLOCK SOURCE [stalled]` (test only): the kernel measures the TSC
+    /// against `source` alone, `stalled` with its own stalls inside the
+    /// measurement, and takes that rate as its clock; what it answers.
+    pub fn force_clock(&mut self, source: ClockSource, stalled: bool) -> Result<TscRate> {
+        self.clock(&Command::ForceClock { source, stalled })
+    }
+
+    fn clock(&mut self, command: &Command) -> Result<TscRate> {
+        let text = self.ok(command)?;
+        TscRate::parse(&text).with_context(|| format!("`{command}` answered OK \"{text}\", not a TSC rate"))
     }
 
     /// The line's counts, if the console seals its commands.

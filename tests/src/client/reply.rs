@@ -4,7 +4,7 @@
 use std::time::Duration;
 
 use anyhow::{bail, ensure, Context, Result};
-use protocol::{BenchReply, BenchRow, ErrorReply, Fatal, FrameKind, Listing, DUMP_LEN, FRAMEBUFFER_LEN};
+use protocol::{BenchReply, BenchRow, ErrorReply, FatalReport, FrameKind, Listing, DUMP_LEN, FRAMEBUFFER_LEN};
 use raster::SCREEN;
 use scenes::palette::ENTRIES;
 
@@ -27,7 +27,7 @@ pub enum Reply {
     Dump(Box<Dump>),
     /// The answer to `BENCH`: a row per method, in order.
     Bench(Vec<BenchRow>),
-    /// A `FATAL` frame's text, which [`Fatal::parse`] reads (checked when
+    /// A `FATAL` frame's text, which [`FatalReport::parse`] reads (checked when
     /// the frame was decoded).
     Fatal(String),
 }
@@ -53,7 +53,7 @@ impl Reply {
             }
             FrameKind::Fatal => {
                 let text = frame.text();
-                Fatal::parse(&text).with_context(|| format!("FATAL \"{text}\""))?;
+                FatalReport::parse(&text).with_context(|| format!("FATAL \"{text}\""))?;
                 Reply::Fatal(text)
             }
             FrameKind::Log => bail!("a LOG frame is not a reply"),

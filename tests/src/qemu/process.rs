@@ -14,7 +14,7 @@ use install::process::command_line;
 use protocol::{Firmware, Ready};
 
 use super::arguments::{qemu_arguments, qmp_socket, uefi_variables, CARD_BEHIND_ID};
-use super::board::AHEAD_ID;
+use super::board::{hpet_table_body, AHEAD_ID, HPET_TABLE_FILE};
 use super::options::{Adapter, QemuOptions, SerialLine};
 use super::qmp::{Qmp, QMP_TIMEOUT};
 use crate::client::{forward_bytes, Console, FrameReader};
@@ -110,6 +110,11 @@ impl Qemu {
         if options.firmware == Firmware::Uefi {
             std::fs::copy(variables, uefi_variables(&run_dir))
                 .with_context(|| format!("failed to copy {} into {}", variables.display(), run_dir.display()))?;
+        }
+        if let Some(address) = options.hpet_table_at {
+            let table = run_dir.join(HPET_TABLE_FILE);
+            std::fs::write(&table, hpet_table_body(address))
+                .with_context(|| format!("failed to write {}", table.display()))?;
         }
         let mut command = Command::new(QEMU);
         command.args(qemu_arguments(image, &run_dir, options));

@@ -1,5 +1,6 @@
-//! The `OK` text of `FAULT strayinterrupt`: the one fault the kernel
-//! survives, and how it was raised.
+//! The `OK` text of `FAULT strayinterrupt`, `strayirq` and
+//! `interruptstorm`: the faults the kernel survives, and how each was
+//! raised.
 
 use core::fmt;
 
@@ -9,26 +10,51 @@ use super::prose::Prose;
 /// How the kernel raised the interrupt.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Raised {
-    /// A self-IPI through the local APIC, as a device's interrupt arrives.
+    /// `strayinterrupt`: a self-IPI through the local APIC, as a device's
+    /// interrupt arrives.
     LocalApic,
-    /// By `INT`, where there is no enabled local APIC.
+    /// `strayinterrupt`: by `INT`, where there is no enabled local APIC.
     Int,
+    /// Not at all: `strayinterrupt` with no enabled local APIC and a
+    /// vector `INT` is not given for (only the default one is), or
+    /// `interruptstorm` with no I/O APIC taking the RTC's IRQ.
+    NotRaised,
+    /// `strayirq`: the RTC's periodic interrupt, IRQ 8, let through the two
+    /// 8259s.
+    Pic,
+    /// `interruptstorm`: the RTC's IRQ 8 routed level-triggered through
+    /// the I/O APIC, its line left high.
+    IoApicLevel,
 }
 
 impl Raised {
-    const ALL: [Raised; 2] = [Raised::LocalApic, Raised::Int];
+    const ALL: [Raised; 5] = [Raised::LocalApic, Raised::Int, Raised::NotRaised, Raised::Pic, Raised::IoApicLevel];
+
+    /// The `FAULT` kind that raises it this way, as the text starts.
+    fn kind(self) -> &'static str {
+        match self {
+            Raised::LocalApic | Raised::Int | Raised::NotRaised => "strayinterrupt",
+            Raised::Pic => "strayirq",
+            Raised::IoApicLevel => "interruptstorm",
+        }
+    }
 
     fn words(self) -> &'static str {
         match self {
             Raised::LocalApic => "sent through the local APIC",
             Raised::Int => "raised by INT (no enabled local APIC)",
+            Raised::NotRaised => "not raised (nothing here can raise it)",
+            Raised::Pic => "raised by the RTC's IRQ 8 through the two 8259s",
+            Raised::IoApicLevel => {
+                "raised by the RTC's IRQ 8, level-triggered through the I/O APIC, its line left high"
+            }
         }
     }
 }
 
-/// The `OK` text of `FAULT strayinterrupt`: `strayinterrupt: vector 0xV
-/// HOW; N taken on it so far`, the count read once the interrupt was taken
-/// (or a bounded wait for it ended).
+/// The `OK` text of the stray `FAULT`s: `KIND: vector 0xV HOW; N taken on
+/// it so far`, the count of stray interrupts on the vector read once the
+/// interrupt was taken (or a bounded wait for it ended).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct StrayRaised {
     pub vector: u8,
@@ -40,7 +66,7 @@ pub struct StrayRaised {
 impl fmt::Display for StrayRaised {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let Self { vector, raised, taken } = *self;
-        write!(f, "strayinterrupt: vector {vector:#04x} {}; {taken} taken on it so far", raised.words())
+        write!(f, "{}: vector {vector:#04x} {}; {taken} taken on it so far", raised.kind(), raised.words())
     }
 }
 
@@ -48,12 +74,12 @@ impl StrayRaised {
     /// Parses the text written by `Display`.
     pub fn parse(text: &str) -> Result<Self, Malformed> {
         let mut prose = Prose::new("FAULT", text);
-        prose.expect("strayinterrupt: vector ", "`strayinterrupt: vector`")?;
+        let kind = prose.until(": vector ", "`KIND: vector`")?;
         let vector = prose.hex_of("vector")?;
         prose.expect(" ", "a space")?;
         let raised = Raised::ALL
             .into_iter()
-            .find(|raised| prose.next_is(raised.words()))
+            .find(|raised| raised.kind() == kind && prose.next_is(raised.words()))
             .ok_or(prose.malformed(Expected::Value("how it was raised")))?;
         prose.expect("; ", "`; `")?;
         let taken = prose.number("taken")?;
@@ -74,12 +100,20 @@ mod tests {
         let text = raised.to_string();
         assert_eq!(text, "strayinterrupt: vector 0x99 sent through the local APIC; 2 taken on it so far");
         assert_eq!(StrayRaised::parse(&text), Ok(raised));
-        let by_int = StrayRaised { vector: 0xff, raised: Raised::Int, taken: 0 };
-        assert_eq!(StrayRaised::parse(&by_int.to_string()), Ok(by_int));
+        for raised in Raised::ALL {
+            let stray = StrayRaised { vector: 0xff, raised, taken: 0 };
+            assert_eq!(StrayRaised::parse(&stray.to_string()), Ok(stray));
+        }
+        let irq = StrayRaised { vector: 0x28, raised: Raised::Pic, taken: 1 };
+        assert_eq!(
+            irq.to_string(),
+            "strayirq: vector 0x28 raised by the RTC's IRQ 8 through the two 8259s; 1 taken on it so far"
+        );
         for garbage in [
             "strayinterrupt: vector 0x99 sent; 2 taken on it so far",
             "strayinterrupt: vector 0x99 sent through the local APIC; 2 taken",
             "strayinterrupt: vector 0x099 sent through the local APIC; 2 taken on it so far",
+            "strayirq: vector 0x99 sent through the local APIC; 2 taken on it so far",
         ] {
             assert!(StrayRaised::parse(garbage).is_err(), "{garbage}");
         }

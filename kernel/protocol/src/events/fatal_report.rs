@@ -97,7 +97,7 @@ impl fmt::Display for PageFaultCode {
 
 /// A `FATAL` frame's text.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Fatal<'a> {
+pub enum FatalReport<'a> {
     /// A CPU exception but a page fault or a double fault, by vector (0
     /// to 31): `NAME at 0xIP`, or `NAME (error code 0xE) at 0xIP`.
     Exception { vector: u8, error: Option<u64>, at: u64 },
@@ -113,38 +113,38 @@ pub enum Fatal<'a> {
     HandlerReturned(FaultKind),
 }
 
-impl fmt::Display for Fatal<'_> {
+impl fmt::Display for FatalReport<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
-            Fatal::Exception { vector, error, at } => {
+            FatalReport::Exception { vector, error, at } => {
                 write!(f, "{}", EXCEPTION_NAMES[usize::from(vector % 32)])?;
                 if let Some(code) = error {
                     write!(f, " (error code {code:#x})")?;
                 }
                 write!(f, " at {at:#x}")
             }
-            Fatal::PageFault { address, code, at } => {
+            FatalReport::PageFault { address, code, at } => {
                 write!(f, "page fault at {address:#x} ({code}), instruction at {at:#x}")
             }
-            Fatal::DoubleFault { error, at, stack } => {
+            FatalReport::DoubleFault { error, at, stack } => {
                 write!(f, "double fault (error code {error:#x}) at {at:#x}, stack pointer {stack:#x}")
             }
-            Fatal::Panic(message) => write!(f, "panic: {message}"),
-            Fatal::HandlerReturned(kind) => write!(f, "FAULT {}: the fault handler returned", kind.name()),
+            FatalReport::Panic(message) => write!(f, "panic: {message}"),
+            FatalReport::HandlerReturned(kind) => write!(f, "FAULT {}: the fault handler returned", kind.name()),
         }
     }
 }
 
-impl<'a> Fatal<'a> {
+impl<'a> FatalReport<'a> {
     /// Parses the text written by `Display`.
     pub fn parse(text: &'a str) -> Result<Self, Malformed> {
         let mut prose = Prose::new("FATAL", text);
         let report = if prose.next_is("panic: ") {
-            Fatal::Panic(prose.rest())
+            FatalReport::Panic(prose.rest())
         } else if prose.next_is("FAULT ") {
             let name = prose.until(": the fault handler returned", "`the fault handler returned`")?;
             let kind = FaultKind::ALL.into_iter().find(|kind| kind.name() == name);
-            Fatal::HandlerReturned(kind.ok_or(prose.malformed(Expected::Value("fault kind")))?)
+            FatalReport::HandlerReturned(kind.ok_or(prose.malformed(Expected::Value("fault kind")))?)
         } else if prose.next_is("page fault at ") {
             let address = prose.hex("address")?;
             prose.expect(" (PageFaultErrorCode(", "the error code")?;
@@ -156,13 +156,13 @@ impl<'a> Fatal<'a> {
                     code |= bit.ok_or(prose.malformed(Expected::Value("error code")))?.0;
                 }
             }
-            Fatal::PageFault { address, code: PageFaultCode(code), at: prose.hex("instruction")? }
+            FatalReport::PageFault { address, code: PageFaultCode(code), at: prose.hex("instruction")? }
         } else if prose.next_is("double fault (error code ") {
             let error = prose.hex("error code")?;
             prose.expect(") at ", "`at`")?;
             let at = prose.hex("instruction")?;
             prose.expect(", stack pointer ", "`stack pointer`")?;
-            Fatal::DoubleFault { error, at, stack: prose.hex("stack pointer")? }
+            FatalReport::DoubleFault { error, at, stack: prose.hex("stack pointer")? }
         } else {
             let vector = (0..32u8)
                 .filter(|&vector| vector != PAGE_FAULT_VECTOR && vector != DOUBLE_FAULT_VECTOR)
@@ -177,7 +177,7 @@ impl<'a> Fatal<'a> {
                 false => None,
             };
             prose.expect(" at ", "`at`")?;
-            Fatal::Exception { vector, error, at: prose.hex("instruction")? }
+            FatalReport::Exception { vector, error, at: prose.hex("instruction")? }
         };
         prose.written_by(report)
     }
@@ -192,39 +192,39 @@ mod tests {
     #[test]
     fn every_fatal_report_round_trips_through_its_text() {
         let reports = [
-            Fatal::Exception { vector: 0, error: None, at: 0x8000_1234 },
-            Fatal::Exception { vector: 13, error: Some(0x10), at: 0xffff_8000_0000_0000 },
-            Fatal::Exception { vector: 18, error: None, at: 1 },
-            Fatal::Exception { vector: 31, error: None, at: 1 },
-            Fatal::PageFault { address: 0xdeadbeef000, code: PageFaultCode::new(0), at: 0x20_1234 },
-            Fatal::PageFault { address: 0, code: PageFaultCode::new(0b11 | 1 << 31 | 1 << 40), at: 2 },
-            Fatal::DoubleFault { error: 0, at: 0x20_1000, stack: 0x10_0000 },
-            Fatal::Panic("panicked at kernel/src/fault.rs:60:30:\nFAULT panic: the host asked for it"),
-            Fatal::Panic(""),
-            Fatal::HandlerReturned(FaultKind::PageFault),
+            FatalReport::Exception { vector: 0, error: None, at: 0x8000_1234 },
+            FatalReport::Exception { vector: 13, error: Some(0x10), at: 0xffff_8000_0000_0000 },
+            FatalReport::Exception { vector: 18, error: None, at: 1 },
+            FatalReport::Exception { vector: 31, error: None, at: 1 },
+            FatalReport::PageFault { address: 0xdeadbeef000, code: PageFaultCode::new(0), at: 0x20_1234 },
+            FatalReport::PageFault { address: 0, code: PageFaultCode::new(0b11 | 1 << 31 | 1 << 40), at: 2 },
+            FatalReport::DoubleFault { error: 0, at: 0x20_1000, stack: 0x10_0000 },
+            FatalReport::Panic("panicked at kernel/src/fault.rs:60:30:\nFAULT panic: the host asked for it"),
+            FatalReport::Panic(""),
+            FatalReport::HandlerReturned(FaultKind::PageFault),
         ];
         for report in reports {
             let text = report.to_string();
-            assert_eq!(Fatal::parse(&text), Ok(report), "{text}");
+            assert_eq!(FatalReport::parse(&text), Ok(report), "{text}");
         }
         for vector in (0..32).filter(|&v| v != PAGE_FAULT_VECTOR && v != DOUBLE_FAULT_VECTOR) {
-            let report = Fatal::Exception { vector, error: Some(u64::from(vector)), at: 0x1000 };
-            assert_eq!(Fatal::parse(&report.to_string()), Ok(report));
+            let report = FatalReport::Exception { vector, error: Some(u64::from(vector)), at: 0x1000 };
+            assert_eq!(FatalReport::parse(&report.to_string()), Ok(report));
         }
     }
 
     #[test]
     fn the_texts_are_the_ones_the_kernel_wrote_before() {
-        let fault = Fatal::PageFault { address: 0xdeadbeef000, code: PageFaultCode::new(0), at: 0x20_1234 };
+        let fault = FatalReport::PageFault { address: 0xdeadbeef000, code: PageFaultCode::new(0), at: 0x20_1234 };
         assert_eq!(fault.to_string(), "page fault at 0xdeadbeef000 (PageFaultErrorCode(0x0)), instruction at 0x201234");
-        let fault = Fatal::PageFault { address: 8, code: PageFaultCode::new(0b110), at: 1 };
+        let fault = FatalReport::PageFault { address: 8, code: PageFaultCode::new(0b110), at: 1 };
         assert_eq!(
             fault.to_string(),
             "page fault at 0x8 (PageFaultErrorCode(CAUSED_BY_WRITE | USER_MODE)), instruction at 0x1"
         );
-        let protection = Fatal::Exception { vector: 13, error: Some(0x10), at: 0x20_0000 };
+        let protection = FatalReport::Exception { vector: 13, error: Some(0x10), at: 0x20_0000 };
         assert_eq!(protection.to_string(), "general protection fault (error code 0x10) at 0x200000");
-        assert_eq!(Fatal::Exception { vector: 3, error: None, at: 0x20 }.to_string(), "breakpoint at 0x20");
+        assert_eq!(FatalReport::Exception { vector: 3, error: None, at: 0x20 }.to_string(), "breakpoint at 0x20");
     }
 
     #[test]
@@ -241,7 +241,7 @@ mod tests {
             "FAULT nap: the fault handler returned",
             "general protection fault (error code 0x010) at 0x20",
         ] {
-            assert!(Fatal::parse(garbage).is_err(), "{garbage:?}");
+            assert!(FatalReport::parse(garbage).is_err(), "{garbage:?}");
         }
     }
 }

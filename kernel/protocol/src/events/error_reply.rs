@@ -6,7 +6,7 @@ use core::fmt;
 use scenes::file::LineError;
 
 use crate::commands::CommandError;
-use crate::replies::{writes, Expected, Malformed, Prose, VgaCheck};
+use crate::replies::{writes, ClockSource, Expected, Malformed, Prose, VgaCheck};
 use crate::sealed::Damaged;
 
 /// An `ERR` frame's text.
@@ -29,11 +29,14 @@ pub enum ErrorReply<'a> {
     /// (machine=unknown)`: `EXIT` or `FAULT` where the kernel has not
     /// identified QEMU.
     NotQemu(&'a str),
+    /// `CLOCK SOURCE`: no such timer counts on this machine.
+    NoTimer(ClockSource),
     /// `VGACHECK` found registers that do not read back as written, or
     /// nothing that shows the frame.
     VgaCheck(VgaCheck),
 }
 
+const NO_TIMER: &str = "no such timer counts on this machine: ";
 const NOT_QEMU: &str = " refused: the machine is not identified as QEMU (machine=unknown)";
 
 impl fmt::Display for ErrorReply<'_> {
@@ -45,6 +48,7 @@ impl fmt::Display for ErrorReply<'_> {
             ErrorReply::UnknownShowEntry(name) => write!(f, "unknown show entry `{name}`"),
             ErrorReply::Polygon(error) => write!(f, "{error}"),
             ErrorReply::NotQemu(command) => write!(f, "{command}{NOT_QEMU}"),
+            ErrorReply::NoTimer(source) => write!(f, "{NO_TIMER}{}", source.name()),
             ErrorReply::VgaCheck(check) => write!(f, "{check}"),
         }
     }
@@ -58,6 +62,9 @@ impl<'a> ErrorReply<'a> {
             ErrorReply::UnknownScene(prose.quoted("")?)
         } else if prose.next_is("unknown show entry ") {
             ErrorReply::UnknownShowEntry(prose.quoted("")?)
+        } else if prose.next_is(NO_TIMER) {
+            let source = ClockSource::from_name(prose.rest());
+            ErrorReply::NoTimer(source.ok_or(prose.malformed(Expected::Value("timer")))?)
         } else if let Some(command) = text.strip_suffix(NOT_QEMU).filter(|word| !word.contains(' ')) {
             prose.rest();
             ErrorReply::NotQemu(command)
@@ -109,6 +116,7 @@ mod tests {
             ErrorReply::Polygon(LineError::ControlCharacter('\u{7}')),
             ErrorReply::NotQemu("EXIT"),
             ErrorReply::NotQemu("FAULT"),
+            ErrorReply::NoTimer(ClockSource::Hpet),
             ErrorReply::VgaCheck(VgaCheck::Nothing),
             ErrorReply::VgaCheck(VgaCheck::Vga {
                 mismatches: vec![Mismatch { group: RegisterGroup::Misc, index: 0, expected: 0x63, actual: 0x62 }],

@@ -37,6 +37,45 @@ pub enum LogEvent {
     /// Interrupts on `vector`, which the kernel does not use: `count`
     /// since boot, and where the last one was ended.
     StrayInterrupt { vector: u8, count: u32, ended: EndedAt },
+    /// Interrupts on `vector` came `count` times within `window_ms`: a
+    /// source that fires again after every end of interrupt (a
+    /// level-triggered line left high), stopped where `masked` says.
+    InterruptStorm { vector: u8, count: u32, window_ms: u32, masked: MaskedAt },
+    /// At boot, the HPET the ACPI tables place at `address` was not used,
+    /// for `why`: nothing of it was mapped or written where the address
+    /// itself was wrong.
+    HpetRefused { address: u64, why: HpetRefusal },
+}
+
+/// Why the kernel did not use the HPET its ACPI table names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HpetRefusal {
+    /// The address is not on a 1 KiB boundary, as an HPET's register
+    /// block is.
+    Misaligned,
+    /// The registers would lie in RAM the memory map gives the kernel or
+    /// its loader.
+    InRam,
+    /// The capabilities register read `capabilities`: no revision (bits
+    /// 0-7 zero), or all ones (nothing answers there).
+    NotAnHpet { capabilities: u32 },
+    /// The counter's period, in femtoseconds, is outside 100 ps to 100 ns
+    /// (the specification's longest; Linux refuses shorter than 100 ps).
+    Period { femtoseconds: u32 },
+}
+
+/// Where the kernel masked a storming vector's source.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MaskedAt {
+    /// The redirection entry of an I/O APIC that takes that global system
+    /// interrupt.
+    IoApic { interrupt: u32 },
+    /// A local vector table entry of the local APIC (timer, thermal,
+    /// performance counter, LINT0, LINT1, error, CMCI).
+    LocalApic,
+    /// Nowhere: no entry the kernel knows of sends that vector; it may
+    /// come again.
+    Nowhere,
 }
 
 /// Where an interrupt was in service, and got its end of interrupt.
@@ -93,6 +132,12 @@ const BESIDE_THE_VGA: [&str; 2] = [
     "video: the firmware's framebuffer is not in the memory of the VGA at ",
     ": the frame goes to the framebuffer, where the firmware showed its screen",
 ];
+const HPET_AT: &str = "HPET: its ACPI table places it at ";
+const MISALIGNED: &str = ", not on a 1 KiB boundary; not used";
+const IN_RAM: &str = ", in RAM the memory map gives the kernel or its loader; not used";
+const NOT_AN_HPET: &str = ": no HPET there; not used";
+const BAD_PERIOD: &str = ", outside 100000 fs to 100000000 fs; not used";
+const NOWHERE: &str = "no entry sends it, so nothing was masked";
 const SERR: [&str; 2] = ["no SERR#", "SERR# (a PCI system error)"];
 const IOCHK: [&str; 2] = ["no IOCHK#", "IOCHK# (an I/O channel check)"];
 
@@ -129,6 +174,27 @@ impl fmt::Display for LogEvent {
             ),
             LogEvent::StrayInterrupt { vector, count, ended } => {
                 write!(f, "stray interrupt: vector {vector:#04x}, {count} so far, {}; returned", ended.words())
+            }
+            LogEvent::InterruptStorm { vector, count, window_ms, masked } => {
+                write!(f, "interrupt storm: vector {vector:#04x} came {count} times within {window_ms} ms; ")?;
+                match masked {
+                    MaskedAt::IoApic { interrupt } => write!(f, "masked at the I/O APIC, interrupt {interrupt}"),
+                    MaskedAt::LocalApic => write!(f, "masked in the local APIC's vector table"),
+                    MaskedAt::Nowhere => write!(f, "{NOWHERE}"),
+                }
+            }
+            LogEvent::HpetRefused { address, why } => {
+                write!(f, "{HPET_AT}{address:#x}")?;
+                match why {
+                    HpetRefusal::Misaligned => write!(f, "{MISALIGNED}"),
+                    HpetRefusal::InRam => write!(f, "{IN_RAM}"),
+                    HpetRefusal::NotAnHpet { capabilities } => {
+                        write!(f, ", where its capabilities read {capabilities:#010x}{NOT_AN_HPET}")
+                    }
+                    HpetRefusal::Period { femtoseconds } => {
+                        write!(f, ", where its period reads {femtoseconds} fs{BAD_PERIOD}")
+                    }
+                }
             }
         }
     }
@@ -182,6 +248,40 @@ impl LogEvent {
                 .ok_or(prose.malformed(Expected::Value("where it was ended")))?;
             prose.expect("; returned", "`returned`")?;
             LogEvent::StrayInterrupt { vector, count, ended }
+        } else if prose.next_is("interrupt storm: vector ") {
+            let vector = prose.hex_of("vector")?;
+            prose.expect(" came ", "`came`")?;
+            let count = prose.number("count")?;
+            prose.expect(" times within ", "`times within`")?;
+            let window_ms = prose.number("window")?;
+            prose.expect(" ms; ", "`ms`")?;
+            let masked = if prose.next_is("masked at the I/O APIC, interrupt ") {
+                MaskedAt::IoApic { interrupt: prose.number("interrupt")? }
+            } else if prose.next_is("masked in the local APIC's vector table") {
+                MaskedAt::LocalApic
+            } else {
+                prose.expect(NOWHERE, "where it was masked")?;
+                MaskedAt::Nowhere
+            };
+            LogEvent::InterruptStorm { vector, count, window_ms, masked }
+        } else if prose.next_is(HPET_AT) {
+            let address = prose.hex("HPET address")?;
+            let why = if prose.next_is(MISALIGNED) {
+                HpetRefusal::Misaligned
+            } else if prose.next_is(IN_RAM) {
+                HpetRefusal::InRam
+            } else if prose.next_is(", where its capabilities read ") {
+                let capabilities = prose.hex_of("capabilities")?;
+                prose.expect(NOT_AN_HPET, "`no HPET there`")?;
+                HpetRefusal::NotAnHpet { capabilities }
+            } else {
+                prose.expect(", where its period reads ", "why the HPET was not used")?;
+                let femtoseconds = prose.number("period")?;
+                prose.expect(" fs", "`fs`")?;
+                prose.expect(BAD_PERIOD, "`outside`")?;
+                HpetRefusal::Period { femtoseconds }
+            };
+            LogEvent::HpetRefused { address, why }
         } else {
             LogEvent::VgaMismatch(Mismatch::parse(text).map_err(|_| prose.malformed(Expected::Shape("a LOG text")))?)
         };
@@ -232,7 +332,7 @@ mod tests {
     use crate::replies::RegisterGroup;
     use std::string::ToString;
 
-    fn events() -> [LogEvent; 14] {
+    fn events() -> [LogEvent; 21] {
         let qemu = MachineEvidence {
             machine: Machine::Qemu,
             hypervisor: Some(*b"TCGTCGTCGTCG"),
@@ -256,6 +356,18 @@ mod tests {
             LogEvent::Nmi { count: 7, reason: 0xc0, serr: true, iochk: true },
             LogEvent::StrayInterrupt { vector: 0x99, count: 2, ended: EndedAt::LocalApic },
             LogEvent::StrayInterrupt { vector: 0xff, count: 1, ended: EndedAt::Nowhere },
+            LogEvent::InterruptStorm {
+                vector: 0x9a,
+                count: 1001,
+                window_ms: 10,
+                masked: MaskedAt::IoApic { interrupt: 8 },
+            },
+            LogEvent::InterruptStorm { vector: 0xfe, count: 5000, window_ms: 10, masked: MaskedAt::LocalApic },
+            LogEvent::InterruptStorm { vector: 0x30, count: 1001, window_ms: 1, masked: MaskedAt::Nowhere },
+            LogEvent::HpetRefused { address: 0x100_0000, why: HpetRefusal::InRam },
+            LogEvent::HpetRefused { address: 0xfed0_0004, why: HpetRefusal::Misaligned },
+            LogEvent::HpetRefused { address: 0xfed0_0000, why: HpetRefusal::NotAnHpet { capabilities: u32::MAX } },
+            LogEvent::HpetRefused { address: 0xfed0_0000, why: HpetRefusal::Period { femtoseconds: 99_999 } },
         ]
     }
 
