@@ -15,8 +15,8 @@ use std::sync::mpsc::{channel, Receiver, RecvTimeoutError, Sender};
 use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context, Result};
-use install::process::command_line;
 use harness::supervisor::Supervised;
+use install::process::command_line;
 
 use super::units::Unit;
 

@@ -12,9 +12,9 @@ use std::thread::JoinHandle;
 use anyhow::{bail, Context, Result};
 use boot_image::cargo::NIGHTLY_ONLY;
 use boot_image::IMAGE_ENV;
+use cargo_metadata::{Message, MetadataCommand};
 use install::process::{command_line, output_of};
 use install::workspace;
-use cargo_metadata::{Message, MetadataCommand};
 
 use super::order::expected_seconds;
 use super::selection::{cargo_part, DocTests, Selection};
