@@ -93,3 +93,34 @@ fn the_image_build_refuses_a_hand_edited_patched_bootloader_naming_the_file() ->
     stage_builds_with(&copy).context("the copy as the build made it was refused")?;
     Ok(())
 }
+
+/// The words of the builder's home folder as paths in the image would
+/// hold them: `$HOME/`, and cargo's and rustup's folders wherever they
+/// are (`~/.cargo/registry/src/...` in a panic location, say).
+fn builders_folders() -> Vec<String> {
+    ["HOME", "CARGO_HOME", "RUSTUP_HOME"]
+        .iter()
+        .filter_map(|var| std::env::var(var).ok())
+        .map(|folder| format!("{}/", folder.trim_end_matches('/')))
+        .filter(|folder| folder.len() > 1)
+        .collect()
+}
+
+#[test]
+fn the_image_holds_no_path_of_the_builders_home_folder() -> Result<()> {
+    let image = boot_image::build_image()?;
+    let bytes = std::fs::read(&image).with_context(|| format!("failed to read {}", image.display()))?;
+    let folders = builders_folders();
+    ensure!(!folders.is_empty(), "neither HOME nor CARGO_HOME nor RUSTUP_HOME is set: nothing to look for");
+    for folder in folders {
+        let found = bytes.windows(folder.len()).filter(|window| *window == folder.as_bytes()).count();
+        ensure!(
+            found == 0,
+            "{} holds {found} paths under {folder} (the boot stages, the loader and the kernel are built with \
+             cargo's trim-paths; `strings {} | grep {folder}` shows them)",
+            image.display(),
+            image.display()
+        );
+    }
+    Ok(())
+}

@@ -98,9 +98,9 @@ pub fn users_signing_key() -> Result<SigningKey> {
 
 /// A key of one's own (`cargo xtask image --key --cert`): `key` (PEM,
 /// encrypted) and `cert` (PEM or DER); the passphrase from
-/// [`key::PASSPHRASE_ENV`] if set, else asked for.
+/// [`key::PASSPHRASE_ENV`] if set ([`key::take_passphrase`]), else asked for.
 pub fn own_signing_key(key: &Path, cert: &Path) -> Result<SigningKey> {
-    SigningKey::own(key, cert, std::env::var(key::PASSPHRASE_ENV).ok(), &own_key_dir())
+    SigningKey::own(key, cert, key::take_passphrase(), &own_key_dir())
 }
 
 /// Where a certificate of one's own given in DER is converted to PEM.

@@ -19,7 +19,7 @@ use std::process::Command;
 use anyhow::{ensure, Context, Result};
 
 use crate::bootloader::{apply_edits, Patch, PATCHES, VERSION};
-use crate::sources::{self, BOOTLOADER};
+use crate::sources;
 use crate::tree;
 use install::workspace;
 
@@ -236,11 +236,8 @@ fn make_tree(work_dir: &Path, to: &Path) -> Result<()> {
         .map(|(pinned, archive)| sources::read_checked(archive, pinned))
         .collect::<Result<_>>()?;
     for (pinned, bytes) in sources::PINNED.iter().zip(&checked) {
-        let to = match PATCHES.iter().find(|patch| patch.source == *pinned) {
-            Some(patch) => to.join(patch.folder),
-            None if *pinned == BOOTLOADER => to.to_path_buf(),
-            None => unreachable!("every pinned crate is bootloader or patched"),
-        };
+        let patch = PATCHES.iter().find(|patch| patch.source == *pinned).expect("every pinned crate is patched");
+        let to = to.join(patch.folder);
         if let Some(parent) = to.parent() {
             std::fs::create_dir_all(parent).with_context(|| format!("failed to create {}", parent.display()))?;
         }
@@ -278,7 +275,7 @@ fn apply_patch(patch: &Patch, dir: &Path) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bootloader::{LOADER_EDITS, STAGE_2_EDITS};
+    use crate::bootloader::{BOOTLOADER_EDITS, LOADER_EDITS, STAGE_2_EDITS};
 
     #[test]
     fn the_stamp_names_every_fetched_archives_digest_and_every_change() {
@@ -286,7 +283,7 @@ mod tests {
         for pinned in sources::PINNED {
             assert!(stamp.contains(&format!("{} sha256:{}", pinned.name, pinned.sha256)), "{stamp}");
         }
-        for edit in STAGE_2_EDITS.iter().chain(LOADER_EDITS) {
+        for edit in BOOTLOADER_EDITS.iter().chain(STAGE_2_EDITS).chain(LOADER_EDITS) {
             assert!(stamp.contains(edit.find) && stamp.contains(edit.replace), "{}", edit.purpose);
         }
         let verify = sources::sha256_hex(include_str!("../loader/verify.rs").as_bytes());

@@ -5,9 +5,10 @@
 //!
 //! Two uses: the image build downloads Debian's shim from lists it has
 //! just refreshed (a machine's own lists can be months old, and then name
-//! an old shim), and the harness installs QEMU from the backports suite a
+//! an old shim), and `packages` installs QEMU from the backports suite a
 //! machine's qemu-utils came from, for that one install, when the
-//! machine's sources lack it.
+//! machine's sources lack it (with lists in a fresh folder only root can
+//! write, which it then installs from).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -49,10 +50,7 @@ impl PrivateApt {
     /// `bookworm-backports`) from the machine's Debian mirror, with its
     /// lists in `dir`.
     pub fn with_suite(dir: PathBuf, suite: &str) -> Self {
-        let mirror = debian_mirror(&system_sources_text()).unwrap_or_else(|| DEFAULT_MIRROR.to_string());
-        let signed_by =
-            if Path::new(DEBIAN_KEYRING).is_file() { format!(" [signed-by={DEBIAN_KEYRING}]") } else { String::new() };
-        Self { dir, extra_sources: vec![format!("deb{signed_by} {mirror} {suite} main")] }
+        Self { dir, extra_sources: vec![suite_source_line(suite)] }
     }
 
     /// `program` (`apt-get`, `apt-cache`) reading these lists and sources.
@@ -60,8 +58,13 @@ impl PrivateApt {
     /// its `_apt` user, who cannot enter a folder under a home (and says so
     /// in a warning on every file).
     pub fn command(&self, program: &str) -> Command {
+        self.command_as(program, is_root())
+    }
+
+    /// [`Self::command`] for a process that runs as root (`as_root`) or not.
+    fn command_as(&self, program: &str, as_root: bool) -> Command {
         let mut command = Command::new(program);
-        if is_root() {
+        if as_root {
             command.args(["-o", "APT::Sandbox::User=root"]);
         }
         for (option, path) in [
@@ -116,6 +119,16 @@ impl PrivateApt {
     pub fn sources_file(&self) -> PathBuf {
         self.dir.join("sources.list")
     }
+}
+
+/// The one-line apt source of Debian's `suite` (such as
+/// `bookworm-backports`) from the machine's Debian mirror, signed by
+/// Debian's archive key where the machine has its keyring.
+pub fn suite_source_line(suite: &str) -> String {
+    let mirror = debian_mirror(&system_sources_text()).unwrap_or_else(|| DEFAULT_MIRROR.to_string());
+    let signed_by =
+        if Path::new(DEBIAN_KEYRING).is_file() { format!(" [signed-by={DEBIAN_KEYRING}]") } else { String::new() };
+    format!("deb{signed_by} {mirror} {suite} main")
 }
 
 /// The machine's one-line sources file, or nothing where it has none.
@@ -190,10 +203,13 @@ mod tests {
     #[test]
     fn the_lists_and_cache_are_the_folders_and_only_the_sources_file_is_replaced() {
         let apt = PrivateApt::with_suite(PathBuf::from("/t/apt"), "bookworm-backports");
+        let lists = "-o Dir::Etc::sourcelist=/t/apt/sources.list -o Dir::State::Lists=/t/apt/lists \
+                     -o Dir::Cache=/t/apt/cache";
+        assert_eq!(command_line(&apt.command_as("apt-get", false)), format!("apt-get {lists}"));
         assert_eq!(
-            command_line(&apt.command("apt-get")).replace(" -o APT::Sandbox::User=root", ""),
-            "apt-get -o Dir::Etc::sourcelist=/t/apt/sources.list -o Dir::State::Lists=/t/apt/lists \
-             -o Dir::Cache=/t/apt/cache"
+            command_line(&apt.command_as("apt-get", true)),
+            format!("apt-get -o APT::Sandbox::User=root {lists}"),
+            "as root, apt downloads as root: its _apt user cannot enter a folder under a home"
         );
         assert!(apt.extra_sources[0].ends_with(" bookworm-backports main"), "{:?}", apt.extra_sources);
     }

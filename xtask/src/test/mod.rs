@@ -1,9 +1,14 @@
-//! `cargo xtask test`: everything, the QEMU harness included.
+//! `cargo xtask test`: everything, the QEMU harness included. The test
+//! binaries run side by side (`schedule.rs`), the longest first
+//! (`order.rs`); a run whose arguments the runner does not understand
+//! (`selection.rs`) is left to `cargo test`, one binary after another.
 
-use std::process::Command;
+mod order;
+mod schedule;
+mod selection;
+mod units;
 
 use anyhow::Result;
-use boot_image::cargo::NIGHTLY_ONLY;
 use boot_image::{build_image, IMAGE_ENV};
 use install::browser::ensure_chromium;
 use install::emulators::{ensure_bochs, ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_secure_boot_ovmf};
@@ -14,13 +19,57 @@ use install::toolchain::ensure_wasm_target;
 use install::virt_firmware::ensure_virt_fw_vars;
 
 use crate::opt::TestOpt;
+use selection::{cargo_part, Selection};
+use units::cargo_test;
+
+/// Tests run at once beyond one per core: a QEMU test spends part of its
+/// time waiting (for QEMU's disk reads at boot, for a reply on the serial
+/// line), in which another test's QEMU can run.
+const JOBS_BEYOND_CORES: usize = 1;
 
 pub fn test(opt: &TestOpt) -> Result<()> {
     ensure_toolchain()?;
-    // A whole run installs what its tests need up front, so that nothing
-    // installs in the middle of their output; a chosen few install their
-    // own, when they start QEMU, Bochs or a browser (`install`).
-    if is_whole_run(&opt.cargo_args) {
+    // The lab, a workspace member, builds its peers against libcairo,
+    // Allegro 4, SDL2 with SDL2_gfx, and GD: needed before cargo compiles
+    // it, which no test can do for itself.
+    if builds_the_lab(&opt.cargo_args) {
+        ensure_cairo()?;
+        ensure_peer_libraries()?;
+    }
+    let whole = is_whole_run(&opt.cargo_args);
+    let Some(selection) = Selection::parse(&opt.cargo_args) else {
+        let image = install_and_build_image(whole)?;
+        return run_streaming(cargo_test(&opt.cargo_args).env(IMAGE_ENV, image));
+    };
+    // The test binaries (stable, target/debug) build while the packages
+    // install and then the image builds (the pinned nightly, its own
+    // target folder): installing mostly waits on the network, and each
+    // build has stretches that keep one core busy or none (linking; the
+    // bootloader's stages, one after another), which the other fills.
+    let build = units::Build::start(&selection)?;
+    let image = match install_and_build_image(whole) {
+        Ok(image) => image,
+        Err(error) => {
+            build.stop();
+            return Err(error);
+        }
+    };
+    let mut units = build.finish()?;
+    let threads = std::thread::available_parallelism().map_or(1, usize::from);
+    let jobs = opt.jobs.map_or(threads + JOBS_BEYOND_CORES, usize::from);
+    match units.len() {
+        0 => anyhow::bail!("`cargo test` built no test binary for {:?}", opt.cargo_args),
+        1 => schedule::run_alone(&units.remove(0), &image, threads),
+        _ => schedule::run(units, &image, jobs, threads),
+    }
+}
+
+/// For a whole run, installs what its tests need (so that nothing
+/// installs in the middle of their output; a chosen few install their
+/// own, when they start QEMU, Bochs or a browser: `install`); then
+/// builds the image.
+fn install_and_build_image(whole: bool) -> Result<std::path::PathBuf> {
+    if whole {
         ensure_qemu()?;
         // The adapter matrix runs QEMU's QXL card, a module of its own in
         // Debian's QEMU 8 and later.
@@ -37,22 +86,7 @@ pub fn test(opt: &TestOpt) -> Result<()> {
         ensure_wasm_target()?;
         ensure_chromium()?;
     }
-    // The lab, a workspace member, builds its peers against libcairo,
-    // Allegro 4, SDL2 with SDL2_gfx, and GD: needed before cargo compiles
-    // it, which no test can do for itself.
-    if builds_the_lab(&opt.cargo_args) {
-        ensure_cairo()?;
-        ensure_peer_libraries()?;
-    }
-    let image = build_image()?;
-    run_streaming(test_command(&opt.cargo_args).env(IMAGE_ENV, image))
-}
-
-/// The arguments for cargo itself: those before a `--` (after it they
-/// are the test binaries').
-fn cargo_part(cargo_args: &[String]) -> &[String] {
-    let end = cargo_args.iter().position(|arg| arg == "--").unwrap_or(cargo_args.len());
-    &cargo_args[..end]
+    build_image()
 }
 
 /// Whether `cargo test` runs every test: no package, target or name is
@@ -83,18 +117,6 @@ fn values_of<'a>(args: &'a [String], flags: &'a [&str]) -> impl Iterator<Item = 
     })
 }
 
-/// `cargo test` over every host crate of the workspace, run by the cargo
-/// (the stable toolchain) that runs the xtask.
-fn test_command(cargo_args: &[String]) -> Command {
-    let mut command = install::toolchain::host();
-    command.args(["test", "--workspace"]);
-    for package in NIGHTLY_ONLY {
-        command.args(["--exclude", package]);
-    }
-    command.args(cargo_args);
-    command
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -106,7 +128,7 @@ mod tests {
 
     #[test]
     fn extra_arguments_go_to_cargo_test() {
-        let command = test_command(&["--test".into(), "pages".into(), "--".into(), "--nocapture".into()]);
+        let command = cargo_test(&["--test".into(), "pages".into(), "--".into(), "--nocapture".into()]);
         assert!(
             command_line(&command)
                 .ends_with(" test --workspace --exclude kernel --exclude boot --test pages -- --nocapture"),
@@ -114,6 +136,23 @@ mod tests {
             command_line(&command)
         );
         assert_eq!(command.get_current_dir(), Some(install::workspace::root()));
+        // With --workspace, cargo would test every package whatever -p says.
+        for chosen in ["-p harness --lib", "--package=raster -- --nocapture"] {
+            let line = command_line(&cargo_test(&args(chosen)));
+            assert!(line.ends_with(&format!(" test {chosen}")), "{line}");
+        }
+    }
+
+    #[test]
+    fn the_command_line_gives_cargo_and_the_test_binaries_their_parts() {
+        let parse = |line: &str| match crate::opt::parse_command("test", &line.split_whitespace().collect::<Vec<_>>()) {
+            Ok(crate::opt::Action::Test(opt)) => (opt.jobs, opt.cargo_args),
+            other => panic!("{line}: {other:?}"),
+        };
+        assert_eq!(parse("-- --test pages"), (None, args("--test pages")));
+        assert_eq!(parse("--jobs 3 -- --test pages -- --nocapture"), (Some(3), args("--test pages -- --nocapture")));
+        assert_eq!(parse("-- -- --nocapture"), (None, args("-- --nocapture")));
+        assert!(crate::opt::parse_command("test", &["--jobs", "0"]).is_err());
     }
 
     #[test]
