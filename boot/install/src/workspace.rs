@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-/// The workspace root: this crate lives in its `xtask/install/` folder.
+/// The workspace root: this crate lives in its `boot/install/` folder.
 pub fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .parent()

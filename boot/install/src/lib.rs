@@ -9,12 +9,13 @@
 //! they run ([`process`]) and where in the workspace they write
 //! ([`workspace`]).
 //!
-//! It lives under `xtask/` because installing is one of the developer's
-//! hands, as the commands there are: every `cargo xtask` command starts
-//! by making sure of what it needs. `boot/` holds the image and its
-//! writer only; the image build is one of this crate's users, not its
-//! home. It depends on no crate of the workspace, so the image build and
-//! the harness both use it and it uses neither.
+//! It lives under `boot/` beside the image build, its first user: the
+//! pinned nightly and Debian's signing tools are what building an image
+//! takes. Under `xtask/` it would make the folders import each other
+//! (`boot/image` would use `xtask/`, and the xtask uses `boot/image`);
+//! here `xtask/` and `tests/` use `boot/` and `boot/` uses neither. It
+//! depends on no crate of the workspace, so the image build, the harness
+//! and the commands all use it and it uses none of them.
 //!
 //! Machines here set `RUSTUP_AUTO_INSTALL=0`, so nothing installs
 //! itself: each `ensure_*` looks first, installs what is missing saying
