@@ -169,6 +169,9 @@ fn stalls_inside_readings_and_windows_leave_the_rate_as_it_was() -> Result<()> {
     Ok(())
 }
 
+/// Which refusal an HPET table's address must meet.
+type RefusedAs = fn(&HpetRefusal) -> bool;
+
 /// A firmware's HPET table naming an address no HPET can have, played by
 /// an HPET table of the test's own on a board without QEMU's HPET: in RAM
 /// (16 MiB, which the memory map gives the kernel or its loader), and off
@@ -180,7 +183,7 @@ fn stalls_inside_readings_and_windows_leave_the_rate_as_it_was() -> Result<()> {
 #[test]
 fn an_hpet_table_placing_it_in_ram_or_off_its_boundary_is_refused() -> Result<()> {
     let not_an_hpet = |why: &HpetRefusal| matches!(why, HpetRefusal::NotAnHpet { .. });
-    let cases: [(u64, fn(&HpetRefusal) -> bool); 3] = [
+    let cases: [(u64, RefusedAs); 3] = [
         (0x100_0000, |why| *why == HpetRefusal::InRam),
         (0xfed0_0004, |why| *why == HpetRefusal::Misaligned),
         // Aligned, outside RAM, where nothing answers (with hpet=off).
