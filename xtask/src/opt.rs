@@ -189,8 +189,8 @@ pub enum EnrollOpt {
 
 #[derive(Args, Debug)]
 pub struct TestOpt {
-    /// Tests running at once, across the test binaries (default: the
-    /// machine's cores and one more).
+    /// Tests running at once, across the test binaries (default: three
+    /// per core).
     #[arg(long, short, value_parser = clap::value_parser!(u16).range(1..))]
     pub jobs: Option<u16>,
     /// Passed on to `cargo test` (e.g. `-- --test pages`, `-- -- --nocapture`).
