@@ -1,13 +1,63 @@
 //! Work done once per process (installing, building) whose outcome, success
-//! or failure, every later caller shares.
+//! or failure, every later caller shares; and installs taking turns across
+//! the processes of one workspace (test binaries run side by side).
 
+use std::fs::File;
 use std::sync::OnceLock;
 
-use anyhow::{anyhow, Result};
+use anyhow::{anyhow, Context, Result};
+
+use crate::workspace::target_dir;
 
 /// Runs `work` the first time, and hands every caller its result. Callers
 /// arriving while it runs wait for it, so parallel tests never start two
 /// builds. A failure is kept as its full message (`{:#}`).
 pub fn once_per_process<T: Clone>(cell: &OnceLock<Result<T, String>>, work: impl FnOnce() -> Result<T>) -> Result<T> {
     cell.get_or_init(|| work().map_err(|error| format!("{error:#}"))).clone().map_err(|message| anyhow!(message))
+}
+
+/// Waits for this workspace's other commands and test binaries to finish
+/// their installs (apt-get's `update` does not wait for another apt: it
+/// fails on the lock of the lists another holds; two pips would write one
+/// virtual environment), then holds the turn
+/// until the file returned is dropped. The lock file lies in the target
+/// folder, the running user's own.
+pub(crate) fn install_turn() -> Result<File> {
+    let dir = target_dir();
+    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let path = dir.join("install.lock");
+    let file = File::options()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&path)
+        .with_context(|| format!("cannot open {}", path.display()))?;
+    file.lock().with_context(|| format!("cannot lock {}", path.display()))?;
+    Ok(file)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::mpsc;
+    use std::thread;
+    use std::time::Duration;
+
+    use super::*;
+
+    #[test]
+    fn an_install_waits_while_another_holds_the_turn() {
+        let first = install_turn().unwrap();
+        let (taken, told) = mpsc::channel();
+        let second = thread::spawn(move || {
+            let _turn = install_turn().unwrap();
+            taken.send(()).unwrap();
+        });
+        assert!(
+            told.recv_timeout(Duration::from_millis(500)).is_err(),
+            "a second install took a turn held by the first"
+        );
+        drop(first);
+        told.recv_timeout(Duration::from_secs(60)).expect("the second install never took the turn the first gave up");
+        second.join().unwrap();
+    }
 }

@@ -10,6 +10,7 @@ use anyhow::{bail, Context, Result};
 
 use crate::apt::{suite_source_line, PrivateApt};
 use crate::distribution::Distribution;
+use crate::once::install_turn;
 use crate::process::{command_line, find_in_path, is_root, output_of, run_streaming};
 
 /// How long apt-get waits for another apt or dpkg (an unattended upgrade,
@@ -36,6 +37,12 @@ pub fn ensure_debian_packages(what: &str, packages: &[&str], present: impl Fn() 
         bail!("{what} is not installed, and this machine has no apt-get: install {} yourself", packages.join(" "));
     }
     let as_root = is_root();
+    // Held until this install is done: another test binary may be
+    // installing the same packages, or others, at this moment.
+    let _turn = if as_root { Some(install_turn()?) } else { None };
+    if as_root && present() {
+        return Ok(());
+    }
     if as_root {
         eprintln!("install: {what} is missing; installing the packages {} with apt-get", packages.join(" "));
         run_streaming(&mut apt_get(&InstallFrom::Machine, ["update"]))?;

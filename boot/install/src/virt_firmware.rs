@@ -8,7 +8,7 @@ use std::sync::OnceLock;
 
 use anyhow::{Context, Result};
 
-use crate::once::once_per_process;
+use crate::once::{install_turn, once_per_process};
 use crate::packages::ensure_debian_packages;
 use crate::process::run_streaming;
 use crate::workspace;
@@ -46,7 +46,8 @@ pub fn ensure_virt_fw_vars() -> Result<PathBuf> {
         let venv = workspace::target_dir().join("virt-firmware");
         let program = venv.join("bin").join("virt-fw-vars");
         let installed = venv.join("requirements.installed");
-        if program.is_file() && std::fs::read_to_string(&installed).is_ok_and(|text| text == REQUIREMENTS) {
+        let up_to_date = || program.is_file() && std::fs::read_to_string(&installed).is_ok_and(|t| t == REQUIREMENTS);
+        if up_to_date() {
             return Ok(program);
         }
         // Debian's python3 has the `venv` module but not `ensurepip`, which
@@ -56,6 +57,12 @@ pub fn ensure_virt_fw_vars() -> Result<PathBuf> {
             Command::new("python3").args(["-c", "import ensurepip, venv"]).output().is_ok_and(|o| o.status.success())
         };
         ensure_debian_packages("Python's venv module (for virt-firmware)", &["python3-venv"], has_venv)?;
+        // Another test binary may be installing it at this moment (after
+        // the package's install, which takes its own turn).
+        let _turn = install_turn()?;
+        if up_to_date() {
+            return Ok(program);
+        }
         eprintln!(
             "install: virt-firmware 24.11 from PyPI into {} (its virt-fw-vars writes the Secure Boot tests' MOK \
              lists), every wheel checked against its pinned SHA-256",
