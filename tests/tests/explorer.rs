@@ -258,6 +258,8 @@ fn lab_results_show_the_methods_figures_for_the_nearest_family() -> Result<()> {
         "contenders": [],
         "rows": [{ "name": "abrash_int", "kind": "method", "family": "small_triangles", "group": "random",
                    "polygons": 60, "pixels": 20000, "timed_polygons": 60, "ns_per_polygon": 321.5,
+                   "ns_min": 300.2, "ns_max": 350.0,
+                   "vs_exact": { "ratio": 1.5, "low": 1.404, "high": 1.6, "pairs": 7 },
                    "time_vs_memset": 4.25, "wrong_pixels": 500, "wrong_pixels_own": 0, "overdraw": 0,
                    "faulty_polygons": 40, "refusals": 0, "failures": 0 }],
         "sweeps": [],
@@ -271,7 +273,8 @@ fn lab_results_show_the_methods_figures_for_the_nearest_family() -> Result<()> {
     let lab = explorer.text("#pane-a [data-field=lab]")?;
     for expected in [
         "Nearest lab family: small_triangles",
-        "322 ns a polygon",
+        "322 ns a polygon (300–350 over the repeats)",
+        "1.50x exact's (95% interval 1.40–1.60)",
         "4.25x",
         "500 under our convention (2.50% of 20000)",
     ] {

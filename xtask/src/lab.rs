@@ -36,6 +36,7 @@ pub fn lab(opt: &LabOpt) -> Result<()> {
     if opt.quick {
         command.arg("--quick");
     }
+    command.arg("--runs").arg(opt.runs.to_string());
     command.arg("--out").arg(out);
     run_streaming(&mut command)
 }

@@ -199,6 +199,10 @@ pub struct LabOpt {
     /// A small corpus and short timing, for CI (a few minutes).
     #[arg(long)]
     pub quick: bool,
+    /// Runs of the whole timing, one after the other; with 2 or more the
+    /// report says how far they disagree.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..))]
+    pub runs: u16,
     /// Where results.json, report.md and the charts go.
     #[arg(long, default_value = "target/lab")]
     pub out: PathBuf,

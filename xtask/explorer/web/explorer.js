@@ -307,8 +307,16 @@ function describeLab(pane, method, selected) {
   } else {
     const number = (v, digits) => (typeof v === "number" ? v.toFixed(digits) : "n/a");
     const percent = (v) => (typeof v === "number" && row.pixels > 0 ? `${((100 * v) / row.pixels).toFixed(2)}%` : "n/a");
+    // The spread of the repeats and the ratio to exact's time with its
+    // interval, where the results carry them.
+    const spread = typeof row.ns_min === "number" && typeof row.ns_max === "number"
+      ? ` (${number(row.ns_min, 0)}–${number(row.ns_max, 0)} over the repeats)` : "";
+    const vs = row.vs_exact;
+    const interval = vs && typeof vs.low === "number" && typeof vs.high === "number"
+      ? ` (95% interval ${vs.low.toFixed(2)}–${vs.high.toFixed(2)})` : "";
+    const ratio = vs && method !== "exact" && typeof vs.ratio === "number" ? `, ${vs.ratio.toFixed(2)}x exact's${interval}` : "";
     lines.push(
-      `Time: ${number(row.ns_per_polygon, 0)} ns a polygon, ${number(row.time_vs_memset, 2)}x the memset bound.`,
+      `Time: ${number(row.ns_per_polygon, 0)} ns a polygon${spread}${ratio}, ${number(row.time_vs_memset, 2)}x the memset bound.`,
       `Wrong pixels: ${row.wrong_pixels ?? "n/a"} under our convention (${percent(row.wrong_pixels)} of ${row.pixels}), ` +
         `${row.wrong_pixels_own ?? "n/a"} under its own (${percent(row.wrong_pixels_own)}).`,
       `Overdrawn ${row.overdraw ?? "n/a"}, faulty polygons ${row.faulty_polygons ?? "n/a"} of ${row.polygons}, ` +

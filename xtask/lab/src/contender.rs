@@ -8,7 +8,7 @@ use raster::{fill_auto, fill_auto_with, ExactPath, Framebuffer, Method, Polygon,
 
 use crate::convention::Own;
 use crate::corpus::Family;
-use crate::peers::{self, Peer};
+use crate::peers::{self, Clock, Peer};
 
 /// A method of `raster`, a peer library, or, only in "what modelling
 /// costs" (not one of [`Contender::all`]), one of `exact`'s paths asked
@@ -21,6 +21,17 @@ pub enum Contender {
     Path(usize),
     Auto,
 }
+
+/// What every method of `raster` does inside the clock (and `exact`'s
+/// paths and `fill_auto` in "what modelling costs").
+pub const METHODS_CLOCK: Clock = Clock {
+    before: "nothing: the corpus's `Polygon` (vertices in 1/256 px)",
+    setup: "its own: edges from the vertices, each method its way",
+    fill: "its spans stored into the framebuffer, the fill compiled for it (`MethodId::fill`)",
+    surface: "320x200 `Framebuffer`",
+    pixel_format: "8-bit index",
+    anti_aliasing: "none; a pixel is in by its sample point (`exact`'s: its centre)",
+};
 
 impl Contender {
     /// Every method of `raster::methods::ALL`, then the peers.
@@ -62,6 +73,14 @@ impl Contender {
                 format!("exact's {} path; refuses polygons outside its class", ExactPath::NAMES[*which])
             }
             Contender::Auto => "exact's fill_auto, with a scratch kept between polygons".to_string(),
+        }
+    }
+
+    /// What it does inside the timed pass and what before it.
+    pub fn clock(&self) -> Clock {
+        match self {
+            Contender::Peer(p) => p.info().clock,
+            Contender::Method(_) | Contender::Path(_) | Contender::Auto => METHODS_CLOCK,
         }
     }
 

@@ -41,7 +41,7 @@ pub mod timing;
 
 use contender::Contender;
 use corpus::Budget;
-use results::{Results, EXACT};
+use results::{Results, TimingInfo, EXACT};
 use timing::Timing;
 
 /// What `cargo xtask lab` asks for.
@@ -49,13 +49,16 @@ use timing::Timing;
 pub struct LabOptions {
     /// A small corpus and short timing, for CI.
     pub quick: bool,
+    /// Runs of the whole timing, one after the other (at least 1): the
+    /// report says how far they disagree.
+    pub runs: usize,
     /// Where results.json, report.md and the charts go.
     pub out_dir: PathBuf,
 }
 
 impl Default for LabOptions {
     fn default() -> Self {
-        Self { quick: false, out_dir: PathBuf::from("target/lab") }
+        Self { quick: false, runs: 1, out_dir: PathBuf::from("target/lab") }
     }
 }
 
@@ -65,46 +68,117 @@ pub fn run(options: &LabOptions) -> Result<()> {
     if cfg!(debug_assertions) {
         eprintln!("warning: the lab is built without optimisations; its timings mean little (use --release)");
     }
-    let results = measure_corpus(options.quick, budget, timing);
+    if options.runs == 0 {
+        bail!("--runs must be at least 1");
+    }
+    let families = corpus::build(budget);
+    let results = measure_corpus(&families, options.quick, options.runs, timing);
 
     let out = &options.out_dir;
     fs::create_dir_all(out).with_context(|| format!("failed to create {}", out.display()))?;
+    write_real_shape_scenes(&families, &out.join("scenes"))?;
     let json = serde_json::to_string_pretty(&results).context("failed to serialise the results")?;
     write(&out.join("results.json"), &json)?;
     write(&out.join("report.md"), &report::markdown(&results))?;
     charts::draw_all(&results, out)?;
-    eprintln!("lab: wrote results.json, report.md and charts to {}", out.display());
+    eprintln!("lab: wrote results.json, report.md, the charts and scenes/ to {}", out.display());
     check(&out.join("results.json"))
 }
 
-/// Judges and times every contender on every family, with a progress bar.
-fn measure_corpus(quick: bool, budget: Budget, timing: Timing) -> Results {
-    let families = corpus::build(budget);
+/// Judges every contender and lane on every family, then times them all
+/// `runs` times over, family after family in each run, with a progress bar.
+fn measure_corpus(families: &[corpus::Family], quick: bool, runs: usize, timing: Timing) -> Results {
     let contenders = Contender::all();
-    let work: u64 = families
-        .iter()
-        .map(|f| 2 * f.polygons.len() as u64 + timing::jobs(f, contenders.len()) + modelling::JOBS)
-        .sum();
+    let lanes = modelling::Lane::all().len();
+    let timed_lanes = contenders.len() + timing::Bound::ALL.len() + lanes;
+    let work: u64 =
+        families.iter().map(|f| 2 * f.polygons.len() as u64 + runs as u64 * timing::jobs(f, timed_lanes)).sum();
     let bar = ProgressBar::new(work).with_style(
         ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {percent:>3}% {msg}")
             .expect("the progress template is valid")
             .progress_chars("=> "),
     );
-    let mut results = Results::new(corpus::SEED, quick, &contenders);
-    for family in &families {
-        bar.set_message(format!("judging {}", family.name));
-        let judged = measure::quietly(|| measure::judge(family, &contenders, &|| bar.inc(1)));
-        bar.set_message(format!("timing {}", family.name));
-        let speeds = timing::time_family(family, &judged, &contenders, timing, &|| bar.inc(1));
-        results.add_family(family, &contenders, &judged, &speeds);
-        bar.set_message(format!("modelling {}", family.name));
-        results.modelling.extend(modelling::measure(family, timing, &|| bar.inc(1)));
+    let judged: Vec<(measure::Judged, modelling::Judgement)> = families
+        .iter()
+        .map(|family| {
+            bar.set_message(format!("judging {}", family.name));
+            let judged = measure::quietly(|| measure::judge(family, &contenders, &|| bar.inc(1)));
+            (judged, modelling::judge(family, &|| bar.inc(1)))
+        })
+        .collect();
+    let load_at_start = load_average();
+    let mut speeds: Vec<Vec<timing::Speeds>> = vec![Vec::with_capacity(runs); families.len()];
+    for run in 0..runs {
+        for ((family, (judged, lanes)), speeds) in families.iter().zip(&judged).zip(&mut speeds) {
+            bar.set_message(format!("timing {} (run {} of {runs})", family.name, run + 1));
+            let timed = lanes.timed();
+            speeds.push(timing::time_family(family, judged, &contenders, &timed, timing, &|| bar.inc(1)));
+        }
     }
     bar.set_message("modelling the show");
-    results.show_modelling = modelling::measure_show(timing);
+    let show_modelling = modelling::measure_show(timing);
+    let load_at_end = load_average();
     bar.finish_and_clear();
+    let mut results = Results::new(corpus::SEED, quick, &contenders);
+    for ((family, (judged, lanes)), speeds) in families.iter().zip(&judged).zip(&speeds) {
+        results.add_family(family, &contenders, judged, lanes, speeds);
+    }
+    results.show_modelling = show_modelling;
+    results.timing = TimingInfo {
+        runs,
+        repeats: timing.repeats,
+        min_repeat_ms: timing.min_repeat.as_secs_f64() * 1e3,
+        confidence: stats::CONFIDENCE,
+        load_average: (load_at_start, load_at_end),
+    };
     results.goals = goals::measure(&results);
     results
+}
+
+/// The 1-minute load average, where the system tells it.
+fn load_average() -> Option<f64> {
+    fs::read_to_string("/proc/loadavg").ok()?.split_whitespace().next()?.parse().ok()
+}
+
+/// Writes the first polygons of every real-shape family as a scene file
+/// (`NAME.scene` in `dir`), as many as the explorer takes in one scene, to
+/// be opened there (`cargo xtask explore`, "load one").
+fn write_real_shape_scenes(families: &[corpus::Family], dir: &Path) -> Result<()> {
+    fs::create_dir_all(dir).with_context(|| format!("failed to create {}", dir.display()))?;
+    for family in families.iter().filter(|f| f.group == corpus::Group::Real) {
+        write(&dir.join(format!("{}.scene", family.name)), &sample_scene(family))?;
+    }
+    Ok(())
+}
+
+/// The first polygons of `family` as a scene file, within the explorer's
+/// limits on a scene's vertices and lines.
+fn sample_scene(family: &corpus::Family) -> String {
+    use explorer::model::{MAX_OPS, MAX_POLYGON_VERTICES, MAX_SCENE_VERTICES};
+    let mut vertices = 0;
+    let polygons: Vec<&raster::Polygon> = family
+        .polygons
+        .iter()
+        .filter(|p| p.vertex_count() <= MAX_POLYGON_VERTICES)
+        .take_while(|p| {
+            vertices += p.vertex_count();
+            vertices <= MAX_SCENE_VERTICES
+        })
+        .take(MAX_OPS - 1)
+        .collect();
+    let mut text = format!(
+        "# The lab's {} family: {}.\n# Its first {} of {} polygons (the explorer takes {MAX_SCENE_VERTICES} vertices a \
+         scene).\nclear 0\n",
+        family.name,
+        family.description,
+        polygons.len(),
+        family.polygons.len()
+    );
+    for polygon in polygons {
+        text.push_str(&scenes::file::poly_line(polygon));
+        text.push('\n');
+    }
+    text
 }
 
 fn write(path: &Path, contents: &str) -> Result<()> {
@@ -194,6 +268,19 @@ mod tests {
         let path = dir.path().join("results.json");
         fs::write(&path, json).unwrap();
         (dir, path)
+    }
+
+    /// Each real-shape family's sample scene opens in the explorer, as the
+    /// very polygons the family begins with.
+    #[test]
+    fn the_real_shapes_sample_scenes_open_in_the_explorer() {
+        for family in corpus::build(Budget::QUICK).iter().filter(|f| f.group == corpus::Group::Real) {
+            let text = sample_scene(family);
+            let explorer = explorer::model::Explorer::from_text(&text).unwrap();
+            let shown: Vec<&raster::Polygon> = explorer.polygons().collect();
+            assert!(shown.len() > 10, "{}: {}", family.name, shown.len());
+            assert!(shown.iter().zip(&family.polygons).all(|(a, b)| *a == b), "{}", family.name);
+        }
     }
 
     #[test]

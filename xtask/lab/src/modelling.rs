@@ -21,9 +21,22 @@ use crate::contender::Contender;
 use crate::corpus::Family;
 use crate::heap;
 use crate::measure::{self, Tally};
-use crate::timing::Timing;
+use crate::results::Timed;
+use crate::stats::{Ratio, Spread};
+use crate::timing::{Samples, Timing};
 
-/// One way through a family's polygons.
+/// One way through a family's polygons. Every lane is timed in turn with
+/// the family's contenders and bounds ([`crate::timing::time_family`]),
+/// so its ratios to `exact` and to the store bound are paired, each with
+/// its interval.
+///
+/// Adding a lane (a candidate structure, say): a variant here, its name
+/// in [`Lane::name`], its pass in [`Lane::pass`], and its place in
+/// [`Lane::all`]; if it draws, its [`Contender`] in `Lane::contender`, so
+/// that it is judged (and its pixels held to the reference: a drawing
+/// lane that draws a pixel wrong fails the run) before it is timed. A
+/// new path of `exact` (a name in [`ExactPath::NAMES`]) is a lane
+/// already.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Lane {
     /// One of exact's paths alone, by its place in [`ExactPath::NAMES`].
@@ -40,8 +53,12 @@ pub enum Lane {
 }
 
 impl Lane {
-    pub const ALL: [Lane; 7] =
-        [Lane::Path(0), Lane::Path(1), Lane::Path(2), Lane::Auto, Lane::Dispatch, Lane::Classify, Lane::Walk];
+    /// Every lane, in the order the report and the charts give them:
+    /// exact's paths, then the rest.
+    pub fn all() -> Vec<Lane> {
+        let paths = (0..ExactPath::NAMES.len()).map(Lane::Path);
+        paths.chain([Lane::Auto, Lane::Dispatch, Lane::Classify, Lane::Walk]).collect()
+    }
 
     pub const fn name(self) -> &'static str {
         match self {
@@ -62,30 +79,33 @@ impl Lane {
         }
     }
 
-    /// Does the lane's work on every one of `polygons`, once.
-    fn run<'a>(self, polygons: &'a [&'a Polygon], contender: Option<&Contender>) -> Box<dyn FnMut() + 'a> {
-        match (self, contender) {
-            (Lane::Dispatch, _) => Box::new(move || {
-                for polygon in polygons {
+    /// One timed pass: the lane's work on every one of `polygons`, once.
+    pub fn pass<'a>(self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a> {
+        let polygons = polygons.to_vec();
+        match self {
+            Lane::Dispatch => Box::new(move || {
+                for polygon in &polygons {
                     black_box(ExactPath::choose(black_box(polygon)));
                 }
             }),
-            (Lane::Classify, _) => Box::new(move || {
-                for polygon in polygons {
+            Lane::Classify => Box::new(move || {
+                for polygon in &polygons {
                     black_box(classify(black_box(polygon)));
                 }
             }),
-            (Lane::Walk, _) => {
+            Lane::Walk => {
                 let (mut lengths, mut scratch) = (SpanLengths(0), Scratch::new());
                 Box::new(move || {
-                    for polygon in polygons {
+                    for polygon in &polygons {
                         let _ = fill_auto_with(polygon, &mut lengths, &mut scratch);
                     }
                     black_box(&mut lengths);
                 })
             }
-            (_, Some(contender)) => contender.pass(polygons),
-            (_, None) => Box::new(|| {}),
+            Lane::Path(_) | Lane::Auto => match self.contender() {
+                Some(contender) => contender.pass(&polygons),
+                None => Box::new(|| {}),
+            },
         }
     }
 }
@@ -119,8 +139,10 @@ pub struct PathRow {
     /// On tiling families only.
     pub gaps: Option<u64>,
     pub failures: Option<u64>,
-    /// Only where the lane takes every polygon of the family.
-    pub ns_per_polygon: Option<f64>,
+    /// Its time, only where the lane takes every polygon of the family;
+    /// over `exact`'s and the store bound's, paired.
+    #[serde(flatten)]
+    pub time: Timed,
     /// Heap allocations per polygon once the lane has run over the family
     /// (a scratch has grown to the largest polygon), `None` where they are
     /// not counted.
@@ -128,86 +150,114 @@ pub struct PathRow {
     /// For a path: the polygons `fill_auto` sends down it.
     pub chosen_by_fill_auto: Option<u64>,
     /// For the drawing lanes: time over the cheapest path's that takes
-    /// every polygon of the family.
+    /// every polygon of the family (medians).
     pub time_vs_cheapest: Option<f64>,
 }
 
-/// Timing jobs [`measure()`] runs on a family, for progress.
-pub const JOBS: u64 = Lane::ALL.len() as u64;
+/// Every lane on a family, judged, with its allocations counted: what
+/// timing needs to know before it starts, and the rows' other figures.
+pub struct Judgement {
+    family: &'static str,
+    polygons: u64,
+    tiled: bool,
+    /// Per lane of [`Lane::all`]: its tally, for the lanes that draw.
+    tallies: Vec<Option<Tally>>,
+    /// Per lane: timed only on what it all takes, and only if it never failed.
+    takes_all: Vec<bool>,
+    allocations: Vec<Option<f64>>,
+    /// Per path: the polygons `fill_auto` sends down it.
+    chosen: Vec<u64>,
+}
 
-/// Every lane on `family`: judged on every core, then timed and its
-/// allocations counted on this thread alone. `progress` is told of each
-/// polygon judged and each lane timed.
-pub fn measure(family: &Family, timing: Timing, progress: &(dyn Fn() + Sync)) -> Vec<PathRow> {
-    let contenders: Vec<Contender> = Lane::ALL.iter().filter_map(|lane| lane.contender()).collect();
+/// Every lane on `family`: judged on every core, then its allocations
+/// counted on this thread alone. `progress` is told of each polygon judged.
+pub fn judge(family: &Family, progress: &(dyn Fn() + Sync)) -> Judgement {
+    let lanes = Lane::all();
+    let contenders: Vec<Contender> = lanes.iter().filter_map(|lane| lane.contender()).collect();
     let judged = measure::quietly(|| measure::judge(family, &contenders, progress));
-    let tiled = !family.tilings.is_empty();
     let polygons: Vec<&Polygon> = family.polygons.iter().collect();
-    let mut chosen = [0u64; ExactPath::NAMES.len()];
+    let mut chosen = vec![0u64; ExactPath::NAMES.len()];
     for path in polygons.iter().filter_map(|p| ExactPath::choose(p)) {
         chosen[path.index()] += 1;
     }
-    let lanes: Vec<(Lane, Option<&Contender>, Option<&Tally>)> = Lane::ALL
+    let tallies: Vec<Option<Tally>> = lanes
         .iter()
-        .map(|&lane| {
-            let c = contenders.iter().position(|c| Some(c.name()) == lane.contender().map(|l| l.name()));
-            (lane, c.map(|c| &contenders[c]), c.and_then(|c| judged.tallies[c].as_ref()))
+        .map(|lane| {
+            let c = contenders.iter().position(|c| Some(c.name()) == lane.contender().map(|l| l.name()))?;
+            judged.tallies[c].clone()
         })
         .collect();
-    // Timed, in turn, only on what it all takes, and only if it never failed.
     let takes_all: Vec<bool> =
-        lanes.iter().map(|(_, _, tally)| tally.is_none_or(|t| t.refusals == 0 && t.failures == 0)).collect();
-    let mut passes: Vec<Box<dyn FnMut() + '_>> = lanes
+        tallies.iter().map(|tally| tally.as_ref().is_none_or(|t| t.refusals == 0 && t.failures == 0)).collect();
+    let allocations = lanes
         .iter()
         .zip(&takes_all)
-        .filter(|(_, &takes)| takes)
-        .map(|((lane, contender, _), _)| lane.run(&polygons, *contender))
-        .collect();
-    let mut times =
-        timing.ns_per_polygon_each(passes.iter_mut().map(|p| (&mut **p as &mut dyn FnMut(), polygons.len())).collect());
-    for _ in 0..JOBS {
-        progress();
-    }
-    times.reverse();
-    let mut rows: Vec<PathRow> = lanes
-        .iter()
-        .zip(&takes_all)
-        .map(|(&(lane, contender, tally), &takes)| {
-            let ns = if takes { times.pop().flatten() } else { None };
+        .map(|(lane, &takes)| {
             // The pass is made and run once first: only the fills' own
             // allocations in a steady state count, not a scratch growing.
-            let mut pass = lane.run(&polygons, contender);
+            let mut pass = lane.pass(&polygons);
             pass();
-            let allocations = heap::per_item(polygons.len(), pass);
-            PathRow {
-                family: family.name,
-                lane: lane.name(),
-                polygons: polygons.len() as u64,
-                refusals: tally.map(|t| t.refusals),
-                wrong_pixels: tally.map(|t| t.wrong_pixels),
-                overdraw: tally.map(|t| t.overdraw),
-                // Pixels of refused tiles are gaps of the tiling, not faults.
-                gaps: tally.filter(|t| tiled && t.refusals == 0).map(|t| t.gaps),
-                failures: tally.map(|t| t.failures),
-                ns_per_polygon: ns,
-                allocations_per_polygon: if takes { allocations } else { None },
-                chosen_by_fill_auto: match lane {
-                    Lane::Path(which) => Some(chosen[which]),
-                    _ => None,
-                },
-                time_vs_cheapest: None,
-            }
+            heap::per_item(polygons.len(), pass).filter(|_| takes)
         })
         .collect();
-    let cheapest = rows
-        .iter()
-        .filter(|r| ExactPath::NAMES.contains(&r.lane))
-        .filter_map(|r| r.ns_per_polygon)
-        .min_by(f64::total_cmp);
-    for row in rows.iter_mut().filter(|r| r.refusals.is_some()) {
-        row.time_vs_cheapest = row.ns_per_polygon.zip(cheapest).map(|(ns, cheapest)| ns / cheapest);
+    Judgement {
+        family: family.name,
+        polygons: polygons.len() as u64,
+        tiled: !family.tilings.is_empty(),
+        tallies,
+        takes_all,
+        allocations,
+        chosen,
     }
-    rows
+}
+
+impl Judgement {
+    /// The lanes timed on the family, in [`Lane::all`] order: `None` for
+    /// those not timed there.
+    pub fn timed(&self) -> Vec<Option<Lane>> {
+        Lane::all().into_iter().zip(&self.takes_all).map(|(lane, &takes)| takes.then_some(lane)).collect()
+    }
+
+    /// The rows of the family, from `lanes`, each lane's samples in each
+    /// run (in [`Lane::all`] order), and `exact`'s and the store bound's
+    /// in the same repeats.
+    pub fn rows(&self, lanes: &[Vec<&Samples>], exact: &[&Samples], store: &[&Samples]) -> Vec<PathRow> {
+        let mut rows: Vec<PathRow> = Lane::all()
+            .into_iter()
+            .enumerate()
+            .map(|(l, lane)| {
+                let tally = self.tallies[l].as_ref();
+                let runs: Vec<&Samples> = lanes.iter().map(|run| run[l]).collect();
+                PathRow {
+                    family: self.family,
+                    lane: lane.name(),
+                    polygons: self.polygons,
+                    refusals: tally.map(|t| t.refusals),
+                    wrong_pixels: tally.map(|t| t.wrong_pixels),
+                    overdraw: tally.map(|t| t.overdraw),
+                    // Pixels of refused tiles are gaps of the tiling, not faults.
+                    gaps: tally.filter(|t| self.tiled && t.refusals == 0).map(|t| t.gaps),
+                    failures: tally.map(|t| t.failures),
+                    time: Timed::of(&runs, exact, store),
+                    allocations_per_polygon: self.allocations[l],
+                    chosen_by_fill_auto: match lane {
+                        Lane::Path(which) => Some(self.chosen[which]),
+                        _ => None,
+                    },
+                    time_vs_cheapest: None,
+                }
+            })
+            .collect();
+        let cheapest = rows
+            .iter()
+            .filter(|r| ExactPath::NAMES.contains(&r.lane))
+            .filter_map(|r| r.time.ns_per_polygon)
+            .min_by(f64::total_cmp);
+        for row in rows.iter_mut().filter(|r| r.refusals.is_some()) {
+            row.time_vs_cheapest = row.time.ns_per_polygon.zip(cheapest).map(|(ns, cheapest)| ns / cheapest);
+        }
+        rows
+    }
 }
 
 /// A shaded entry of the show, timed as modelled or over-modelled.
@@ -219,9 +269,10 @@ pub struct ShowRow {
     pub modelling: &'static str,
     /// Frames timed: every frame of the entry, drawn by `exact`.
     pub frames: u32,
-    pub ns_per_frame: Option<f64>,
-    /// Time over the same entry's as it needs.
-    pub time_vs_needed: Option<f64>,
+    /// The median time per frame, with the least and most of the repeats.
+    pub ns_per_frame: Option<Spread>,
+    /// Time over the same entry's as it needs, from the paired repeats.
+    pub time_vs_needed: Option<Ratio>,
 }
 
 /// Every shaded entry of the show, every frame, drawn by `exact` as the
@@ -242,15 +293,14 @@ pub fn measure_show(timing: Timing) -> Vec<ShowRow> {
         let mut pass_needed = || every_frame(&mut as_needed, Modelling::Needed);
         let mut pass_forced = || every_frame(&mut forced, Modelling::Forced);
         let frames = entry.frames as usize;
-        let times = timing.ns_per_polygon_each(vec![(&mut pass_needed, frames), (&mut pass_forced, frames)]);
-        for (name, ns) in ["needed", "forced"].into_iter().zip(&times) {
-            let time_vs_needed = ns.zip(times[0]).map(|(ns, needed)| ns / needed);
+        let samples = timing.samples_each(vec![(&mut pass_needed, frames), (&mut pass_forced, frames)]);
+        for (name, ns) in ["needed", "forced"].into_iter().zip(&samples) {
             rows.push(ShowRow {
                 entry: entry.name,
                 modelling: name,
                 frames: entry.frames,
-                ns_per_frame: *ns,
-                time_vs_needed,
+                ns_per_frame: Spread::of(ns),
+                time_vs_needed: Ratio::paired(ns, &samples[0]),
             });
         }
     }
@@ -266,11 +316,32 @@ mod tests {
         corpus::build(Budget::QUICK).into_iter().find(|f| f.name == name).unwrap()
     }
 
-    const FAST: Timing = Timing { repeats: 1, min_repeat: std::time::Duration::ZERO };
+    const FAST: Timing = Timing { repeats: 2, min_repeat: std::time::Duration::ZERO };
+
+    /// Judges every lane of `family` and times the ones it takes, with
+    /// made-up times for `exact` and the store bound.
+    fn rows(family: &Family) -> Vec<PathRow> {
+        let judgement = judge(family, &|| {});
+        let polygons: Vec<&Polygon> = family.polygons.iter().collect();
+        let mut passes: Vec<(Box<dyn FnMut()>, usize)> = judgement
+            .timed()
+            .iter()
+            .map(|lane| (lane.map_or_else(|| Lane::Dispatch.pass(&[]), |l| l.pass(&polygons)), polygons.len()))
+            .collect();
+        let mut samples =
+            FAST.samples_each(passes.iter_mut().map(|(p, n)| (&mut **p as &mut dyn FnMut(), *n)).collect());
+        for (samples, lane) in samples.iter_mut().zip(judgement.timed()) {
+            if lane.is_none() {
+                samples.clear();
+            }
+        }
+        let (exact, store) = (vec![100.0, 100.0], vec![50.0, 50.0]);
+        judgement.rows(&[samples.iter().collect()], &[&exact], &[&store])
+    }
 
     #[test]
     fn on_triangles_every_path_draws_and_fill_auto_takes_the_triangle_path() {
-        let rows = measure(&family("small_triangles"), FAST, &|| {});
+        let rows = rows(&family("small_triangles"));
         let names: Vec<&str> = rows.iter().map(|r| r.lane).collect();
         assert_eq!(
             names,
@@ -281,7 +352,8 @@ mod tests {
                 (row.refusals, row.wrong_pixels, row.overdraw, row.failures),
                 (Some(0), Some(0), Some(0), Some(0))
             );
-            assert!(row.ns_per_polygon.is_some() && row.time_vs_cheapest.is_some(), "{row:?}");
+            assert!(row.time.ns_per_polygon.is_some() && row.time_vs_cheapest.is_some(), "{row:?}");
+            assert_eq!(row.time.vs_exact.map(|r| r.pairs), Some(2), "{row:?}");
         }
         assert_eq!(rows[0].chosen_by_fill_auto, Some(rows[0].polygons));
         assert_eq!(rows[1].chosen_by_fill_auto, Some(0));
@@ -292,10 +364,11 @@ mod tests {
 
     #[test]
     fn a_path_refuses_what_it_cannot_fill_and_is_not_timed_there() {
-        let rows = measure(&family("concave"), FAST, &|| {});
+        let rows = rows(&family("concave"));
         let triangle = &rows[0];
         assert_eq!(triangle.refusals, Some(triangle.polygons));
-        assert_eq!((triangle.wrong_pixels, triangle.ns_per_polygon), (Some(0), None));
+        assert_eq!((triangle.wrong_pixels, triangle.time.ns_per_polygon), (Some(0), None));
+        assert_eq!(triangle.time.vs_exact, None);
         let active = &rows[2];
         assert_eq!(active.refusals, Some(0));
         assert_eq!(active.time_vs_cheapest, Some(1.0));
@@ -317,6 +390,6 @@ mod tests {
             ]
         );
         assert!(rows.iter().all(|r| r.ns_per_frame.is_some()));
-        assert_eq!(rows[0].time_vs_needed, Some(1.0));
+        assert_eq!(rows[0].time_vs_needed.map(|r| r.ratio), Some(1.0));
     }
 }

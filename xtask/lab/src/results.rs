@@ -9,9 +9,10 @@ use crate::contender::Contender;
 use crate::convention::Own;
 use crate::corpus::{Axis, Family, Group};
 use crate::measure::{Judged, Tally};
-use crate::modelling::{PathRow, ShowRow};
+use crate::modelling::{self, PathRow, ShowRow};
 use crate::spans;
-use crate::timing::{Bound, Speeds};
+use crate::stats::{median, Ratio, Spread};
+use crate::timing::{Bound, Samples, Speeds};
 
 /// The method held to zero wrong pixels, overdraw, gaps and failures.
 pub const EXACT: &str = "exact";
@@ -59,6 +60,83 @@ pub struct Results {
     pub goals: Vec<GoalRow>,
     /// What the lab binary was built for.
     pub build: Build,
+    /// How the times were taken.
+    pub timing: TimingInfo,
+}
+
+/// How the times were taken: how many runs of the whole timing, how many
+/// repeats in each, and the machine's load around them.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct TimingInfo {
+    /// Runs of the whole timing (`--runs`), one after the other.
+    pub runs: usize,
+    /// Repeats of every lane in each run, timed in turn.
+    pub repeats: usize,
+    /// How long each repeat of a pass lasts at least, in milliseconds.
+    pub min_repeat_ms: f64,
+    /// The confidence of the intervals of ratios.
+    pub confidence: f64,
+    /// The 1-minute load average when the timing started and when it
+    /// ended, where the system tells it (`/proc/loadavg`).
+    pub load_average: (Option<f64>, Option<f64>),
+}
+
+/// A lane's time on a family, over every run and repeat, as results.json
+/// gives it for every contender, bound and lane of "what modelling costs".
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Timed {
+    /// The median ns per polygon of every repeat of every run.
+    pub ns_per_polygon: Option<f64>,
+    /// The least and most of those repeats.
+    pub ns_min: Option<f64>,
+    pub ns_max: Option<f64>,
+    /// Its time over `exact`'s on the same family, repeat by repeat (the
+    /// two timed in turn), every run's repeats together, with its interval.
+    pub vs_exact: Option<Ratio>,
+    /// The same over the store bound's.
+    pub vs_store: Option<Ratio>,
+    /// Each run alone: its median and its ratio to `exact`'s.
+    pub runs: Vec<RunFigures>,
+    /// ns per polygon in every repeat, run by run.
+    pub samples_ns: Vec<Samples>,
+}
+
+/// One run's figures of a lane.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RunFigures {
+    pub ns_per_polygon: Option<f64>,
+    pub vs_exact: Option<Ratio>,
+}
+
+impl Timed {
+    /// From a lane's samples in each run, and `exact`'s and the store
+    /// bound's in the same repeats of the same runs.
+    pub fn of(runs: &[&Samples], exact: &[&Samples], store: &[&Samples]) -> Timed {
+        let all: Samples = runs.iter().flat_map(|s| s.iter().copied()).collect();
+        let paired = |others: &[&Samples]| {
+            let (mine, theirs): (Samples, Samples) = runs
+                .iter()
+                .zip(others)
+                .filter(|(a, b)| a.len() == b.len())
+                .flat_map(|(a, b)| a.iter().copied().zip(b.iter().copied()))
+                .unzip();
+            Ratio::paired(&mine, &theirs)
+        };
+        let spread = Spread::of(&all);
+        Timed {
+            ns_per_polygon: spread.map(|s| s.median),
+            ns_min: spread.map(|s| s.min),
+            ns_max: spread.map(|s| s.max),
+            vs_exact: paired(exact),
+            vs_store: paired(store),
+            runs: runs
+                .iter()
+                .zip(exact)
+                .map(|(mine, exact)| RunFigures { ns_per_polygon: median(mine), vs_exact: Ratio::paired(mine, exact) })
+                .collect(),
+            samples_ns: runs.iter().map(|s| s.to_vec()).collect(),
+        }
+    }
 }
 
 /// The CPU features the lab was compiled to use (`cargo xtask lab` builds
@@ -95,6 +173,9 @@ pub struct ContenderInfo {
     /// bounds, and for a peer that decides by area coverage; for an
     /// integer peer, the corner of its closed polygon in whole pixels).
     pub sample: Option<(i32, i32)>,
+    /// For a peer timed a second way (its paths built inside the clock or
+    /// before it), the peer it draws the same pixels as.
+    pub variant_of: Option<&'static str>,
 }
 
 /// One contender on one family. Accuracy fields are `None` for the bounds;
@@ -111,13 +192,14 @@ pub struct Row {
     /// Polygons timed: all but the failed ones (for a peer, the ones it
     /// drew).
     pub timed_polygons: u64,
-    pub ns_per_polygon: Option<f64>,
-    /// Exact pixels of the timed polygons per second of fill.
+    /// Its time per polygon, with its spread and its ratios to `exact`
+    /// and the store bound.
+    #[serde(flatten)]
+    pub time: Timed,
+    /// Exact pixels of the timed polygons per second of fill (medians).
     pub pixels_per_second: Option<f64>,
-    /// Time over the memset bound's on the same polygons.
+    /// Time over the memset bound's on the same family (medians).
     pub time_vs_memset: Option<f64>,
-    /// Time over the store bound's on the same polygons.
-    pub time_vs_store: Option<f64>,
     pub wrong_pixels: Option<u64>,
     pub wrong_pixels_own: Option<u64>,
     /// Of the wrong pixels, those the reference draws and the contender
@@ -169,8 +251,9 @@ pub struct SweepPoint {
     pub wrong_pixels: Option<u64>,
     pub wrong_pixels_own: Option<u64>,
     pub faulty_polygons: Option<u64>,
-    /// Only for the axes timed per value (area, vertex count).
-    pub ns_per_polygon: Option<f64>,
+    /// Only for the axes timed per value (area, vertex count): the median
+    /// of the repeats, with their least and most.
+    pub ns_per_polygon: Option<Spread>,
 }
 
 impl Results {
@@ -187,6 +270,10 @@ impl Results {
                     Own::Closed { .. } => Some((0, 0)),
                     Own::Coverage { .. } => None,
                 },
+                variant_of: match c {
+                    Contender::Peer(p) => p.info().variant_of,
+                    _ => None,
+                },
             })
             .collect();
         infos.extend(Bound::ALL.map(|b| ContenderInfo {
@@ -195,6 +282,7 @@ impl Results {
             source: b.source(),
             summary: String::new(),
             sample: None,
+            variant_of: None,
         }));
         Self {
             seed,
@@ -207,11 +295,20 @@ impl Results {
             show_modelling: vec![],
             goals: vec![],
             build: Build::THIS,
+            timing: TimingInfo::default(),
         }
     }
 
-    /// Adds what was measured on `family`.
-    pub fn add_family(&mut self, family: &Family, contenders: &[Contender], judged: &Judged, speeds: &Speeds) {
+    /// Adds what was measured on `family`: its judgement, its lanes'
+    /// (`lanes`), and the samples of every run of the timing (`runs`).
+    pub fn add_family(
+        &mut self,
+        family: &Family,
+        contenders: &[Contender],
+        judged: &Judged,
+        lanes: &modelling::Judgement,
+        runs: &[Speeds],
+    ) {
         let pixels_of = |indices: &mut dyn Iterator<Item = usize>| {
             indices.map(|i| spans::pixel_count(&judged.exact[i])).sum::<u64>()
         };
@@ -224,9 +321,16 @@ impl Results {
             tilings: family.tilings.len(),
             pixels,
         });
-        let bound_ns = |bound: Bound| speeds.bounds[bound as usize];
-        let ratio = |ns: Option<f64>, bound: Bound| Some(ns? / bound_ns(bound)?);
-        let row = |name, kind, polygons: u64, timed: u64, timed_pixels: u64, ns: Option<f64>| Row {
+        let exact = contenders.iter().position(|c| c.name() == EXACT);
+        let none = Samples::new();
+        let exact_runs: Vec<&Samples> = runs.iter().map(|s| exact.map_or(&none, |e| &s.contenders[e])).collect();
+        let store_runs: Vec<&Samples> = runs.iter().map(|s| &s.bounds[Bound::Store as usize]).collect();
+        let timed = |pick: &dyn Fn(&Speeds) -> &Samples| {
+            let mine: Vec<&Samples> = runs.iter().map(pick).collect();
+            Timed::of(&mine, &exact_runs, &store_runs)
+        };
+        let memset = timed(&|s| &s.bounds[Bound::Memset as usize]).ns_per_polygon;
+        let row = |name, kind, polygons: u64, timed: u64, timed_pixels: u64, time: Timed| Row {
             name,
             kind,
             family: family.name,
@@ -234,10 +338,9 @@ impl Results {
             polygons,
             pixels,
             timed_polygons: timed,
-            ns_per_polygon: ns,
-            pixels_per_second: ns.map(|ns| timed_pixels as f64 / (ns * timed as f64) * 1e9),
-            time_vs_memset: ratio(ns, Bound::Memset),
-            time_vs_store: ratio(ns, Bound::Store),
+            pixels_per_second: time.ns_per_polygon.map(|ns| timed_pixels as f64 / (ns * timed as f64) * 1e9),
+            time_vs_memset: time.ns_per_polygon.zip(memset).map(|(ns, memset)| ns / memset),
+            time,
             wrong_pixels: None,
             wrong_pixels_own: None,
             missing_pixels: None,
@@ -254,31 +357,33 @@ impl Results {
         };
         for (c, contender) in contenders.iter().enumerate() {
             let Some(tally) = &judged.tallies[c] else { continue };
-            let timed = &judged.timed[c];
+            let timed_polygons = &judged.timed[c];
             let kind = if contender.is_peer() { Kind::Peer } else { Kind::Method };
-            let ns = speeds.contenders[c];
             let base = row(
                 contender.name(),
                 kind,
                 tally.polygons,
-                timed.len() as u64,
-                pixels_of(&mut timed.iter().copied()),
-                ns,
+                timed_polygons.len() as u64,
+                pixels_of(&mut timed_polygons.iter().copied()),
+                timed(&|s| &s.contenders[c]),
             );
             self.rows.push(with_tally(base, tally, !family.tilings.is_empty()));
         }
         for bound in Bound::ALL {
             let n = family.polygons.len() as u64;
-            self.rows.push(row(bound.name(), Kind::Bound, n, n, pixels, bound_ns(bound)));
+            self.rows.push(row(bound.name(), Kind::Bound, n, n, pixels, timed(&|s| &s.bounds[bound as usize])));
         }
-        self.add_sweeps(family, contenders, judged, speeds);
+        let lane_runs: Vec<Vec<&Samples>> = runs.iter().map(|s| s.lanes.iter().collect()).collect();
+        self.modelling.extend(lanes.rows(&lane_runs, &exact_runs, &store_runs));
+        self.add_sweeps(family, contenders, judged, runs);
     }
 
-    fn add_sweeps(&mut self, family: &Family, contenders: &[Contender], judged: &Judged, speeds: &Speeds) {
+    /// The sweep's points, each value's samples of every run together.
+    fn add_sweeps(&mut self, family: &Family, contenders: &[Contender], judged: &Judged, runs: &[Speeds]) {
         let Some(sweep) = &family.sweep else { return };
         for (r, (value, range)) in judged.runs.iter().enumerate() {
             let pixels = range.clone().map(|i| spans::pixel_count(&judged.exact[i])).sum();
-            let point = |name, kind, tally: Option<&Tally>, ns| SweepPoint {
+            let point = |name, kind, tally: Option<&Tally>, ns: &Samples| SweepPoint {
                 name,
                 kind,
                 family: family.name,
@@ -289,17 +394,20 @@ impl Results {
                 wrong_pixels: tally.map(|t| t.wrong_pixels),
                 wrong_pixels_own: tally.map(|t| t.wrong_pixels_own),
                 faulty_polygons: tally.map(|t| t.faulty_polygons),
-                ns_per_polygon: ns,
+                ns_per_polygon: Spread::of(ns),
             };
-            let run_speeds = speeds.runs.get(r);
+            let timed_per_value = runs.iter().any(|speeds| speeds.runs.get(r).is_some());
+            let pooled = |pick: &dyn Fn(&Speeds) -> &Samples| -> Samples {
+                runs.iter().filter_map(|speeds| speeds.runs.get(r)).flat_map(|s| pick(s).iter().copied()).collect()
+            };
             for (c, contender) in contenders.iter().enumerate() {
                 let Some(tally) = judged.run_tallies[c].get(r) else { continue };
                 let kind = if contender.is_peer() { Kind::Peer } else { Kind::Method };
-                self.sweeps.push(point(contender.name(), kind, Some(tally), run_speeds.and_then(|s| s.contenders[c])));
+                self.sweeps.push(point(contender.name(), kind, Some(tally), &pooled(&|s| &s.contenders[c])));
             }
-            if let Some(run_speeds) = run_speeds {
+            if timed_per_value {
                 for bound in Bound::ALL {
-                    self.sweeps.push(point(bound.name(), Kind::Bound, None, run_speeds.bounds[bound as usize]));
+                    self.sweeps.push(point(bound.name(), Kind::Bound, None, &pooled(&|s| &s.bounds[bound as usize])));
                 }
             }
         }
@@ -310,11 +418,13 @@ impl Results {
     /// bound, wrong pixels in % of exact pixels, at least `zero_floor`,
     /// which must be positive for [`Results::speed_accuracy_means`]).
     /// Rows with a refusal or failure are left out: they drew less work,
-    /// and their point would flatter them.
+    /// and their point would flatter them; so are the peers timed a second
+    /// way, which draw the same pixels as their first.
     pub fn speed_accuracy_points(&self, zero_floor: f64) -> Vec<(&Row, (f64, f64))> {
+        let variant = |name: &str| self.contenders.iter().any(|c| c.name == name && c.variant_of.is_some());
         self.rows
             .iter()
-            .filter(|r| r.group.is_everyday() && r.refusals == Some(0) && r.failures == Some(0))
+            .filter(|r| r.group.is_everyday() && r.refusals == Some(0) && r.failures == Some(0) && !variant(r.name))
             .filter_map(|r| Some((r, (r.time_vs_memset?, (r.error_rate()? * 100.0).max(zero_floor)))))
             .collect()
     }
@@ -326,7 +436,7 @@ impl Results {
         let points = self.speed_accuracy_points(zero_floor);
         self.contenders
             .iter()
-            .filter(|c| c.kind != Kind::Bound)
+            .filter(|c| c.kind != Kind::Bound && c.variant_of.is_none())
             .filter_map(|c| {
                 let mine: Vec<(f64, f64)> = points.iter().filter(|(r, _)| r.name == c.name).map(|(_, p)| *p).collect();
                 let mean = geometric_mean(mine.iter().map(|p| p.0))?;

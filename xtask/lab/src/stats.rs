@@ -1,17 +1,88 @@
-//! Small statistics: medians of timing repeats, and the Pareto front of
-//! the speed-against-accuracy chart.
+//! Small statistics: the spread of timing repeats, the ratio of two
+//! contenders' times from paired repeats with its interval, how far runs
+//! disagree, and the Pareto front of the speed-against-accuracy chart.
+//! The order statistics, means, deviations and Student's t quantiles are
+//! `statrs`'s.
+
+use serde::Serialize;
+use statrs::distribution::{ContinuousCDF, StudentsT};
+use statrs::statistics::{Data, OrderStatistics, Statistics};
+
+/// The confidence of every interval the lab reports.
+pub const CONFIDENCE: f64 = 0.95;
 
 /// The median of `values` (the mean of the middle two for an even count),
-/// or `None` when there are none. NaNs sort last.
+/// or `None` when there are none.
 pub fn median(values: &[f64]) -> Option<f64> {
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    let n = sorted.len();
-    match n {
-        0 => None,
-        _ if n % 2 == 1 => Some(sorted[n / 2]),
-        _ => Some((sorted[n / 2 - 1] + sorted[n / 2]) / 2.0),
+    (!values.is_empty()).then(|| Data::new(values.to_vec()).median())
+}
+
+/// How a lane's repeats spread: their median, least and most.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Spread {
+    pub median: f64,
+    pub min: f64,
+    pub max: f64,
+}
+
+impl Spread {
+    /// The spread of `values`, or `None` when there are none.
+    pub fn of(values: &[f64]) -> Option<Spread> {
+        Some(Spread { median: median(values)?, min: values.min(), max: values.max() })
     }
+}
+
+/// One time over another, from repeats timed in turn: the geometric mean
+/// of the repeats' ratios, with its interval at [`CONFIDENCE`] (Student's
+/// t on the logarithms of the ratios: a paired design, so a change in the
+/// machine's load that falls on both times of a repeat cancels).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Ratio {
+    pub ratio: f64,
+    /// The interval's ends; `None` with fewer than two pairs.
+    pub low: Option<f64>,
+    pub high: Option<f64>,
+    /// Repeats paired.
+    pub pairs: usize,
+}
+
+impl Ratio {
+    /// `a` over `b`, repeat by repeat (`a[i]` and `b[i]` timed in the
+    /// same repeat); pairs where either time is not a positive number are
+    /// left out. `None` without a pair.
+    pub fn paired(a: &[f64], b: &[f64]) -> Option<Ratio> {
+        let logs: Vec<f64> = a
+            .iter()
+            .zip(b)
+            .filter(|(a, b)| a.is_finite() && b.is_finite() && **a > 0.0 && **b > 0.0)
+            .map(|(a, b)| (a / b).ln())
+            .collect();
+        let pairs = logs.len();
+        if pairs == 0 {
+            return None;
+        }
+        let mean = logs.iter().mean();
+        let (low, high) = if pairs < 2 {
+            (None, None)
+        } else {
+            let t = StudentsT::new(0.0, 1.0, (pairs - 1) as f64).expect("a positive number of degrees of freedom");
+            let half = t.inverse_cdf(0.5 + CONFIDENCE / 2.0) * logs.iter().std_dev() / (pairs as f64).sqrt();
+            (Some((mean - half).exp()), Some((mean + half).exp()))
+        };
+        Some(Ratio { ratio: mean.exp(), low, high, pairs })
+    }
+
+    /// Whether the whole interval lies above `x` (a ratio of one pair
+    /// has no interval, and is above nothing).
+    pub fn surely_above(&self, x: f64) -> bool {
+        self.low.is_some_and(|low| low > x)
+    }
+}
+
+/// How far `values` (one figure from each of several runs) disagree: the
+/// largest over the smallest, less one; `None` with fewer than two.
+pub fn disagreement(values: &[f64]) -> Option<f64> {
+    (values.len() >= 2 && values.iter().all(|v| *v > 0.0)).then(|| values.max() / values.min() - 1.0)
 }
 
 /// A running mean of 2-D values.
@@ -72,6 +143,56 @@ mod tests {
     #[test]
     fn median_ignores_one_outlier() {
         assert_eq!(median(&[10.0, 11.0, 1e9, 12.0, 9.0]), Some(11.0));
+    }
+
+    #[test]
+    fn a_spread_is_the_median_least_and_most() {
+        assert_eq!(Spread::of(&[3.0, 9.0, 1.0, 4.0, 5.0]), Some(Spread { median: 4.0, min: 1.0, max: 9.0 }));
+        assert_eq!(Spread::of(&[]), None);
+    }
+
+    /// Times that move together (the machine's load) give a ratio with a
+    /// narrow interval; the interval is the t interval of the logarithms,
+    /// worked out here by hand: ratios 2, 2.2, 1.8 have logarithms of mean
+    /// m = 0.6871 and standard deviation s = 0.1004, and t(0.975, 2) =
+    /// 4.3027, so the interval is exp(m ± 4.3027 s / sqrt 3).
+    #[test]
+    fn a_paired_ratio_has_the_t_interval_of_its_logarithms() {
+        let a = [200.0, 440.0, 180.0];
+        let b = [100.0, 200.0, 100.0];
+        let r = Ratio::paired(&a, &b).unwrap();
+        let logs = [2.0f64.ln(), 2.2f64.ln(), 1.8f64.ln()];
+        let m = logs.iter().sum::<f64>() / 3.0;
+        let s = (logs.iter().map(|l| (l - m).powi(2)).sum::<f64>() / 2.0).sqrt();
+        let half = 4.302_652_7 * s / 3f64.sqrt();
+        assert!((r.ratio - m.exp()).abs() < 1e-9, "{r:?}");
+        assert!((r.low.unwrap() - (m - half).exp()).abs() < 1e-6, "{r:?}");
+        assert!((r.high.unwrap() - (m + half).exp()).abs() < 1e-6, "{r:?}");
+        assert_eq!(r.pairs, 3);
+        assert!(r.surely_above(1.0) && !r.surely_above(2.0));
+    }
+
+    #[test]
+    fn a_load_that_falls_on_both_leaves_the_ratio_exact() {
+        // The machine slows down tenfold between repeats; the ratio holds.
+        let r = Ratio::paired(&[30.0, 300.0, 3000.0], &[10.0, 100.0, 1000.0]).unwrap();
+        assert!((r.ratio - 3.0).abs() < 1e-9);
+        assert!((r.high.unwrap() - r.low.unwrap()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn one_pair_has_no_interval_and_none_has_no_ratio() {
+        let r = Ratio::paired(&[4.0, f64::NAN], &[2.0, 1.0]).unwrap();
+        assert_eq!((r.ratio, r.low, r.high, r.pairs), (2.0, None, None, 1));
+        assert!(!r.surely_above(1.0));
+        assert_eq!(Ratio::paired(&[], &[]), None);
+        assert_eq!(Ratio::paired(&[0.0], &[1.0]), None);
+    }
+
+    #[test]
+    fn runs_disagree_by_their_largest_over_their_smallest() {
+        assert!((disagreement(&[100.0, 110.0, 105.0]).unwrap() - 0.1).abs() < 1e-12);
+        assert_eq!(disagreement(&[100.0]), None);
     }
 
     #[test]

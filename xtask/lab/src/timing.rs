@@ -11,34 +11,33 @@ use raster::{Framebuffer, Polygon, SpanSink, SCREEN};
 use crate::contender::Contender;
 use crate::corpus::Family;
 use crate::measure::Judged;
+use crate::modelling::Lane;
+use crate::peers::Clock;
 use crate::spans::{self, Span};
-use crate::stats::median;
 
 /// How hard to time.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Timing {
-    /// Repeats whose median is reported.
+    /// Repeats of every lane, timed in turn: the samples of its spread.
     pub repeats: usize,
     /// Each repeat runs the pass as often as it takes to last this long.
     pub min_repeat: Duration,
 }
 
+/// Nanoseconds per polygon of one lane, one figure a repeat; empty where
+/// nothing was timed (no polygons).
+pub type Samples = Vec<f64>;
+
 impl Timing {
     pub const FULL: Timing = Timing { repeats: 7, min_repeat: Duration::from_millis(20) };
     pub const QUICK: Timing = Timing { repeats: 3, min_repeat: Duration::from_millis(2) };
 
-    /// Nanoseconds per polygon of `pass`, which fills `polygons` polygons:
-    /// one warm-up pass, then the median of the repeats. `None` for no
-    /// polygons.
-    pub fn ns_per_polygon(&self, pass: &mut dyn FnMut(), polygons: usize) -> Option<f64> {
-        self.ns_per_polygon_each(vec![(pass, polygons)]).remove(0)
-    }
-
-    /// [`Timing::ns_per_polygon`] of each of `passes` (a pass and the
-    /// polygons it fills), timed in turn within every repeat, so that a
-    /// change in the machine's load falls on all of them alike and the
-    /// ratios between them hold.
-    pub fn ns_per_polygon_each(&self, mut passes: Vec<(&mut dyn FnMut(), usize)>) -> Vec<Option<f64>> {
+    /// Nanoseconds per polygon of each of `passes` (a pass and the
+    /// polygons it fills) in every repeat, after one warm-up pass each:
+    /// within a repeat every pass is timed in turn, so that a change in the
+    /// machine's load falls on all of them alike and the ratios between
+    /// them, repeat by repeat, hold ([`crate::stats::Ratio::paired`]).
+    pub fn samples_each(&self, mut passes: Vec<(&mut dyn FnMut(), usize)>) -> Vec<Samples> {
         // Each pass runs as often as it takes to last `min_repeat`.
         let counts: Vec<u32> = passes
             .iter_mut()
@@ -59,7 +58,12 @@ impl Timing {
                 samples.push(start.elapsed().as_nanos() as f64 / f64::from(count) / (*polygons).max(1) as f64);
             }
         }
-        passes.iter().zip(&samples).map(|((_, polygons), samples)| median(samples).filter(|_| *polygons > 0)).collect()
+        for ((_, polygons), samples) in passes.iter().zip(&mut samples) {
+            if *polygons == 0 {
+                samples.clear();
+            }
+        }
+        samples
     }
 }
 
@@ -99,6 +103,37 @@ impl Bound {
             Bound::Memset => "one memset (slice fill) of each polygon's exact pixel count",
             Bound::Store => "the reference's spans stored into a 320x200 buffer, no call per span",
             Bound::DynSink => "the reference's spans sent through &mut dyn SpanSink into a Framebuffer",
+        }
+    }
+
+    /// What it does inside the timed pass and what before it.
+    pub const fn clock(self) -> Clock {
+        const BUFFER: &str = "a 320x200 byte buffer";
+        match self {
+            Bound::Memset => Clock {
+                before: "each polygon's exact pixel count",
+                setup: "none",
+                fill: "one slice fill (`memset`) of that many bytes",
+                surface: BUFFER,
+                pixel_format: "8-bit",
+                anti_aliasing: "none (the reference's pixels)",
+            },
+            Bound::Store => Clock {
+                before: "the reference's spans, as byte ranges of the buffer",
+                setup: "none",
+                fill: "the framebuffer's span store (`set_bytes`) a span, no call per span",
+                surface: BUFFER,
+                pixel_format: "8-bit",
+                anti_aliasing: "none (the reference's pixels)",
+            },
+            Bound::DynSink => Clock {
+                before: "the reference's spans",
+                setup: "none",
+                fill: "`SpanSink::span` through `&mut dyn SpanSink` a span (the contract check, the store)",
+                surface: "320x200 `Framebuffer`",
+                pixel_format: "8-bit index",
+                anti_aliasing: "none (the reference's pixels)",
+            },
         }
     }
 
@@ -142,20 +177,23 @@ impl Bound {
     }
 }
 
-/// Nanoseconds per polygon of every contender and bound on a family.
+/// The samples of every lane timed on a family in one run.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Speeds {
-    /// Per contender, in the order given; `None` where nothing was timed.
-    pub contenders: Vec<Option<f64>>,
+    /// Per contender, in the order given; empty where nothing was timed.
+    pub contenders: Vec<Samples>,
     /// Per bound, in [`Bound::ALL`] order.
-    pub bounds: Vec<Option<f64>>,
+    pub bounds: Vec<Samples>,
+    /// Per lane of "what modelling costs", in the order given; empty
+    /// where the lane was not timed.
+    pub lanes: Vec<Samples>,
     /// On sweeps timed per value: the same, for each run of the sweep.
     pub runs: Vec<Speeds>,
 }
 
 /// How many timing jobs [`time_family`] runs on `family`, for progress.
-pub fn jobs(family: &Family, contenders: usize) -> u64 {
-    let lanes = (contenders + Bound::ALL.len()) as u64;
+pub fn jobs(family: &Family, lanes: usize) -> u64 {
+    let lanes = lanes as u64;
     match &family.sweep {
         Some(sweep) if sweep.axis.timed_per_value() => lanes * sweep.runs().len() as u64,
         _ => lanes,
@@ -163,73 +201,95 @@ pub fn jobs(family: &Family, contenders: usize) -> u64 {
 }
 
 /// Times every contender that takes `family` on the polygons it did not
-/// fail on, and the bounds on all of them; per sweep value where the
-/// family's axis asks for it, the family's figure then being the mean over
-/// its polygons. `progress` is told of each job done.
+/// fail on, and the bounds and the lanes of "what modelling costs" on all
+/// of them (`lanes`: `None` where a lane is not timed on the family), all
+/// in turn within each repeat; per sweep value where the family's axis asks for it, the
+/// family's figure in each repeat then being the mean over its polygons.
+/// `progress` is told of each job done.
 pub fn time_family(
     family: &Family,
     judged: &Judged,
     contenders: &[Contender],
+    lanes: &[Option<Lane>],
     timing: Timing,
     progress: &dyn Fn(),
 ) -> Speeds {
     let per_value = family.sweep.as_ref().is_some_and(|s| s.axis.timed_per_value());
     if !per_value {
-        return time_range(family, judged, contenders, timing, 0..family.polygons.len(), progress);
+        return time_range(family, judged, contenders, lanes, timing, 0..family.polygons.len(), progress);
     }
     let runs: Vec<Speeds> = judged
         .runs
         .iter()
-        .map(|(_, range)| time_range(family, judged, contenders, timing, range.clone(), progress))
+        .map(|(_, range)| time_range(family, judged, contenders, lanes, timing, range.clone(), progress))
         .collect();
-    let mean = |pick: &dyn Fn(&Speeds) -> Option<f64>, counts: &dyn Fn(usize) -> usize| {
-        let (mut time, mut n) = (0.0, 0);
-        for (r, speeds) in runs.iter().enumerate() {
-            if let Some(ns) = pick(speeds) {
-                time += ns * counts(r) as f64;
-                n += counts(r);
-            }
-        }
-        (n > 0).then(|| time / n as f64)
-    };
+    let all = |r: usize| judged.runs[r].1.len();
     let contender_means = (0..contenders.len())
         .map(|c| {
             let timed_in = |r: usize| judged.timed[c].iter().filter(|&&i| judged.runs[r].1.contains(&i)).count();
-            mean(&|s| s.contenders[c], &timed_in)
+            weighted_mean(&runs, &|s| &s.contenders[c], &timed_in)
         })
         .collect();
-    let bound_means = (0..Bound::ALL.len()).map(|b| mean(&|s| s.bounds[b], &|r| judged.runs[r].1.len())).collect();
-    Speeds { contenders: contender_means, bounds: bound_means, runs }
+    let bound_means = (0..Bound::ALL.len()).map(|b| weighted_mean(&runs, &|s| &s.bounds[b], &all)).collect();
+    let lane_means = (0..lanes.len()).map(|l| weighted_mean(&runs, &|s| &s.lanes[l], &all)).collect();
+    Speeds { contenders: contender_means, bounds: bound_means, lanes: lane_means, runs }
+}
+
+/// Repeat by repeat, the mean time per polygon over the sweep's runs, each
+/// weighted by the polygons timed in it.
+fn weighted_mean(runs: &[Speeds], pick: &dyn Fn(&Speeds) -> &Samples, counts: &dyn Fn(usize) -> usize) -> Samples {
+    let repeats = runs.iter().map(|s| pick(s).len()).max().unwrap_or(0);
+    (0..repeats)
+        .filter_map(|repeat| {
+            let (mut time, mut n) = (0.0, 0);
+            for (r, speeds) in runs.iter().enumerate() {
+                if let Some(ns) = pick(speeds).get(repeat) {
+                    time += ns * counts(r) as f64;
+                    n += counts(r);
+                }
+            }
+            (n > 0).then(|| time / n as f64)
+        })
+        .collect()
 }
 
 fn time_range(
     family: &Family,
     judged: &Judged,
     contenders: &[Contender],
+    lanes: &[Option<Lane>],
     timing: Timing,
     range: Range<usize>,
     progress: &dyn Fn(),
 ) -> Speeds {
-    // Every contender that takes the family and every bound, timed in turn.
+    // Every contender that takes the family, every bound and every lane
+    // timed there, in turn.
     let polygons: Vec<Vec<&Polygon>> = (0..contenders.len())
         .map(|c| judged.timed[c].iter().filter(|i| range.contains(i)).map(|&i| &family.polygons[i]).collect())
         .collect();
+    let all: Vec<&Polygon> = family.polygons[range.clone()].iter().collect();
     let exact: Vec<&[Span]> = judged.exact[range.clone()].iter().map(Vec::as_slice).collect();
     let timed: Vec<usize> = (0..contenders.len()).filter(|&c| judged.tallies[c].is_some()).collect();
+    let lanes_timed: Vec<usize> = (0..lanes.len()).filter(|&l| lanes[l].is_some()).collect();
     let mut passes: Vec<(Box<dyn FnMut() + '_>, usize)> =
         timed.iter().map(|&c| (contenders[c].pass(&polygons[c]), polygons[c].len())).collect();
     passes.extend(Bound::ALL.iter().map(|bound| (bound.pass(&exact), exact.len())));
-    let mut speeds =
-        timing.ns_per_polygon_each(passes.iter_mut().map(|(p, n)| (&mut **p as &mut dyn FnMut(), *n)).collect());
-    for _ in 0..contenders.len() + Bound::ALL.len() {
+    passes.extend(lanes_timed.iter().filter_map(|&l| Some((lanes[l]?.pass(&all), all.len()))));
+    let mut samples = timing.samples_each(passes.iter_mut().map(|(p, n)| (&mut **p as &mut dyn FnMut(), *n)).collect());
+    for _ in 0..contenders.len() + Bound::ALL.len() + lanes.len() {
         progress();
     }
-    let bound_speeds = speeds.split_off(timed.len());
-    let mut contender_speeds = vec![None; contenders.len()];
-    for (&c, ns) in timed.iter().zip(speeds) {
-        contender_speeds[c] = ns;
+    let lane_samples = samples.split_off(timed.len() + Bound::ALL.len());
+    let bound_samples = samples.split_off(timed.len());
+    let mut contender_samples = vec![Samples::new(); contenders.len()];
+    for (&c, ns) in timed.iter().zip(samples) {
+        contender_samples[c] = ns;
     }
-    Speeds { contenders: contender_speeds, bounds: bound_speeds, runs: vec![] }
+    let mut lane_all = vec![Samples::new(); lanes.len()];
+    for (&l, ns) in lanes_timed.iter().zip(lane_samples) {
+        lane_all[l] = ns;
+    }
+    Speeds { contenders: contender_samples, bounds: bound_samples, lanes: lane_all, runs: vec![] }
 }
 
 #[cfg(test)]
@@ -238,7 +298,7 @@ mod tests {
 
     #[test]
     fn no_polygons_take_no_time() {
-        assert_eq!(Timing::QUICK.ns_per_polygon(&mut || {}, 0), None);
+        assert_eq!(Timing::QUICK.samples_each(vec![(&mut || {}, 0)]), vec![Samples::new()]);
     }
 
     #[test]
@@ -246,18 +306,18 @@ mod tests {
         let (mut a, mut b) = (0, 0);
         let timing = Timing { repeats: 3, min_repeat: Duration::ZERO };
         let (mut pass_a, mut pass_b) = (|| a += 1, || b += 1);
-        let times = timing.ns_per_polygon_each(vec![(&mut pass_a, 5), (&mut pass_b, 0)]);
-        assert!(times[0].is_some());
-        assert_eq!(times[1], None);
+        let times = timing.samples_each(vec![(&mut pass_a, 5), (&mut pass_b, 0)]);
+        assert_eq!(times[0].len(), 3);
+        assert!(times[0].iter().all(|&ns| ns >= 0.0));
+        assert!(times[1].is_empty());
         assert_eq!((a, b), (4, 4));
     }
 
     #[test]
-    fn every_repeat_runs_the_pass_at_least_once() {
-        let mut runs = 0;
-        let timing = Timing { repeats: 3, min_repeat: Duration::ZERO };
-        let ns = timing.ns_per_polygon(&mut || runs += 1, 10).unwrap();
-        assert_eq!(runs, 4);
-        assert!(ns >= 0.0);
+    fn a_sweep_figure_weighs_each_value_by_its_polygons_repeat_by_repeat() {
+        let run = |ns: Samples| Speeds { bounds: vec![ns], ..Speeds::default() };
+        let runs = [run(vec![10.0, 20.0]), run(vec![40.0, 50.0])];
+        let mean = weighted_mean(&runs, &|s| &s.bounds[0], &|r| [3, 1][r]);
+        assert_eq!(mean, vec![17.5, 27.5]);
     }
 }

@@ -1,7 +1,6 @@
 //! What every chart shares: the font, the contenders' colours and
 //! markers, axis numbers, log ranges, the legend box and category labels.
 
-use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::FontTransform;
@@ -13,7 +12,8 @@ use crate::results::{Kind, Results, EXACT};
 /// The charts' font: DejaVu Sans, embedded (`super::register_font`).
 pub(super) const FONT: &str = "sans-serif";
 
-/// Methods and peers, in results order, each with its colour.
+/// Methods and peers, in results order, each with its colour; a peer
+/// timed a second way draws the same pixels as its first and is left out.
 pub(super) fn contenders(results: &Results) -> Vec<(&'static str, Kind, RGBColor)> {
     const PALETTE: [RGBColor; 15] = [
         RGBColor(31, 119, 180),
@@ -36,7 +36,7 @@ pub(super) fn contenders(results: &Results) -> Vec<(&'static str, Kind, RGBColor
     results
         .contenders
         .iter()
-        .filter(|c| c.kind != Kind::Bound)
+        .filter(|c| c.kind != Kind::Bound && c.variant_of.is_none())
         .map(|c| (c.name, c.kind, if c.name == EXACT { BLACK } else { *next.next().unwrap_or(&BLACK) }))
         .collect()
 }
@@ -104,11 +104,12 @@ where
 }
 
 /// Writes `names` under a chart whose x axis has one unit per name, each
-/// turned to read downwards from under the middle of its unit.
+/// turned to read downwards from under the middle of its unit; `bottom`
+/// gives the pixel at the foot of the chart at x.
 pub(super) fn category_labels<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
-    chart: &ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     names: &[&str],
+    bottom: impl Fn(f64) -> (i32, i32),
 ) -> Result<()>
 where
     DB::ErrorType: 'static,
@@ -116,7 +117,7 @@ where
     let style = TextStyle::from((FONT, 14).into_font()).transform(FontTransform::Rotate90);
     let (left, top) = area.get_base_pixel();
     for (i, name) in names.iter().enumerate() {
-        let (x, y) = chart.backend_coord(&(i as f64 + 0.5, 0.0));
+        let (x, y) = bottom(i as f64 + 0.5);
         area.draw(&Text::new(name.to_string(), (x - left + 7, y - top + 8), style.clone()))?;
     }
     Ok(())

@@ -1,6 +1,7 @@
 //! The charts, each drawn once as SVG and once as PNG from the same code:
 //! speed against accuracy, the stability map, the rotation sweep, the
-//! scaling of cost with area and vertex count, and what modelling costs.
+//! scaling of cost with area and vertex count, what modelling costs, and
+//! every peer's time over `exact`'s with its interval.
 
 use std::fs::File;
 use std::io::BufWriter;
@@ -16,6 +17,7 @@ mod modelling;
 mod speed;
 mod stability;
 mod sweeps;
+mod versus;
 
 use common::FONT;
 
@@ -28,11 +30,18 @@ pub enum Chart {
     Rotation,
     Scaling,
     ModellingCost,
+    VersusExact,
 }
 
 impl Chart {
-    pub const ALL: [Chart; 5] =
-        [Chart::SpeedVsAccuracy, Chart::Stability, Chart::Rotation, Chart::Scaling, Chart::ModellingCost];
+    pub const ALL: [Chart; 6] = [
+        Chart::SpeedVsAccuracy,
+        Chart::Stability,
+        Chart::Rotation,
+        Chart::Scaling,
+        Chart::ModellingCost,
+        Chart::VersusExact,
+    ];
 
     /// The file name, without extension.
     pub const fn name(self) -> &'static str {
@@ -42,6 +51,7 @@ impl Chart {
             Chart::Rotation => "rotation",
             Chart::Scaling => "scaling",
             Chart::ModellingCost => "modelling_cost",
+            Chart::VersusExact => "versus_exact",
         }
     }
 
@@ -52,6 +62,7 @@ impl Chart {
             Chart::Rotation => (1200, 1100),
             Chart::Scaling => (1400, 700),
             Chart::ModellingCost => (1600, 760),
+            Chart::VersusExact => (1700, 900),
         }
     }
 
@@ -66,6 +77,7 @@ impl Chart {
             Chart::Rotation => sweeps::rotation(root, results),
             Chart::Scaling => sweeps::scaling(root, results),
             Chart::ModellingCost => modelling::modelling_cost(root, results),
+            Chart::VersusExact => versus::versus_exact(root, results),
         }
     }
 }

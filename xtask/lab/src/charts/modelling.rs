@@ -11,6 +11,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::common::{category_labels, draw_legend, FONT};
 use crate::results::Results;
+use crate::stats::Ratio;
 
 type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
@@ -56,7 +57,7 @@ where
         .label_style((FONT, 14))
         .axis_desc_style((FONT, 16))
         .draw()?;
-    category_labels(area, &chart, &families)?;
+    category_labels(area, &families, |x| chart.backend_coord(&(x, 0.0)))?;
     for (i, family) in families.iter().enumerate() {
         family_bars(&mut chart, results, i, family)?;
     }
@@ -103,8 +104,8 @@ where
         chart.draw_series([Rectangle::new([(x0, 0.0), (x0 + width * 0.9, top)], color.mix(0.75).filled())])?;
         if *lane == "fill_auto" {
             // The share of its time spent classifying, from the bottom.
-            let dispatch = row("dispatch").and_then(|d| d.ns_per_polygon);
-            if let (Some(dispatch), Some(total)) = (dispatch, r.ns_per_polygon) {
+            let dispatch = row("dispatch").and_then(|d| d.time.ns_per_polygon);
+            if let (Some(dispatch), Some(total)) = (dispatch, r.time.ns_per_polygon) {
                 let share = top * (dispatch / total).min(1.0);
                 chart.draw_series([Rectangle::new([(x0, 0.0), (x0 + width * 0.9, share)], BLACK.filled())])?;
             }
@@ -123,7 +124,11 @@ where
 {
     let entries: Vec<&str> =
         results.show_modelling.iter().filter(|r| r.modelling == "needed").map(|r| r.entry).collect();
-    let most = results.show_modelling.iter().filter_map(|r| r.time_vs_needed).fold(1.0, f64::max);
+    let most = results
+        .show_modelling
+        .iter()
+        .filter_map(|r| r.time_vs_needed.map(|t| t.high.unwrap_or(t.ratio)))
+        .fold(1.0, f64::max);
     let mut show = ChartBuilder::on(area)
         .caption("The show: over-modelled ÷ as needed", (FONT, 18))
         .margin(15)
@@ -131,20 +136,27 @@ where
         .y_label_area_size(45)
         .build_cartesian_2d(0.0..entries.len().max(1) as f64, 0.0..most * 1.15)?;
     show.configure_mesh().disable_x_mesh().x_labels(0).label_style((FONT, 14)).draw()?;
-    category_labels(area, &show, &entries)?;
+    category_labels(area, &entries, |x| show.backend_coord(&(x, 0.0)))?;
     let (blue, red) = (RGBColor(31, 119, 180), RGBColor(214, 39, 40));
     for (i, entry) in entries.iter().enumerate() {
         let forced = results.show_modelling.iter().find(|r| r.entry == *entry && r.modelling == "forced");
-        let bars = [(Some(1.0), blue), (forced.and_then(|r| r.time_vs_needed), red)];
+        let needed = Ratio { ratio: 1.0, low: None, high: None, pairs: 0 };
+        let bars = [(Some(needed), blue), (forced.and_then(|r| r.time_vs_needed), red)];
         for (k, (ratio, color)) in bars.into_iter().enumerate() {
             let Some(ratio) = ratio else { continue };
             let x0 = i as f64 + 0.15 + k as f64 * 0.35;
-            show.draw_series([Rectangle::new([(x0, 0.0), (x0 + 0.32, ratio)], color.mix(0.75).filled())])?;
+            let top = ratio.ratio;
+            show.draw_series([Rectangle::new([(x0, 0.0), (x0 + 0.32, top)], color.mix(0.75).filled())])?;
+            if let (Some(low), Some(high)) = (ratio.low, ratio.high) {
+                // The ratio's interval, from the paired repeats.
+                show.draw_series([ErrorBar::new_vertical(x0 + 0.16, low, top, high, BLACK.stroke_width(2), 10)])?;
+            }
+            let label_at = ratio.high.unwrap_or(top) + most * 0.01;
             let style = TextStyle::from((FONT, 13).into_font()).pos(Pos::new(HPos::Center, VPos::Bottom));
-            show.draw_series([Text::new(format!("{ratio:.1}×"), (x0 + 0.16, ratio + most * 0.01), style)])?;
+            show.draw_series([Text::new(format!("{top:.1}×"), (x0 + 0.16, label_at), style)])?;
         }
     }
-    for (label, color) in [("as needed", blue), ("4 attributes + depth buffer", red)] {
+    for (label, color) in [("as needed", blue), ("4 attributes + depth buffer (bar: its interval)", red)] {
         show.draw_series(std::iter::empty::<Rectangle<(f64, f64)>>())?
             .label(label)
             .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 14, y + 5)], color.mix(0.75).filled()));

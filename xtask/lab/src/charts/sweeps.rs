@@ -8,6 +8,7 @@ use plotters::prelude::*;
 use super::common::{compact, contenders, draw_legend, log_range, FONT};
 use crate::corpus::Axis;
 use crate::results::{Kind, Results, EXACT};
+use crate::stats::Spread;
 
 pub(super) fn rotation<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, results: &Results) -> Result<()>
 where
@@ -78,9 +79,12 @@ where
     for (panel, axis) in panels.iter().zip([Axis::Area, Axis::Vertices]) {
         let sweeps: Vec<_> = results.sweeps.iter().filter(|s| s.axis == axis && s.ns_per_polygon.is_some()).collect();
         let x_range = log_range(sweeps.iter().map(|s| s.value), 1e-3);
-        let y_range = log_range(sweeps.iter().filter_map(|s| s.ns_per_polygon), 1e-2);
+        let y_range = log_range(sweeps.iter().filter_map(|s| s.ns_per_polygon).flat_map(|t| [t.min, t.max]), 1e-2);
         let mut chart = ChartBuilder::on(panel)
-            .caption(format!("Time per polygon against {}", axis.label()), (FONT, 22))
+            .caption(
+                format!("Time per polygon against {} (bars: least to most of the repeats)", axis.label()),
+                (FONT, 22),
+            )
             .margin(15)
             .x_label_area_size(45)
             .y_label_area_size(70)
@@ -94,9 +98,10 @@ where
             .label_style((FONT, 14))
             .axis_desc_style((FONT, 16))
             .draw()?;
-        let line = |name: &str| -> Vec<(f64, f64)> {
+        let spread = |name: &str| -> Vec<(f64, Spread)> {
             sweeps.iter().filter(|s| s.name == name).filter_map(|s| Some((s.value, s.ns_per_polygon?))).collect()
         };
+        let line = |name: &str| -> Vec<(f64, f64)> { spread(name).into_iter().map(|(x, t)| (x, t.median)).collect() };
         for (name, kind, color) in contenders(results) {
             let points = line(name);
             if points.is_empty() {
@@ -107,6 +112,10 @@ where
                 .draw_series(LineSeries::new(points, color.stroke_width(width)))?
                 .label(peer_label(name, kind))
                 .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], color.stroke_width(3)));
+            // The least and the most of the repeats at every value.
+            chart.draw_series(
+                spread(name).into_iter().map(|(x, t)| ErrorBar::new_vertical(x, t.min, t.median, t.max, color, 6)),
+            )?;
         }
         let dashes = [(10, 5, BLACK), (3, 4, RGBColor(110, 110, 110))];
         for (bound, (dash, gap, color)) in results.contenders.iter().filter(|c| c.kind == Kind::Bound).zip(dashes) {

@@ -21,13 +21,16 @@ pub enum Group {
     Tiling,
     /// Sweeps and hostile input: where methods break.
     Stress,
+    /// Shapes no one here drew: a real font's glyphs, a real icon set.
+    Real,
 }
 
 impl Group {
-    /// The demo scenes, random polygons and tilings: the work a program
-    /// does every day, where speed and accuracy are weighed together.
+    /// The demo scenes, random polygons, tilings and real shapes: the work
+    /// a program does every day, where speed and accuracy are weighed
+    /// together.
     pub const fn is_everyday(self) -> bool {
-        matches!(self, Group::Scene | Group::Random | Group::Tiling)
+        matches!(self, Group::Scene | Group::Random | Group::Tiling | Group::Real)
     }
 }
 

@@ -10,6 +10,7 @@
 
 mod family;
 mod random;
+mod real;
 mod scene;
 mod shapes;
 mod stress;
@@ -118,6 +119,24 @@ pub fn build(budget: Budget) -> Vec<Family> {
             false,
         ),
         tiling::mesh_family("quad_mesh", "jittered grids of convex quads, covering the screen", budget.meshes, true),
+        real::glyphs(
+            "text_glyphs",
+            "glyphs of DejaVu Sans at 8-16 px to the em, curves flattened within 0.1 px; non-zero, holes",
+            random,
+            8.0..=16.0,
+        ),
+        real::glyphs(
+            "display_glyphs",
+            "glyphs of DejaVu Sans at 17-64 px to the em, curves flattened within 0.1 px; non-zero, holes",
+            random,
+            17.0..=64.0,
+        ),
+        real::icons(
+            "icons",
+            "the paths of 30 Bootstrap Icons at 16-64 px, curves and arcs flattened within 0.1 px; each path's rule",
+            random,
+            16.0..=64.0,
+        ),
         stress::rotating_fan(budget.angle_step),
         stress::rotating_mesh(budget.angle_step),
         stress::translation_sweep(budget.translations),
@@ -203,6 +222,16 @@ mod tests {
     fn sweep_runs_group_equal_neighbours() {
         let sweep = Sweep { axis: Axis::Area, values: vec![1.0, 1.0, 2.0, 2.0, 2.0, 1.0] };
         assert_eq!(sweep.runs(), vec![(1.0, 0..2), (2.0, 2..5), (1.0, 5..6)]);
+    }
+
+    #[test]
+    fn the_real_shapes_say_their_tolerance() {
+        let real: Vec<Family> = build(Budget::QUICK).into_iter().filter(|f| f.group == Group::Real).collect();
+        assert_eq!(real.len(), 3);
+        for family in real {
+            assert!(family.description.contains(&format!("within {} px", real::TOLERANCE)), "{}", family.name);
+            assert_eq!(family.polygons.len(), Budget::QUICK.random);
+        }
     }
 
     #[test]

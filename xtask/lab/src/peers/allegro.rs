@@ -26,7 +26,7 @@ use raster::{Polygon, SpanSink, SCREEN};
 
 use super::integer::{whole_pixel_contour, Canvas, Contour, IntegerPeer, Reach};
 use super::rows::emit_row;
-use super::PeerInfo;
+use super::{Clock, PeerInfo};
 use crate::convention::Own;
 
 /// What `polygon()` takes: within 2,047 px its fixed point cannot overflow.
@@ -41,6 +41,15 @@ pub static ALLEGRO: IntegerPeer<AllegroCanvas> = IntegerPeer::new(PeerInfo {
          spans inclusive, each edge's pixels drawn too; even-odd, one contour",
     // The closed polygon at whole-pixel points, its outline drawn too.
     own: Own::Closed { outline: true },
+    clock: Clock {
+        before: "the contour rounded to whole pixels, an `int` array",
+        setup: "none",
+        fill: "`polygon()`",
+        surface: "`create_bitmap_ex(8, 320, 200)`, a memory bitmap",
+        pixel_format: "8-bit index",
+        anti_aliasing: "none; whole-pixel points, spans inclusive, each edge's own pixels too",
+    },
+    variant_of: None,
 });
 
 /// The colour index it fills with (0 is the cleared bitmap).

@@ -11,7 +11,7 @@ use embedded_graphics::primitives::{PrimitiveStyle, Rectangle, Styled, Triangle}
 use raster::reference::SampleOffset;
 use raster::{Framebuffer, Polygon, SpanSink, SCREEN};
 
-use super::{Peer, PeerInfo};
+use super::{Clock, Peer, PeerInfo};
 use crate::convention::Own;
 use crate::corpus::Family;
 
@@ -24,6 +24,15 @@ static INFO: PeerInfo = PeerInfo {
     summary: "whole-pixel vertices; i32 scanline intersections, edges drawn",
     // Pixel (x, y) at the whole-pixel point (x, y).
     own: Own::Sample(SampleOffset { x: 0, y: 0 }),
+    clock: Clock {
+        before: "a filled `Triangle` of whole-pixel vertices",
+        setup: "none",
+        fill: "`Triangle::draw` through a `DrawTarget` over the framebuffer's span store",
+        surface: "320x200 `Framebuffer` (ours)",
+        pixel_format: "8-bit index",
+        anti_aliasing: "none; a pixel is in by its whole-pixel point",
+    },
+    variant_of: None,
 };
 
 impl Peer for EmbeddedGraphics {

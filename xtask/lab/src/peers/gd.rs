@@ -24,7 +24,7 @@ use raster::{Polygon, SpanSink, SCREEN};
 
 use super::integer::{whole_pixel_contour, Canvas, Contour, IntegerPeer, Reach};
 use super::rows::emit_row;
-use super::PeerInfo;
+use super::{Clock, PeerInfo};
 use crate::convention::Own;
 
 /// What `gdImageFilledPolygon` takes: within 23,170 px its products fit.
@@ -39,6 +39,15 @@ pub static GD: IntegerPeer<GdCanvas> = IntegerPeer::new(PeerInfo {
          points, spans inclusive; even-odd, one contour",
     // The closed polygon at whole-pixel points, no outline.
     own: Own::Closed { outline: false },
+    clock: Clock {
+        before: "the contour rounded to whole pixels, a `gdPoint` array",
+        setup: "none",
+        fill: "`gdImageFilledPolygon` (each span pixel by pixel)",
+        surface: "`gdImageCreate(320, 200)`, a palette image",
+        pixel_format: "8-bit palette index",
+        anti_aliasing: "none; whole-pixel points, spans inclusive",
+    },
+    variant_of: None,
 });
 
 /// GD's point: `typedef struct { int x, y; } gdPoint;`.

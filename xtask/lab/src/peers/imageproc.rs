@@ -16,7 +16,7 @@ use raster::{Polygon, SpanSink, SCREEN};
 
 use super::integer::{whole_pixel_contour, Canvas, Contour, IntegerPeer, Reach};
 use super::rows::emit_rows;
-use super::PeerInfo;
+use super::{Clock, PeerInfo};
 use crate::convention::Own;
 
 /// imageproc's `draw_polygon_mut` into a grey image.
@@ -28,6 +28,15 @@ pub static IMAGEPROC: IntegerPeer<GrayCanvas> = IntegerPeer::new(PeerInfo {
          the outline drawn too; even-odd, one contour",
     // The closed polygon at whole-pixel points, its outline drawn too.
     own: Own::Closed { outline: true },
+    clock: Clock {
+        before: "the contour rounded to whole pixels, a `Vec<Point<i32>>`",
+        setup: "none",
+        fill: "`draw_polygon_mut`: the spans, then every edge as a line",
+        surface: "320x200 `GrayImage`",
+        pixel_format: "8-bit luma",
+        anti_aliasing: "none; whole-pixel points, spans inclusive, the outline too",
+    },
+    variant_of: None,
 });
 
 /// A 320x200 grey image, black at first.

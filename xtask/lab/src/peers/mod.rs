@@ -4,7 +4,9 @@
 //! [`ALL`]:
 //!
 //! - tiny-skia (`tiny_skia.rs`), Cairo (`cairo.rs`) and vello_cpu
-//!   (`vello_cpu.rs`), aliased, given our subpixel vertices as floats;
+//!   (`vello_cpu.rs`), aliased, given our subpixel vertices as floats, each
+//!   twice: with its paths built before the clock starts (Cairo's kept
+//!   with `copy_path` and appended for each fill) and for every fill;
 //! - embedded-graphics (`embedded_graphics.rs`), a triangle of whole-pixel
 //!   vertices, for triangle families only;
 //! - and the aliased fillers people reach for to fill a byte buffer, each
@@ -27,6 +29,8 @@
 //! Adding a peer: a file with a value implementing [`Peer`] (a unit
 //! struct, or an `IntegerPeer` over a `Canvas` for a library taking
 //! whole-pixel contours), its `mod` line here and its place in [`ALL`].
+//! Its [`PeerInfo`] says what it does inside the clock ([`Clock`]): a row
+//! of the table in docs/lab.md, which a test holds to these.
 
 mod allegro;
 mod cairo;
@@ -59,6 +63,32 @@ pub struct PeerInfo {
     /// How it decides which pixels are in: what it is judged against
     /// "under its own convention".
     pub own: Own,
+    /// What it does inside the timed pass and what before it.
+    pub clock: Clock,
+    /// For a second way of timing a peer (its paths built inside the
+    /// clock or before it), the peer it times otherwise: the same library
+    /// drawing the same pixels, left out of the charts of accuracy.
+    pub variant_of: Option<&'static str>,
+}
+
+/// What a contender does inside the clock and what it is given before it
+/// starts: the rows of docs/lab.md's table of what each contender does
+/// inside the clock, generated from these (`crate::report::clock_table`)
+/// so that the table cannot drift from the code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Clock {
+    /// What is made of each polygon before the clock starts.
+    pub before: &'static str,
+    /// Path or vertex set-up inside the clock, per polygon.
+    pub setup: &'static str,
+    /// The fill inside the clock, per polygon (and per pass, where some of
+    /// it is done once a pass).
+    pub fill: &'static str,
+    /// What it fills into.
+    pub surface: &'static str,
+    pub pixel_format: &'static str,
+    /// Anti-aliasing, and the threshold that makes a pixel in or out.
+    pub anti_aliasing: &'static str,
 }
 
 /// A peer library, as the lab runs it.
@@ -79,12 +109,17 @@ pub trait Peer: Sync {
     fn pass<'a>(&self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a>;
 }
 
-/// Every peer, in the order the results and the charts list them.
-pub static ALL: [&dyn Peer; 8] = [
-    &tiny_skia::TinySkia,
-    &cairo::Cairo,
+/// Every peer, in the order the results and the charts list them. Where a
+/// peer's API lets a program build its path once, it is here twice: with
+/// the paths built before the clock starts and for every fill inside it.
+pub static ALL: [&dyn Peer; 11] = [
+    &tiny_skia::TINY_SKIA,
+    &tiny_skia::TINY_SKIA_PATH_EACH_FILL,
+    &cairo::CAIRO,
+    &cairo::CAIRO_PATH_KEPT,
     &embedded_graphics::EmbeddedGraphics,
-    &vello_cpu::VelloCpu,
+    &vello_cpu::VELLO_CPU,
+    &vello_cpu::VELLO_CPU_PATH_EACH_FILL,
     &allegro::ALLEGRO,
     &sdl_gfx::SDL_GFX,
     &gd::GD,

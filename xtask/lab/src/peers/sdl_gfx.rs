@@ -25,7 +25,7 @@ use sdl2::surface::Surface;
 
 use super::integer::{whole_pixel_contour, Contour, IntegerPeer, Reach};
 use super::rows::emit_rows;
-use super::PeerInfo;
+use super::{Clock, PeerInfo};
 use crate::convention::Own;
 
 /// What `filledPolygonRGBA` takes: within 16,383 px its products fit.
@@ -41,6 +41,15 @@ pub static SDL_GFX: IntegerPeer<SdlCanvas> = IntegerPeer::new(PeerInfo {
          whole-pixel points, spans inclusive; even-odd, one contour",
     // The closed polygon at whole-pixel points, no outline.
     own: Own::Closed { outline: false },
+    clock: Clock {
+        before: "the contour rounded to whole pixels, `Sint16` x and y arrays",
+        setup: "none",
+        fill: "`filledPolygonRGBA`: a row's blend mode, colour and line through the renderer, row by row",
+        surface: "SDL's software renderer over a 320x200 surface",
+        pixel_format: "INDEX8, a grey palette",
+        anti_aliasing: "none; whole-pixel points, spans inclusive",
+    },
+    variant_of: None,
 });
 
 /// SDL2_gfx's buffer of crossings (`gfxPrimitivesPolyIntsGlobal`) is used

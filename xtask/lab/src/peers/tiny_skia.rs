@@ -1,6 +1,8 @@
 //! tiny-skia 0.12, aliased: `Mask::fill_path` with `anti_alias = false`
 //! (Skia's non-AA scan converter: pixel centres, 26.6 fixed-point edges).
-//! Its paths are `f32`, built from our subpixels before timing starts.
+//! Its paths are `f32`, built from our subpixels: before timing starts,
+//! as a program that keeps its paths would ([`TINY_SKIA`]), and inside
+//! the timed pass, for every fill ([`TINY_SKIA_PATH_EACH_FILL`]).
 
 use std::hint::black_box;
 
@@ -9,22 +11,58 @@ use raster::{FillRule, Polygon, SpanSink, SCREEN};
 use tiny_skia::{Mask, Path, PathBuilder, Transform};
 
 use super::rows::emit_rows;
-use super::{Peer, PeerInfo};
+use super::{Clock, Peer, PeerInfo};
 use crate::convention::Own;
 
-/// tiny-skia's aliased fill into a 320x200 mask.
-pub struct TinySkia;
+/// tiny-skia's aliased fill into a 320x200 mask, its paths built before
+/// the clock starts or inside it.
+pub struct TinySkia {
+    info: PeerInfo,
+    path_each_fill: bool,
+}
 
-static INFO: PeerInfo = PeerInfo {
-    name: "tiny-skia",
-    source: "tiny-skia 0.12 Mask::fill_path, anti_alias false",
-    summary: "f32 path, 26.6 fixed-point edges; pixel centres",
-    own: Own::Sample(SampleOffset::CENTRE),
+const SURFACE: &str = "320x200 `Mask`";
+const PIXELS: &str = "8-bit coverage (A8)";
+const ALIASED: &str = "off (`anti_alias` false); a pixel is in by its centre";
+const FILL: &str = "`Mask::fill_path`";
+
+/// What both ways do alike inside the clock.
+const BOTH_WAYS: Clock =
+    Clock { before: "", setup: "", fill: FILL, surface: SURFACE, pixel_format: PIXELS, anti_aliasing: ALIASED };
+
+/// Its paths built once, before the clock starts.
+pub static TINY_SKIA: TinySkia = TinySkia {
+    info: PeerInfo {
+        name: "tiny-skia",
+        source: "tiny-skia 0.12 Mask::fill_path, anti_alias false; paths built before timing",
+        summary: "f32 path, 26.6 fixed-point edges; pixel centres",
+        own: Own::Sample(SampleOffset::CENTRE),
+        clock: Clock { before: "a `Path` (f32 pixels) and its fill rule", setup: "none", ..BOTH_WAYS },
+        variant_of: None,
+    },
+    path_each_fill: false,
+};
+
+/// Its path built for every fill, inside the clock.
+pub static TINY_SKIA_PATH_EACH_FILL: TinySkia = TinySkia {
+    info: PeerInfo {
+        name: "tiny-skia, path each fill",
+        source: "tiny-skia 0.12 Mask::fill_path, anti_alias false; each path built inside the timed pass",
+        summary: "f32 path, 26.6 fixed-point edges; pixel centres",
+        own: Own::Sample(SampleOffset::CENTRE),
+        clock: Clock {
+            before: "nothing",
+            setup: "`PathBuilder`: `move_to`, `line_to` a vertex, `close` a contour, `finish` (f32)",
+            ..BOTH_WAYS
+        },
+        variant_of: Some("tiny-skia"),
+    },
+    path_each_fill: true,
 };
 
 impl Peer for TinySkia {
     fn info(&self) -> &PeerInfo {
-        &INFO
+        &self.info
     }
 
     fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str> {
@@ -36,9 +74,20 @@ impl Peer for TinySkia {
     }
 
     fn pass<'a>(&self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a> {
+        let mut mask = new_mask();
+        if self.path_each_fill {
+            let polygons = polygons.to_vec();
+            return Box::new(move || {
+                for polygon in &polygons {
+                    if let Some(path) = path(polygon) {
+                        mask.fill_path(&path, fill_rule(polygon.rule), false, Transform::identity());
+                    }
+                }
+                black_box(&mut mask);
+            });
+        }
         let paths: Vec<(Path, tiny_skia::FillRule)> =
             polygons.iter().filter_map(|p| Some((path(p)?, fill_rule(p.rule)))).collect();
-        let mut mask = new_mask();
         Box::new(move || {
             for (path, rule) in &paths {
                 mask.fill_path(path, *rule, false, Transform::identity());
@@ -88,12 +137,12 @@ mod tests {
     #[test]
     fn tiny_skia_fills_a_grid_square_by_its_pixel_centres() {
         let mut spans = Spans(vec![]);
-        TinySkia.draw(&square(2, 3, 4), &mut spans).unwrap();
+        TINY_SKIA.draw(&square(2, 3, 4), &mut spans).unwrap();
         assert_eq!(spans.0, vec![(3, 2, 6), (4, 2, 6), (5, 2, 6), (6, 2, 6)]);
     }
 
     #[test]
     fn tiny_skia_has_no_path_without_vertices() {
-        assert!(TinySkia.draw(&Polygon::default(), &mut Spans(vec![])).is_err());
+        assert!(TINY_SKIA.draw(&Polygon::default(), &mut Spans(vec![])).is_err());
     }
 }

@@ -8,7 +8,9 @@
 //! holds, as a program draws a frame with it (rendering each polygon on
 //! its own costs a whole render of the 320x200 target per polygon); each
 //! polygon's time includes its share of that render. Its `kurbo` paths are
-//! `f64` pixels, exact for our subpixels, built before timing starts.
+//! `f64` pixels, exact for our subpixels: built before timing starts, as a
+//! program that keeps its paths would ([`VELLO_CPU`]), and inside the
+//! timed pass, for every fill ([`VELLO_CPU_PATH_EACH_FILL`]).
 
 use std::hint::black_box;
 
@@ -19,28 +21,69 @@ use vello_cpu::peniko::Fill;
 use vello_cpu::{Pixmap, RasterizerSettings, RenderContext, Resources, TargetInit};
 
 use super::rows::emit_rows;
-use super::{Peer, PeerInfo};
+use super::{Clock, Peer, PeerInfo};
 use crate::convention::Own;
 
 /// vello_cpu's aliasing threshold: painted above 127/255 of a pixel.
 const VELLO_THRESHOLD: u8 = 127;
 
-/// vello_cpu's aliased fill into a 320x200 pixmap.
-pub struct VelloCpu;
+/// vello_cpu's aliased fill into a 320x200 pixmap, its paths built
+/// before the clock starts or inside it.
+pub struct VelloCpu {
+    info: PeerInfo,
+    path_each_fill: bool,
+}
 
-static INFO: PeerInfo = PeerInfo {
-    name: "vello_cpu",
-    source:
-        "vello_cpu 0.3 RenderContext::fill_path, aliasing threshold 127, rendered into a 320x200 pixmap once a pass",
-    summary: "f64 path flattened to f32 lines, sparse strips of 4-pixel tiles, analytic area coverage; thresholds \
-         area coverage (painted above 127/255 of the pixel) rather than sampling centres",
-    // By the part of the pixel covered.
-    own: Own::Coverage { threshold: VELLO_THRESHOLD },
+const SUMMARY: &str = "f64 path flattened to f32 lines, sparse strips of 4-pixel tiles, analytic area coverage; \
+     thresholds area coverage (painted above 127/255 of the pixel) rather than sampling centres";
+const FILL: &str = "`set_fill_rule`, `fill_path` (flattened, strips); once a pass, `render_with` of the whole target, \
+     composited over it";
+const SURFACE: &str = "320x200 `Pixmap`";
+const PIXELS: &str = "RGBA, 8 bits a channel, premultiplied";
+const ALIASED: &str = "area coverage computed, then thresholded: in above 127/255 of the pixel";
+
+/// What both ways do alike inside the clock.
+const BOTH_WAYS: Clock =
+    Clock { before: "", setup: "", fill: FILL, surface: SURFACE, pixel_format: PIXELS, anti_aliasing: ALIASED };
+
+/// Its paths built once, before the clock starts.
+pub static VELLO_CPU: VelloCpu = VelloCpu {
+    info: PeerInfo {
+        name: "vello_cpu",
+        source:
+            "vello_cpu 0.3 RenderContext::fill_path, aliasing threshold 127, rendered into a 320x200 pixmap once a \
+             pass; paths built before timing",
+        summary: SUMMARY,
+        // By the part of the pixel covered.
+        own: Own::Coverage { threshold: VELLO_THRESHOLD },
+        clock: Clock { before: "a kurbo `BezPath` (f64 pixels) and its fill rule", setup: "none", ..BOTH_WAYS },
+        variant_of: None,
+    },
+    path_each_fill: false,
+};
+
+/// Its path built for every fill, inside the clock.
+pub static VELLO_CPU_PATH_EACH_FILL: VelloCpu = VelloCpu {
+    info: PeerInfo {
+        name: "vello_cpu, path each fill",
+        source:
+            "vello_cpu 0.3 RenderContext::fill_path, aliasing threshold 127, rendered into a 320x200 pixmap once a \
+             pass; each path built inside the timed pass",
+        summary: SUMMARY,
+        own: Own::Coverage { threshold: VELLO_THRESHOLD },
+        clock: Clock {
+            before: "nothing",
+            setup: "`BezPath`: `move_to`, `line_to` a vertex, `close_path` a contour (f64)",
+            ..BOTH_WAYS
+        },
+        variant_of: Some("vello_cpu"),
+    },
+    path_each_fill: true,
 };
 
 impl Peer for VelloCpu {
     fn info(&self) -> &PeerInfo {
-        &INFO
+        &self.info
     }
 
     fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str> {
@@ -52,8 +95,18 @@ impl Peer for VelloCpu {
     }
 
     fn pass<'a>(&self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a> {
-        let paths: Vec<(BezPath, Fill)> = polygons.iter().map(|p| (bez_path(p), vello_rule(p.rule))).collect();
         let mut canvas = VelloCanvas::new();
+        if self.path_each_fill {
+            let polygons = polygons.to_vec();
+            return Box::new(move || {
+                for polygon in &polygons {
+                    canvas.fill(&bez_path(polygon), vello_rule(polygon.rule));
+                }
+                canvas.render(TargetInit::SrcOver);
+                black_box(&mut canvas);
+            });
+        }
+        let paths: Vec<(BezPath, Fill)> = polygons.iter().map(|p| (bez_path(p), vello_rule(p.rule))).collect();
         Box::new(move || {
             for (path, rule) in &paths {
                 canvas.fill(path, *rule);
@@ -137,7 +190,7 @@ mod tests {
     #[test]
     fn vello_cpu_fills_a_grid_square_whole() {
         let mut spans = Spans(vec![]);
-        VelloCpu.draw(&square(2, 3, 4), &mut spans).unwrap();
+        VELLO_CPU.draw(&square(2, 3, 4), &mut spans).unwrap();
         assert_eq!(spans.0, vec![(3, 2, 6), (4, 2, 6), (5, 2, 6), (6, 2, 6)]);
     }
 
@@ -156,10 +209,10 @@ mod tests {
             )
         };
         let mut spans = Spans(vec![]);
-        VelloCpu.draw(&rect(1.0, 3.6), &mut spans).unwrap();
+        VELLO_CPU.draw(&rect(1.0, 3.6), &mut spans).unwrap();
         assert_eq!(spans.0, vec![(1, 1, 4)]);
         let mut spans = Spans(vec![]);
-        VelloCpu.draw(&rect(5.3, 5.7), &mut spans).unwrap();
+        VELLO_CPU.draw(&rect(5.3, 5.7), &mut spans).unwrap();
         assert_eq!(spans.0, vec![]);
     }
 }

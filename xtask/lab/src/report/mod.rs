@@ -1,33 +1,69 @@
 //! report.md: the corpus, the contenders, tables of every measure, how
 //! `exact` stands against its goals, and one sentence per classic method
 //! on where it fails, tied to its seed. Every number comes from
-//! [`Results`]; nothing here measures.
+//! [`Results`]; nothing here measures. What modelling costs is in
+//! `modelling.rs`; the speed tables with their spread, the peers and the
+//! runs' disagreement in `speed.rs`; what each contender does inside the
+//! clock in `clock.rs`.
+
+mod clock;
+mod modelling;
+mod speed;
+
+pub use clock::clock_table;
 
 use std::fmt::Write;
 
 use crate::corpus::Group;
 use crate::results::{Kind, Results, Row, EXACT, ZERO_FLOOR};
-use crate::stats::pareto_front;
+use crate::stats::{pareto_front, Ratio};
 
 /// The whole report.
 pub fn markdown(results: &Results) -> String {
     let mut out = String::new();
     let mode = if results.quick { "quick (`--quick`, a small corpus)" } else { "full" };
     let _ = writeln!(out, "# Polygon-fill lab\n");
+    let timing = &results.timing;
+    let load = |l: Option<f64>| l.map_or("unknown".to_string(), |l| format!("{l:.2}"));
     let _ = writeln!(
         out,
-        "Run: {mode}; corpus seed `{:#x}`. Host wall-clock times in release, median of repeats, \
-         filling into a 320x200 framebuffer; accuracy against `raster::reference`. \
-         Charts: speed_vs_accuracy, stability, rotation, scaling, modelling_cost (.svg and .png beside this file).\n",
-        results.seed
+        "Run: {mode}; corpus seed `{:#x}`. Host wall-clock times in release, filling into a 320x200 framebuffer: \
+         every contender, bound and lane of a family timed in turn in each of {} repeats (each at least {} ms), in \
+         each of {} run{} of the whole timing; a time is the median of those repeats, with the least and the most \
+         of them, and a ratio of two times is the geometric mean of the repeats' ratios with its {:.0}% interval \
+         (Student's t on their logarithms). Load average {} when the timing started, {} when it ended. Accuracy \
+         against `raster::reference`. Charts: {} (.svg and .png beside this file).\n",
+        results.seed,
+        timing.repeats,
+        timing.min_repeat_ms,
+        timing.runs,
+        if timing.runs == 1 { "" } else { "s" },
+        timing.confidence * 100.0,
+        load(timing.load_average.0),
+        load(timing.load_average.1),
+        crate::charts::Chart::ALL.map(|c| c.name()).join(", "),
     );
     corpus_table(&mut out, results);
     contender_table(&mut out, results);
+    let _ = writeln!(out, "## What each contender does inside the clock\n\n{}", clock_table());
     exact_goals(&mut out, results);
-    modelling_tables(&mut out, results);
+    modelling::modelling_tables(&mut out, results);
+    speed::spans_against_stores(&mut out, results);
     classic_failures(&mut out, results);
-    peers_on_everyday_families(&mut out, results);
-    measure_table(&mut out, results, "Speed: ns per polygon", true, |r| r.ns_per_polygon.map(duration));
+    speed::closest_peers(&mut out, results);
+    speed::peers_on_everyday_families(&mut out, results);
+    speed::runs_disagreement(&mut out, results);
+    measure_table(&mut out, results, "Speed: ns per polygon, median (least–most of the repeats)", true, |r| {
+        let t = &r.time;
+        Some(format!("{} ({}–{})", duration(t.ns_per_polygon?), duration(t.ns_min?), duration(t.ns_max?)))
+    });
+    measure_table(
+        &mut out,
+        results,
+        &format!("Speed: time over `{EXACT}`'s, with its {:.0}% interval", timing.confidence * 100.0),
+        true,
+        |r| r.time.vs_exact.as_ref().filter(|_| r.name != EXACT).map(ratio),
+    );
     measure_table(&mut out, results, "Speed: time over the memset bound's", false, |r| {
         r.time_vs_memset.map(|x| format!("{x:.1}×"))
     });
@@ -115,85 +151,6 @@ fn exact_goals(out: &mut String, results: &Results) {
     out.push('\n');
 }
 
-/// What modelling costs: each family through each of exact's paths, fill_auto
-/// and classification alone; then the show's shaded entries.
-fn modelling_tables(out: &mut String, results: &Results) {
-    let _ = writeln!(
-        out,
-        "## What modelling costs\n\nEach family drawn by `{EXACT}` through each of its paths alone (a path refuses \
-         polygons outside its class), by `fill_auto` (its classification, then the path it picks), and classified \
-         alone: `dispatch` is `fill_auto`'s own classification, `classify` is `raster::classify` (every class, \
-         simplicity included); `spans unstored` is `fill_auto` into a sink that stores nothing, what finding the \
-         spans costs alone. The paths and `fill_auto` keep one `Scratch` from polygon to polygon, as a program \
-         drawing frame after frame would. Cells: time per polygon, time over the cheapest path's that takes the \
-         whole family, heap allocations per polygon once the lane has gone over the family (a scratch grown to the \
-         largest polygon allocates no more); ← marks the path `fill_auto` picks, with how many polygons.\n"
-    );
-    let lanes = crate::modelling::Lane::ALL.map(|lane| lane.name());
-    let _ = writeln!(out, "| family | {} |\n|---|{}", lanes.join(" | "), "---:|".repeat(lanes.len()));
-    let mut slower = Vec::new();
-    for f in &results.families {
-        let row = |lane: &str| results.modelling.iter().find(|r| r.family == f.name && r.lane == lane);
-        let auto = row("fill_auto");
-        let cells: Vec<String> = lanes
-            .iter()
-            .map(|&lane| {
-                let Some(r) = row(lane) else { return "–".to_string() };
-                let mut cell = match (r.ns_per_polygon, r.refusals) {
-                    (None, Some(refused)) => format!("refuses {}", count(refused)),
-                    (None, None) => "–".to_string(),
-                    (Some(ns), _) => duration(ns),
-                };
-                if let Some(ratio) = r.time_vs_cheapest {
-                    let _ = write!(cell, " ({ratio:.2}×)");
-                }
-                if lane == "dispatch" || lane == "spans unstored" {
-                    if let (Some(ns), Some(total)) = (r.ns_per_polygon, auto.and_then(|a| a.ns_per_polygon)) {
-                        let _ = write!(cell, " ({:.0}% of fill_auto)", 100.0 * ns / total);
-                    }
-                }
-                if let Some(allocations) = r.allocations_per_polygon {
-                    let _ = write!(cell, ", {allocations:.1} alloc");
-                }
-                if let Some(chosen) = r.chosen_by_fill_auto.filter(|&n| n > 0) {
-                    let _ = write!(cell, " ← {}", count(chosen));
-                }
-                cell
-            })
-            .collect();
-        let _ = writeln!(out, "| {} | {} |", f.name, cells.join(" | "));
-        if let Some(ratio) = auto.and_then(|a| a.time_vs_cheapest).filter(|&r| r > 1.05) {
-            slower.push(format!("{} ({ratio:.2}×)", f.name));
-        }
-    }
-    if slower.is_empty() {
-        let _ = writeln!(out, "\n`fill_auto` is within 5% of the cheapest path on every family.\n");
-    } else {
-        let _ =
-            writeln!(out, "\n`fill_auto` is more than 5% slower than the cheapest path on: {}.\n", slower.join(", "));
-    }
-    let _ = writeln!(
-        out,
-        "The show's shaded entries, every frame drawn by `{EXACT}`: as they need (one interpolated attribute for \
-         Gouraud, two for the texture, two and a depth buffer for the Z-buffer), and with four attributes and a \
-         depth buffer forced on (the same pictures).\n\n| entry | as needed, per frame | over-modelled, per frame | \
-         over-modelled / needed |\n|---|---:|---:|---:|"
-    );
-    let entries: Vec<&str> = results.show_modelling.iter().map(|r| r.entry).fold(Vec::new(), |mut seen, e| {
-        if !seen.contains(&e) {
-            seen.push(e);
-        }
-        seen
-    });
-    for entry in entries {
-        let row = |m: &str| results.show_modelling.iter().find(|r| r.entry == entry && r.modelling == m);
-        let time = |m: &str| row(m).and_then(|r| r.ns_per_frame).map_or("–".to_string(), duration);
-        let ratio = row("forced").and_then(|r| r.time_vs_needed).map_or("–".to_string(), |x| format!("{x:.2}×"));
-        let _ = writeln!(out, "| {entry} | {} | {} | {ratio} |", time("needed"), time("forced"));
-    }
-    out.push('\n');
-}
-
 /// One sentence per classic method: how far it is from exact under our
 /// convention and its own, where it is worst, what it draws twice or
 /// leaves out, what it declines and where it fails.
@@ -253,106 +210,6 @@ fn classic_failures(out: &mut String, results: &Results) {
     out.push('\n');
 }
 
-/// The peers on the everyday families: each one's time per polygon and
-/// wrong pixels under its own convention, family by family; then, over
-/// the families each draws whole (declining and failing on none), its
-/// time against `exact`'s and its wrong pixels, with the fastest and the
-/// most exact of them.
-fn peers_on_everyday_families(out: &mut String, results: &Results) {
-    let peers: Vec<&str> = results.contenders.iter().filter(|c| c.kind == Kind::Peer).map(|c| c.name).collect();
-    let _ = writeln!(
-        out,
-        "## The peers on the everyday families\n\nTime per polygon and wrong pixels under the peer's own convention \
-         (`exact`'s own is ours); a peer is timed on the polygons it drew, and declined ones are counted.\n"
-    );
-    let _ = writeln!(out, "| family | {EXACT} | {} |\n|---|{}", peers.join(" | "), "---:|".repeat(peers.len() + 1));
-    for f in results.families.iter().filter(|f| f.group.is_everyday()) {
-        let cells: Vec<String> = std::iter::once(EXACT)
-            .chain(peers.iter().copied())
-            .map(|name| {
-                let Some(r) = results.row(name, f.name) else { return "–".to_string() };
-                let mut cell = format!(
-                    "{}, {}",
-                    r.ns_per_polygon.map_or("–".to_string(), duration),
-                    r.wrong_pixels_own.map_or("–".to_string(), count)
-                );
-                if let Some(declined) = r.refusals.filter(|&n| n > 0) {
-                    let _ = write!(cell, " ({} declined)", count(declined));
-                }
-                cell
-            })
-            .collect();
-        let _ = writeln!(out, "| {} | {} |", f.name, cells.join(" | "));
-    }
-    let _ = writeln!(
-        out,
-        "\nOver the everyday families each peer draws whole: its time over `{EXACT}`'s (geometric mean of the \
-         families' ratios) and its wrong pixels in % of the exact pixels of those families.\n\n\
-         | peer | families | time / exact's | wrong, our convention | wrong, its own |\n|---|---:|---:|---:|---:|"
-    );
-    let summaries: Vec<PeerSummary> = peers.iter().filter_map(|&peer| PeerSummary::of(results, peer)).collect();
-    for s in &summaries {
-        let _ = writeln!(
-            out,
-            "| {} | {} | {:.2}× | {:.3}% | {:.3}% |",
-            s.name,
-            s.families,
-            s.time_over_exact,
-            s.wrong * 100.0,
-            s.wrong_own * 100.0
-        );
-    }
-    let fastest = summaries.iter().min_by(|a, b| a.time_over_exact.total_cmp(&b.time_over_exact));
-    let most_exact = summaries.iter().min_by(|a, b| a.wrong.total_cmp(&b.wrong));
-    if let (Some(fastest), Some(most_exact)) = (fastest, most_exact) {
-        let _ = writeln!(
-            out,
-            "\nFastest of the peers: {} ({:.2}× `{EXACT}`'s time); most exact: {} ({:.3}% of the pixels wrong under \
-             our convention).",
-            fastest.name,
-            fastest.time_over_exact,
-            most_exact.name,
-            most_exact.wrong * 100.0
-        );
-    }
-    out.push('\n');
-}
-
-/// One peer over the everyday families it draws whole.
-struct PeerSummary {
-    name: &'static str,
-    families: usize,
-    /// Geometric mean of its time per polygon over `exact`'s.
-    time_over_exact: f64,
-    /// Wrong pixels per exact pixel, our convention and its own.
-    wrong: f64,
-    wrong_own: f64,
-}
-
-impl PeerSummary {
-    fn of(results: &Results, name: &'static str) -> Option<Self> {
-        let whole: Vec<(&Row, f64)> = results
-            .rows_of(name)
-            .filter(|r| r.group.is_everyday() && r.refusals == Some(0) && r.failures == Some(0))
-            .filter_map(|r| Some((r, r.ns_per_polygon? / results.row(EXACT, r.family)?.ns_per_polygon?)))
-            .collect();
-        if whole.is_empty() {
-            return None;
-        }
-        let pixels = whole.iter().map(|(r, _)| r.pixels).sum::<u64>().max(1) as f64;
-        let rate =
-            |pick: fn(&Row) -> Option<u64>| whole.iter().filter_map(|(r, _)| pick(r)).sum::<u64>() as f64 / pixels;
-        let log_mean = whole.iter().map(|(_, ratio)| ratio.ln()).sum::<f64>() / whole.len() as f64;
-        Some(Self {
-            name,
-            families: whole.len(),
-            time_over_exact: log_mean.exp(),
-            wrong: rate(|r| r.wrong_pixels),
-            wrong_own: rate(|r| r.wrong_pixels_own),
-        })
-    }
-}
-
 fn own_rate(r: &Row) -> f64 {
     r.wrong_pixels_own.unwrap_or(0) as f64 / r.pixels as f64
 }
@@ -402,6 +259,16 @@ fn group(g: Group) -> &'static str {
         Group::Random => "random",
         Group::Tiling => "tiling",
         Group::Stress => "stress",
+        Group::Real => "real",
+    }
+}
+
+/// A ratio with its interval: `1.55× (1.49–1.61)`, or alone where it has
+/// none.
+fn ratio(r: &Ratio) -> String {
+    match (r.low, r.high) {
+        (Some(low), Some(high)) => format!("{:.2}× ({low:.2}–{high:.2})", r.ratio),
+        _ => format!("{:.2}×", r.ratio),
     }
 }
 
@@ -438,6 +305,13 @@ mod tests {
         assert_eq!(count(0), "0");
         assert_eq!(count(999), "999");
         assert_eq!(count(1_234_567), "1,234,567");
+    }
+
+    #[test]
+    fn ratios_carry_their_interval() {
+        let r = Ratio { ratio: 1.554, low: Some(1.49), high: Some(1.612), pairs: 7 };
+        assert_eq!(ratio(&r), "1.55× (1.49–1.61)");
+        assert_eq!(ratio(&Ratio { low: None, high: None, pairs: 1, ..r }), "1.55×");
     }
 
     #[test]
