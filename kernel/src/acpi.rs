@@ -1,6 +1,7 @@
-//! The ACPI tables, read only as far as the clock needs them: where the
-//! power management timer's port is (the FADT) and where the HPET's
-//! registers are (the HPET table).
+//! The ACPI tables, read only as far as the kernel needs them: where the
+//! power management timer's port is (the FADT), where the HPET's
+//! registers are (the HPET table), and where the I/O APICs are and which
+//! of their pins an ISA IRQ reaches (the MADT).
 //!
 //! The bootloader hands over the RSDP's physical address: under UEFI from
 //! the firmware's configuration table, under a BIOS found in the BIOS
@@ -9,14 +10,18 @@
 //! length, checksum) before anything in it is used, and only addresses a
 //! checked table names are read, through the bootloader's map of physical
 //! memory (`paging::read_physical`): a corrupt table is refused, not
-//! followed. The layouts are the ACPI specification's (6.5: "Root System
+//! followed; and a table is read only where the memory map says the
+//! firmware keeps its own memory (reserved, ACPI, ACPI NVS:
+//! `memory_map.rs`), never at an address a root table names in RAM or in
+//! a device's registers, which reading can disturb. The layouts are the
+//! ACPI specification's (6.5: "Root System
 //! Description Pointer", "Fixed ACPI Description Table"; the IA-PC HPET
 //! specification for the HPET table).
 
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::paging;
+use crate::{memory_map, paging};
 
 /// The RSDP: its signature, the bytes its first checksum covers (ACPI
 /// 1.0's structure), and the revision, RSDT, length and XSDT fields.
@@ -87,13 +92,55 @@ pub fn hpet(rsdp: u64) -> Option<u64> {
     (gas[0] == GAS_SYSTEM_MEMORY && address != 0).then_some(address)
 }
 
+/// The MADT: after the header, the local APIC's address and flags (8
+/// bytes), then entries of a type byte and a length byte each: type 1 an
+/// I/O APIC (its address at byte 4, the first global system interrupt it
+/// takes at byte 8), type 2 an interrupt source override (the ISA IRQ at
+/// byte 3, the global system interrupt it reaches at byte 4).
+const MADT_ENTRIES: usize = HEADER_LEN + 8;
+const MADT_IO_APIC: u8 = 1;
+const MADT_OVERRIDE: u8 = 2;
+
+/// An I/O APIC as the MADT describes it.
+#[derive(Clone, Copy)]
+pub struct IoApicEntry {
+    /// Its registers' physical address.
+    pub address: u64,
+    /// The global system interrupt its pin 0 takes.
+    pub first_interrupt: u32,
+}
+
+/// The I/O APICs the MADT under `rsdp` lists, and the global system
+/// interrupt ISA IRQ `irq` reaches (the IRQ's own number unless an
+/// override says otherwise).
+pub fn io_apics(rsdp: u64, irq: u8) -> Option<(Vec<IoApicEntry>, u32)> {
+    let madt = table(rsdp, b"APIC")?;
+    let mut io_apics = Vec::new();
+    let mut interrupt = u32::from(irq);
+    let mut at = MADT_ENTRIES;
+    while let [kind, len, ..] = *madt.get(at..)? {
+        let entry = madt.get(at..at + usize::from(len).max(2))?;
+        match kind {
+            MADT_IO_APIC => {
+                io_apics.push(IoApicEntry { address: u64::from(u32_at(entry, 4)?), first_interrupt: u32_at(entry, 8)? })
+            }
+            MADT_OVERRIDE if entry.get(3) == Some(&irq) => interrupt = u32_at(entry, 4)?,
+            _ => {}
+        }
+        at += entry.len();
+    }
+    Some((io_apics, interrupt))
+}
+
 /// The table with `signature` the root table under `rsdp` lists, checked.
 fn table(rsdp: u64, signature: &[u8; 4]) -> Option<Vec<u8>> {
     let (root, entry_len) = root_table(rsdp)?;
     let entries = root.get(HEADER_LEN..)?.chunks_exact(entry_len).filter_map(entry_address);
     let is_it = |&address: &u64| {
         let mut found = [0; 4];
-        paging::read_physical(address, &mut found).is_some() && found == *signature
+        memory_map::holds_firmware_tables(address, HEADER_LEN as u64)
+            && paging::read_physical(address, &mut found).is_some()
+            && found == *signature
     };
     entries.filter(is_it).find_map(read_table)
 }
@@ -119,13 +166,17 @@ fn root_table(rsdp: u64) -> Option<(Vec<u8>, usize)> {
     Some((rsdt, 4))
 }
 
-/// The table at physical address `address`, whole, if its header's length
-/// is sane and its bytes sum to zero.
+/// The table at physical address `address`, whole, if it lies in the
+/// firmware's memory, its header's length is sane and its bytes sum to
+/// zero.
 fn read_table(address: u64) -> Option<Vec<u8>> {
+    if !memory_map::holds_firmware_tables(address, HEADER_LEN as u64) {
+        return None;
+    }
     let mut header = [0; HEADER_LEN];
     paging::read_physical(address, &mut header)?;
     let length = u32_at(&header, HEADER_LENGTH)? as usize;
-    if !(HEADER_LEN..=MAX_TABLE_LEN).contains(&length) {
+    if !(HEADER_LEN..=MAX_TABLE_LEN).contains(&length) || !memory_map::holds_firmware_tables(address, length as u64) {
         return None;
     }
     let mut table = vec![0; length];

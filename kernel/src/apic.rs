@@ -1,8 +1,10 @@
 //! The local APIC, only as far as an interrupt the kernel did not ask for
 //! needs it: whether it has a vector in service (then it awaits an end of
 //! interrupt, and blocks every vector of that priority class and below
-//! until it gets one), the end of interrupt itself, and a self-IPI, how
-//! `FAULT strayinterrupt` raises a stray vector the way a device would.
+//! until it gets one), the end of interrupt itself, an entry of its local
+//! vector table masked when its vector storms, its ID (where an I/O APIC
+//! sends to), and a self-IPI, how `FAULT strayinterrupt` raises a stray
+//! vector the way a device would.
 //!
 //! The kernel programs nothing here. The firmware leaves the local APIC
 //! enabled (IA32_APIC_BASE bit 11) with its LINT0 passing the 8259's
@@ -44,6 +46,21 @@ const SOFTWARE_ENABLE: u32 = 1 << 8;
 const IN_SERVICE: u32 = 0x100;
 const COMMAND_LOW: u32 = 0x300;
 const COMMAND_HIGH: u32 = 0x310;
+/// The local APIC's ID (bits 24-31 in xAPIC mode, the whole register in
+/// x2APIC mode) and version (bits 16-23: the index of the last entry of
+/// the local vector table).
+const ID: u32 = 0x20;
+const VERSION: u32 = 0x30;
+/// The local vector table: timer, thermal sensor, performance counters,
+/// LINT0, LINT1, error; and CMCI where the version counts a seventh entry.
+/// Each entry: its vector (bits 0-7), its delivery mode (bits 8-10, 0 for
+/// fixed, the only mode whose vector is the one delivered), masked (bit 16).
+const LOCAL_VECTOR_TABLE: [u32; 6] = [0x320, 0x330, 0x340, 0x350, 0x360, 0x370];
+const CMCI: u32 = 0x2F0;
+const CMCI_ENTRY: u32 = 6;
+const ENTRY_VECTOR: u32 = 0xFF;
+const DELIVERY_MODE: u32 = 0b111 << 8;
+const ENTRY_MASKED: u32 = 1 << 16;
 /// Interrupt command: fixed delivery, edge, level asserted (bit 14, which
 /// the manual asks for in every mode but INIT de-assert), to the sender
 /// itself (the "self" destination shorthand, bits 18-19 = 01), the vector
@@ -101,7 +118,8 @@ fn read(registers: Registers, offset: u32) -> u32 {
 fn write(registers: Registers, offset: u32, value: u32) {
     match registers {
         // SAFETY: as in `read`; the registers written (EOI, the command
-        // register) end an interrupt or send one, and touch no memory.
+        // register, an entry of the local vector table) end, send or mask
+        // an interrupt, and touch no memory.
         Registers::Memory(base) => unsafe { paging::register(base, u64::from(offset)).write(value) },
         // SAFETY: as above, through the x2APIC MSRs.
         Registers::Msrs => unsafe { Msr::new(X2APIC_MSRS + offset / 16).write(u64::from(value)) },
@@ -118,6 +136,34 @@ pub fn end_if_in_service(vector: u8) -> bool {
         write(registers, EOI, 0);
     }
     in_service
+}
+
+/// This CPU's local APIC ID as an I/O APIC's destination field takes it
+/// (its low 8 bits); `None` with no enabled local APIC.
+pub fn id() -> Option<u8> {
+    let registers = registers()?;
+    let id = read(registers, ID);
+    Some(match registers {
+        Registers::Memory(_) => (id >> 24) as u8,
+        Registers::Msrs => id as u8,
+    })
+}
+
+/// Masks every unmasked entry of the local vector table that delivers
+/// `vector`; whether there was one. Called from an interrupt handler.
+pub fn mask_vector(vector: u8) -> bool {
+    let Some(registers) = registers() else { return false };
+    let has_cmci = read(registers, VERSION) >> 16 & 0xFF >= CMCI_ENTRY;
+    let entries = LOCAL_VECTOR_TABLE.into_iter().chain(has_cmci.then_some(CMCI));
+    let mut masked = false;
+    for entry in entries {
+        let value = read(registers, entry);
+        if value & ENTRY_VECTOR == u32::from(vector) && value & DELIVERY_MODE == 0 && value & ENTRY_MASKED == 0 {
+            write(registers, entry, value | ENTRY_MASKED);
+            masked = true;
+        }
+    }
+    masked
 }
 
 /// Sends `vector` to this CPU through the local APIC, as a device's

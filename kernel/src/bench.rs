@@ -6,7 +6,6 @@
 //! never next to the host lab's nanoseconds.
 
 use alloc::vec::Vec;
-use core::sync::atomic::{compiler_fence, Ordering};
 
 use protocol::{BenchReply, BenchRow};
 use raster::MethodId;
@@ -30,7 +29,7 @@ pub fn run(screen: &mut Screen, scene: &Scene, repeats: u8) -> BenchReply {
         for _ in 0..repeats.max(1) {
             // Between draws, outside the timing: a BENCH takes seconds.
             serial::poll();
-            let (drawn, cycles) = timed(|| screen.draw(scene, method));
+            let (drawn, cycles) = clock::timed(|| screen.draw(scene, method));
             samples.push(cycles);
             refused = (drawn.report.refused, drawn.report.first_refusal);
         }
@@ -38,17 +37,4 @@ pub fn run(screen: &mut Screen, scene: &Scene, repeats: u8) -> BenchReply {
         rows.push(BenchRow { method, cycles: samples[samples.len() / 2], refused: refused.0, refusal: refused.1 });
     }
     BenchReply { rows }
-}
-
-/// Runs `work` and returns its result with the time-stamp counter cycles it
-/// took (`BENCH` and `SHOW` both time their draws with it). RDTSC is not
-/// serializing: the fences only keep the compiler from moving `work`
-/// across the reads, which is enough for whole draws of thousands of
-/// cycles.
-pub fn timed<R>(work: impl FnOnce() -> R) -> (R, u64) {
-    let start = clock::cycles();
-    compiler_fence(Ordering::SeqCst);
-    let result = work();
-    compiler_fence(Ordering::SeqCst);
-    (result, clock::cycles().wrapping_sub(start))
 }

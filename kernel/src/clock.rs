@@ -23,14 +23,20 @@
 //! [`SMI_GUARD_CYCLES`] apart, else it is read again, so the moment it
 //! stands for is known (Linux guards its calibration the same way).
 //!
+//! The test-only `CLOCK SOURCE [stalled]` ([`force`]) measures against one
+//! timer alone and makes it the clock: the harness proves each source is
+//! the one named and keeps the show's pace, and, with the kernel stalling
+//! itself as an SMI would ([`Stalls`]), that the guard and the median each
+//! hold.
+//!
 //! Under QEMU the TSC follows the host's (or, with `-icount shift=0`, one
 //! tick per emulated instruction); the timers follow QEMU's virtual clock,
 //! so the rate measured is the one the guest sees either way.
 
 use core::arch::x86_64::__cpuid;
-use core::sync::atomic::{AtomicU64, AtomicU8, Ordering};
+use core::sync::atomic::{compiler_fence, AtomicU64, AtomicU8, Ordering};
 
-use protocol::{ClockReadings, ClockSource, TscRate};
+use protocol::{ClockReadings, ClockSource, HpetRefusal, TscRate};
 use spin::Once;
 
 use crate::pit::Stopwatch;
@@ -55,6 +61,15 @@ const SILENCE_CYCLES: u64 = 1 << 24;
 const MEASUREMENT_MAX_CYCLES: u64 = 1 << 32;
 /// The rate taken when nothing measures or states it.
 const ASSUMED_HZ: u64 = 1_000_000_000;
+/// `CLOCK SOURCE stalled`: how long the kernel stalls inside a reading (so
+/// that a reading kept, its moment taken half way, moves its measurement
+/// by a tenth of [`WINDOW_MICROS`]), and inside a window (longer than the
+/// PIT's 55 ms wrap, which the stopwatch then misses); and how many
+/// measurements, of the first attempts, stall in a reading (the rest of
+/// [`MEASUREMENTS`] stall in their window).
+const STALL_IN_READING_MICROS: u64 = 2_000;
+const STALL_IN_WINDOW_MICROS: u64 = 60_000;
+const STALLED_READINGS: usize = 3;
 
 /// TSC cycles per second, once [`init`] has measured it.
 static CYCLES_PER_SECOND: AtomicU64 = AtomicU64::new(ASSUMED_HZ);
@@ -62,16 +77,21 @@ static CYCLES_PER_SECOND: AtomicU64 = AtomicU64::new(ASSUMED_HZ);
 static SOURCE: AtomicU8 = AtomicU8::new(ClockSource::Assumed as u8);
 /// What every source gave.
 static READINGS: Once<ClockReadings> = Once::new();
+/// The ACPI root pointer `init` was given, for [`force`].
+static RSDP: Once<Option<u64>> = Once::new();
+/// The HPET the ACPI tables named and the kernel did not use, and why.
+static HPET_REFUSED: Once<(u64, HpetRefusal)> = Once::new();
 
 /// Measures the TSC's rate against every timer there is, `rsdp` (the
 /// bootloader's ACPI root pointer) leading to those the ACPI tables
 /// describe. Takes about 50 ms per timer. Call once, after `paging::init`
 /// (the HPET's registers and the tables are reached through it).
 pub fn init(rsdp: Option<u64>) {
+    RSDP.call_once(|| rsdp);
     let readings = ClockReadings {
-        pit: rate_against(Stopwatch::start()),
-        pm_timer: rsdp.and_then(PmTimer::find).and_then(rate_against),
-        hpet: rsdp.and_then(Hpet::find).and_then(rate_against),
+        pit: rate_of(ClockSource::Pit, Stalls::None),
+        pm_timer: rate_of(ClockSource::PmTimer, Stalls::None),
+        hpet: rate_of(ClockSource::Hpet, Stalls::None),
         cpuid: rate_from_cpuid(),
     };
     let (rate, source) = [
@@ -88,6 +108,42 @@ pub fn init(rsdp: Option<u64>) {
     READINGS.call_once(|| readings);
 }
 
+/// The TSC's rate against `source` alone (a timer: the PIT, the PM timer
+/// or the HPET), the median of [`MEASUREMENTS`]; `None` if the machine has
+/// no such timer, or it does not count.
+fn rate_of(source: ClockSource, stalls: Stalls) -> Option<u64> {
+    let rsdp = RSDP.get().copied().flatten();
+    match source {
+        ClockSource::Pit => rate_against(Stopwatch::start(), stalls),
+        ClockSource::PmTimer => rsdp.and_then(PmTimer::find).and_then(|timer| rate_against(timer, stalls)),
+        ClockSource::Hpet => match rsdp.and_then(Hpet::find)? {
+            Ok(timer) => rate_against(timer, stalls),
+            Err(refused) => {
+                HPET_REFUSED.call_once(|| refused);
+                None
+            }
+        },
+        ClockSource::Cpuid | ClockSource::Assumed => None,
+    }
+}
+
+/// Where the HPET the ACPI tables named is, and why the kernel did not
+/// use it, if it did not: for a `LOG` frame at boot.
+pub fn hpet_refused() -> Option<(u64, HpetRefusal)> {
+    HPET_REFUSED.get().copied()
+}
+
+/// Test only (`CLOCK SOURCE [stalled]`, on QEMU): measures the TSC against
+/// `source` alone, with the kernel's own [`Stalls`] if `stalled`, and makes
+/// that rate and source the clock's; what `CLOCK` then says, or `None` if
+/// no such timer counts (the clock is left as it was).
+pub fn force(source: ClockSource, stalled: bool) -> Option<TscRate> {
+    let hz = rate_of(source, if stalled { Stalls::Planted } else { Stalls::None })?;
+    CYCLES_PER_SECOND.store(hz, Ordering::Relaxed);
+    SOURCE.store(source as u8, Ordering::Relaxed);
+    Some(rate())
+}
+
 /// The TSC's rate, how it was found and what every source gave, as
 /// `CLOCK` reports it.
 pub fn rate() -> TscRate {
@@ -101,6 +157,23 @@ pub fn cycles() -> u64 {
     // memory. Every x86_64 CPU has it, and the kernel runs in ring 0, where
     // CR4.TSD cannot make it fault.
     unsafe { core::arch::x86_64::_rdtsc() }
+}
+
+/// Runs `work` and returns its result with the time-stamp counter cycles it
+/// took (`BENCH` and `SHOW` both time their draws with it). RDTSC is not
+/// serializing: the fences only keep the compiler from moving `work`
+/// across the reads, which is enough for whole draws of thousands of
+/// cycles. Always inlined, so that what is timed is compiled as part of
+/// its caller wherever this helper lives: moved here from `bench.rs`
+/// without it, the draws it times compiled differently and `cargo xtask
+/// kbench` counted from 1.0% fewer to 1.25% more instructions.
+#[inline(always)]
+pub fn timed<R>(work: impl FnOnce() -> R) -> (R, u64) {
+    let start = cycles();
+    compiler_fence(Ordering::SeqCst);
+    let result = work();
+    compiler_fence(Ordering::SeqCst);
+    (result, cycles().wrapping_sub(start))
 }
 
 /// TSC cycles per second.
@@ -136,10 +209,51 @@ impl Deadline {
     }
 }
 
+/// Stalls a measurement makes in itself: none, or (`CLOCK SOURCE stalled`)
+/// those an SMI would make, to show each defence holds: in the first
+/// reading of the first [`STALLED_READINGS`] attempts (which the guard
+/// must throw away), and inside the window of the attempts after them (a
+/// stall longer than the PIT's wrap, which no guard sees: the median must
+/// leave those measurements out).
+#[derive(Clone, Copy)]
+enum Stalls {
+    None,
+    Planted,
+}
+
+/// Where one attempt at a measurement stalls.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Stall {
+    None,
+    InFirstReading,
+    InWindow,
+}
+
+impl Stalls {
+    fn of_attempt(self, attempt: usize) -> Stall {
+        match self {
+            Stalls::None => Stall::None,
+            Stalls::Planted if attempt < STALLED_READINGS => Stall::InFirstReading,
+            Stalls::Planted if attempt < MEASUREMENTS => Stall::InWindow,
+            Stalls::Planted => Stall::None,
+        }
+    }
+}
+
+/// Takes the CPU for `micros`, interrupts off, as an SMI does.
+fn stall(micros: u64) {
+    x86_64::instructions::interrupts::without_interrupts(|| {
+        let end = Deadline::after_micros(micros);
+        while !end.passed() {
+            core::hint::spin_loop();
+        }
+    });
+}
+
 /// The median of up to [`MEASUREMENTS`] measurements of the TSC against
 /// `timer`; `None` if the timer does not count (no such timer: an absent
 /// PIT reads 0xFF for ever) or no measurement succeeds.
-fn rate_against(mut timer: impl Timer) -> Option<u64> {
+fn rate_against(mut timer: impl Timer, stalls: Stalls) -> Option<u64> {
     let start = timer.ticks();
     let silence = Deadline::after_cycles(SILENCE_CYCLES);
     while timer.ticks() == start {
@@ -149,11 +263,11 @@ fn rate_against(mut timer: impl Timer) -> Option<u64> {
     }
     let mut rates = [0; MEASUREMENTS];
     let mut measured = 0;
-    for _ in 0..2 * MEASUREMENTS {
+    for attempt in 0..2 * MEASUREMENTS {
         if measured == MEASUREMENTS {
             break;
         }
-        if let Some(rate) = measure(&mut timer) {
+        if let Some(rate) = measure(&mut timer, stalls.of_attempt(attempt)) {
             rates[measured] = rate;
             measured += 1;
         }
@@ -164,28 +278,35 @@ fn rate_against(mut timer: impl Timer) -> Option<u64> {
 }
 
 /// TSC cycles per second over [`WINDOW_MICROS`] of `timer`, from one
-/// guarded reading to another.
-fn measure(timer: &mut impl Timer) -> Option<u64> {
+/// guarded reading to another, stalling where `stall` says.
+fn measure(timer: &mut impl Timer, stall_at: Stall) -> Option<u64> {
     let window = timer.hz() * WINDOW_MICROS / 1_000_000;
-    let (start_cycles, start_ticks) = guarded_reading(timer)?;
+    let (start_cycles, start_ticks) = guarded_reading(timer, stall_at == Stall::InFirstReading)?;
+    if stall_at == Stall::InWindow {
+        stall(STALL_IN_WINDOW_MICROS);
+    }
     let give_up = Deadline::after_cycles(MEASUREMENT_MAX_CYCLES);
     while timer.ticks() - start_ticks < window {
         if give_up.passed() {
             return None;
         }
     }
-    let (end_cycles, end_ticks) = guarded_reading(timer)?;
+    let (end_cycles, end_ticks) = guarded_reading(timer, false)?;
     let spent = u128::from(end_cycles.checked_sub(start_cycles)?);
     u64::try_from(spent * u128::from(timer.hz()) / u128::from(end_ticks - start_ticks)).ok()
 }
 
 /// The timer's ticks and the TSC at the moment it was read (the middle of
 /// the two TSC reads around it), from the first of [`READ_TRIES`]
-/// readings that took at most [`SMI_GUARD_CYCLES`].
-fn guarded_reading(timer: &mut impl Timer) -> Option<(u64, u64)> {
-    (0..READ_TRIES).find_map(|_| {
+/// readings that took at most [`SMI_GUARD_CYCLES`]; `stalled`, the first
+/// try stalls after the timer's read.
+fn guarded_reading(timer: &mut impl Timer, stalled: bool) -> Option<(u64, u64)> {
+    (0..READ_TRIES).find_map(|try_number| {
         let before = cycles();
         let ticks = timer.ticks();
+        if stalled && try_number == 0 {
+            stall(STALL_IN_READING_MICROS);
+        }
         let after = cycles();
         let took = after.checked_sub(before)?;
         (took <= SMI_GUARD_CYCLES).then_some((before + took / 2, ticks))

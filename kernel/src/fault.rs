@@ -1,19 +1,19 @@
 //! The test-only `FAULT` command: provokes each kind of fault for real, so
 //! the harness can prove that the handlers in `interrupts.rs` and the
 //! panic handler report it, by its name, and exit QEMU with the failure
-//! code; and raises a stray interrupt, which the kernel must survive.
-//! Answered only on QEMU (`console.rs`).
+//! code; and raises stray interrupts, which the kernel must survive: on a
+//! vector through the local APIC, a device's IRQ through the 8259s, and a
+//! level-triggered storm through the I/O APIC. Answered only on QEMU
+//! (`server.rs`).
 
 use core::arch::asm;
 use core::hint::black_box;
 
-use alloc::format;
-use alloc::string::String;
-use protocol::FaultKind;
+use protocol::{FatalReport, FaultKind, Raised, StrayRaised, STORM_VECTOR, STRAY_VECTOR};
 
 use crate::clock::Deadline;
 use crate::fatal::fatal;
-use crate::{apic, interrupts};
+use crate::{apic, interrupts, ioapic, pic, rtc, storm};
 
 /// An address no page maps: level-4 entry 27 of the lower half. The
 /// bootloader hands out level-4 entries from index 0 up (no ASLR in our
@@ -25,18 +25,20 @@ const UNMAPPED_ADDRESS: u64 = 0xdeadbeef000;
 /// the 80 KiB kernel stack runs out after some 160 calls.
 const FRAME_WORDS: usize = 64;
 
-/// The vector `FAULT strayinterrupt` raises: in the local APIC's priority
-/// class 9, which nothing on a PC is set up to use while this kernel
-/// runs.
-const STRAY_VECTOR: u8 = 0x99;
-/// Longest wait for the local APIC to deliver it.
+/// Longest wait for a stray interrupt to arrive: the local APIC's
+/// delivery, or the RTC's next periodic interrupt (1 ms apart).
 const DELIVERY_TIMEOUT_MICROS: u64 = 100_000;
+/// Where the RTC's IRQ 8 lands through the 8259s: the slave's first vector.
+const RTC_PIC_VECTOR: u8 = pic::MASTER_VECTORS + 8;
+/// Longest wait for the storm guard to stop a storm (`storm.rs`: 1,000
+/// arrivals within 100 ms).
+const STORM_TIMEOUT_MICROS: u64 = 2_000_000;
 
 /// Provokes `kind`. A fault's handler ends the run; should one ever
 /// return, the run ends here, reported all the same. A stray interrupt
 /// is survived: the answer says how it was raised and how many the
 /// kernel has taken on its vector.
-pub fn provoke(kind: FaultKind) -> String {
+pub fn provoke(kind: FaultKind) -> StrayRaised {
     match kind {
         FaultKind::DivideError => {
             black_box(divide_by_zero());
@@ -53,32 +55,76 @@ pub fn provoke(kind: FaultKind) -> String {
             black_box(overflow_stack(0));
         }
         FaultKind::Panic => panic!("FAULT panic: the host asked for it"),
-        FaultKind::StrayInterrupt => return raise_stray_interrupt(),
+        FaultKind::StrayInterrupt(vector) => return raise_stray_interrupt(vector),
+        FaultKind::StrayIrq => return raise_through_the_pics(),
+        FaultKind::InterruptStorm => return raise_a_storm(),
     }
-    fatal(format_args!("FAULT {}: the fault handler returned", kind.name()))
+    fatal(FatalReport::HandlerReturned(kind))
 }
 
-/// Raises [`STRAY_VECTOR`] as a device would, through the local APIC (a
-/// self-IPI, which the APIC then has in service until its end of
-/// interrupt), and waits for it to be taken; with no local APIC, by
-/// `int`. Call with interrupts on (the console runs so).
-fn raise_stray_interrupt() -> String {
-    let before = interrupts::stray_count(STRAY_VECTOR);
-    let how = if apic::send_to_self(STRAY_VECTOR) {
-        "sent through the local APIC"
-    } else {
+/// Raises `vector` as a device would, through the local APIC (a self-IPI,
+/// which the APIC then has in service until its end of interrupt), and
+/// waits for it to be taken; with no local APIC, by `int` for
+/// [`STRAY_VECTOR`] alone. Call with interrupts on (the server runs so).
+fn raise_stray_interrupt(vector: u8) -> StrayRaised {
+    let before = interrupts::stray_count(vector);
+    let raised = if apic::send_to_self(vector) {
+        Raised::LocalApic
+    } else if vector == STRAY_VECTOR {
         // SAFETY: `int` calls the vector's handler on this stack (the
         // kernel's target has no red zone to clobber), which counts and
         // returns; it touches no Rust object.
         unsafe { asm!("int {vector}", vector = const STRAY_VECTOR) };
-        "raised by INT (no enabled local APIC)"
+        Raised::Int
+    } else {
+        Raised::NotRaised
     };
-    let give_up = Deadline::after_micros(DELIVERY_TIMEOUT_MICROS);
-    while interrupts::stray_count(STRAY_VECTOR) == before && !give_up.passed() {
+    wait_while(|| interrupts::stray_count(vector) == before, DELIVERY_TIMEOUT_MICROS);
+    StrayRaised { vector, raised, taken: interrupts::stray_count(vector) }
+}
+
+/// Lets one periodic interrupt of the RTC through the two 8259s (IRQ 8 on
+/// the slave, cascaded on the master's IRQ 2: the vector ends at both),
+/// and waits for it to be taken; then stops the RTC and masks its IRQ.
+fn raise_through_the_pics() -> StrayRaised {
+    let before = interrupts::stray_count(RTC_PIC_VECTOR);
+    // IRQ 8 low first: the 8259s take an edge.
+    rtc::acknowledge();
+    pic::let_in_rtc(true);
+    rtc::periodic(true);
+    wait_while(|| interrupts::stray_count(RTC_PIC_VECTOR) == before, DELIVERY_TIMEOUT_MICROS);
+    rtc::periodic(false);
+    pic::let_in_rtc(false);
+    rtc::acknowledge();
+    StrayRaised { vector: RTC_PIC_VECTOR, raised: Raised::Pic, taken: interrupts::stray_count(RTC_PIC_VECTOR) }
+}
+
+/// Routes the RTC's IRQ 8 level-triggered through the I/O APIC to
+/// [`STORM_VECTOR`] and starts its periodic interrupt without ever reading
+/// register C: its line stays high, so each end of interrupt brings the
+/// vector again at once, until the storm guard masks the entry
+/// (`storm.rs`). Then the RTC is stopped and the entry put back.
+fn raise_a_storm() -> StrayRaised {
+    let routed = apic::id().and_then(|apic_id| ioapic::route_rtc_level(STORM_VECTOR, apic_id));
+    let Some(routed) = routed else {
+        let taken = interrupts::stray_count(STORM_VECTOR);
+        return StrayRaised { vector: STORM_VECTOR, raised: Raised::NotRaised, taken };
+    };
+    rtc::acknowledge();
+    rtc::periodic(true);
+    wait_while(|| !storm::masked(STORM_VECTOR), STORM_TIMEOUT_MICROS);
+    rtc::periodic(false);
+    rtc::acknowledge();
+    ioapic::restore(routed);
+    StrayRaised { vector: STORM_VECTOR, raised: Raised::IoApicLevel, taken: interrupts::stray_count(STORM_VECTOR) }
+}
+
+/// Spins while `waiting` holds, `micros` at the most.
+fn wait_while(waiting: impl Fn() -> bool, micros: u64) {
+    let give_up = Deadline::after_micros(micros);
+    while waiting() && !give_up.passed() {
         core::hint::spin_loop();
     }
-    let count = interrupts::stray_count(STRAY_VECTOR);
-    format!("strayinterrupt: vector {STRAY_VECTOR:#04x} {how}; {count} taken on it so far")
 }
 
 /// Divides by zero with `div`: a divide error. (In asm: Rust's `/` checks

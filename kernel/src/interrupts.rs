@@ -13,39 +13,43 @@
 //!   6), clears what it read (bits 2 and 3 set, then cleared again, as
 //!   Linux does), counts it and returns: the show plays on.
 //! - COM1's IRQ 4 moves the received bytes into `serial`'s ring buffer,
-//!   and the PIT's IRQ 0 wakes a halt (`pic.rs`).
+//!   and the PIT's IRQ 0 wakes a halt (`pic.rs`). Each is ended wherever
+//!   it is in service: at the 8259 that raised it, or at the local APIC
+//!   where its vector came through it (an I/O APIC entry the firmware left
+//!   live, a self-IPI): ended at the 8259 alone, it would stay in service
+//!   at the local APIC and hold back its priority class for good.
 //! - Every other vector, 0x20 to 0xFF, is one the kernel did not ask for:
 //!   an LVT entry of the local APIC the firmware left live (thermal,
 //!   CMCI, error, performance counter), its spurious vector, an unmasked
 //!   I/O APIC entry, a spurious 8259 IRQ. Each is counted and returns,
 //!   after an end of interrupt where the local APIC or a PIC has it in
 //!   service (`apic.rs`, `pic.rs`): left in service, it would block every
-//!   interrupt of its priority or below.
+//!   interrupt of its priority or below. A vector that storms (comes again
+//!   at once after each end, unbounded) is masked at its source
+//!   (`storm.rs`).
 //!
 //! Handlers only count (atomics, nothing else is safe to touch from an
-//! NMI): [`report`], from the show's frames and the console, sends a
+//! NMI): [`report`], from the show's frames and the server, sends a
 //! `LOG` frame per NMI and per vector that came again since, and `PING`
 //! tells the totals ([`counts`]).
 
-use alloc::format;
 use core::sync::atomic::{AtomicU32, AtomicU8, Ordering};
 
-use protocol::{FrameKind, InterruptCounts};
+use protocol::{EndedAt, FatalReport, InterruptCounts, LogEvent, PageFaultCode, PAGE_FAULT_VECTOR};
 use spin::Lazy;
 use x86_64::registers::control::Cr2;
 use x86_64::set_general_handler;
-use x86_64::structures::idt::{InterruptDescriptorTable, InterruptStackFrame, PageFaultErrorCode};
+use x86_64::structures::idt::{InterruptDescriptorTable, InterruptStackFrame};
 
 use crate::fatal::fatal;
 use crate::gdt::DOUBLE_FAULT_IST_INDEX;
 use crate::port::system_control;
-use crate::{apic, pic, serial};
+use crate::{apic, pic, serial, storm};
 
 /// The exceptions: vectors 0 to 31.
 const EXCEPTIONS: core::ops::Range<u8> = 0..32;
 /// The rest: interrupts.
 const INTERRUPTS: core::ops::RangeInclusive<u8> = 32..=255;
-const PAGE_FAULT_VECTOR: u8 = 14;
 
 /// Port 0x61 (system control port B) bits: read, the NMI's reasons; written,
 /// the latches that clear them (and mask them while set).
@@ -56,43 +60,6 @@ const CLEAR_IOCHK: u8 = 1 << 3;
 /// The bits of port 0x61 that read back what was written (timer 2 gate,
 /// speaker data, the two latches).
 const WRITABLE: u8 = 0x0F;
-
-/// The exceptions' names, by vector, as the manuals give them; the
-/// reserved vectors have none.
-const EXCEPTION_NAMES: [&str; 32] = [
-    "divide error",
-    "debug exception",
-    "non-maskable interrupt",
-    "breakpoint",
-    "overflow",
-    "bound range exceeded",
-    "invalid opcode",
-    "device not available",
-    "double fault",
-    "coprocessor segment overrun",
-    "invalid TSS",
-    "segment not present",
-    "stack-segment fault",
-    "general protection fault",
-    "page fault",
-    "reserved exception 15",
-    "x87 floating-point error",
-    "alignment check",
-    "machine check",
-    "SIMD floating-point exception",
-    "virtualization exception",
-    "control protection exception",
-    "reserved exception 22",
-    "reserved exception 23",
-    "reserved exception 24",
-    "reserved exception 25",
-    "reserved exception 26",
-    "reserved exception 27",
-    "hypervisor injection exception",
-    "VMM communication exception",
-    "security exception",
-    "reserved exception 31",
-];
 
 /// Stray interrupts by vector, and what ended each vector's last one
 /// (`ENDED_BY_*` bits); NMIs and the port 0x61 value the last one read.
@@ -137,11 +104,19 @@ pub fn enable() {
 
 extern "x86-interrupt" fn timer_tick(_frame: InterruptStackFrame) {
     pic::on_timer_tick();
+    end_interrupt(pic::TIMER_VECTOR);
 }
 
 extern "x86-interrupt" fn com1_received(_frame: InterruptStackFrame) {
     serial::on_interrupt();
-    pic::end_of_master_interrupt();
+    end_interrupt(pic::COM1_VECTOR);
+}
+
+/// Ends the interrupt on `vector` wherever it is in service: the local
+/// APIC, an 8259, both or neither; says where, as `ENDED_BY_*` bits.
+fn end_interrupt(vector: u8) -> u8 {
+    (if apic::end_if_in_service(vector) { ENDED_BY_APIC } else { 0 })
+        | (if pic::end_if_in_service(vector) { ENDED_BY_PIC } else { 0 })
 }
 
 /// Reads port 0x61 for the reason, clears the latch of each reason
@@ -161,8 +136,8 @@ extern "x86-interrupt" fn non_maskable_interrupt(_frame: InterruptStackFrame) {
 /// A vector from 0x20 to 0xFF that nothing asked for: counted, ended
 /// where it is in service, and returned from.
 fn stray_interrupt(_frame: InterruptStackFrame, vector: u8, _error: Option<u64>) {
-    let ended = (if apic::end_if_in_service(vector) { ENDED_BY_APIC } else { 0 })
-        | (if pic::end_if_in_service(vector) { ENDED_BY_PIC } else { 0 });
+    storm::guard(vector);
+    let ended = end_interrupt(vector);
     ENDED_BY[usize::from(vector)].store(ended, Ordering::Relaxed);
     STRAY[usize::from(vector)].fetch_add(1, Ordering::Release);
 }
@@ -170,26 +145,19 @@ fn stray_interrupt(_frame: InterruptStackFrame, vector: u8, _error: Option<u64>)
 /// Every exception but the double fault and the NMI: reports it by name
 /// and ends the run.
 fn exception(frame: InterruptStackFrame, vector: u8, error: Option<u64>) {
-    let name = EXCEPTION_NAMES[usize::from(vector % 32)];
     let at = frame.instruction_pointer.as_u64();
     match (vector, error) {
+        // CR2 holds the address whose access faulted.
         (PAGE_FAULT_VECTOR, Some(code)) => {
-            // CR2 holds the address whose access faulted.
-            let address = Cr2::read_raw();
-            let code = PageFaultErrorCode::from_bits_truncate(code);
-            fatal(format_args!("page fault at {address:#x} ({code:?}), instruction at {at:#x}"))
+            fatal(FatalReport::PageFault { address: Cr2::read_raw(), code: PageFaultCode::new(code), at })
         }
-        (_, Some(code)) => fatal(format_args!("{name} (error code {code:#x}) at {at:#x}")),
-        (_, None) => fatal(format_args!("{name} at {at:#x}")),
+        _ => fatal(FatalReport::Exception { vector, error, at }),
     }
 }
 
 extern "x86-interrupt" fn double_fault(frame: InterruptStackFrame, error: u64) -> ! {
-    fatal(format_args!(
-        "double fault (error code {error:#x}) at {:#x}, stack pointer {:#x}",
-        frame.instruction_pointer.as_u64(),
-        frame.stack_pointer.as_u64()
-    ))
+    let (at, stack) = (frame.instruction_pointer.as_u64(), frame.stack_pointer.as_u64());
+    fatal(FatalReport::DoubleFault { error, at, stack })
 }
 
 /// Stray interrupts taken on `vector` since boot.
@@ -205,28 +173,21 @@ pub fn counts() -> InterruptCounts {
 
 /// Sends a `LOG` frame for each NMI, and each vector's stray interrupts,
 /// taken since the last call: `NMI 1 (port 0x61 = 0x20: no SERR#, no
-/// IOCHK#); the show plays on` or `stray interrupt: vector 0x99, 2 so
+/// IOCHK#); the kernel carries on` or `stray interrupt: vector 0x99, 2 so
 /// far, ended at the local APIC; returned`. Call from the main flow only.
 pub fn report() {
+    storm::report();
     let nmis = NMIS.load(Ordering::Acquire);
     if REPORTED_NMIS.swap(nmis, Ordering::Relaxed) != nmis {
         let reason = NMI_REASON.load(Ordering::Relaxed);
-        let serr = if reason & SERR != 0 { "SERR# (a PCI system error)" } else { "no SERR#" };
-        let iochk = if reason & IOCHK != 0 { "IOCHK# (an I/O channel check)" } else { "no IOCHK#" };
-        let text = format!("NMI {nmis} (port 0x61 = {reason:#04x}: {serr}, {iochk}); the kernel carries on");
-        serial::send_frame(FrameKind::Log, text.as_bytes());
+        serial::send_log(LogEvent::Nmi { count: nmis, reason, serr: reason & SERR != 0, iochk: reason & IOCHK != 0 });
     }
-    for (vector, (count, reported)) in STRAY.iter().zip(&REPORTED_STRAY).enumerate() {
+    for (vector, (count, reported)) in (0..=u8::MAX).zip(STRAY.iter().zip(&REPORTED_STRAY)) {
         let count = count.load(Ordering::Acquire);
         if reported.swap(count, Ordering::Relaxed) != count {
-            let ended = match ENDED_BY[vector].load(Ordering::Relaxed) {
-                0 => "in service nowhere, so no end of interrupt",
-                ENDED_BY_APIC => "ended at the local APIC",
-                ENDED_BY_PIC => "ended at the 8259",
-                _ => "ended at the local APIC and the 8259",
-            };
-            let text = format!("stray interrupt: vector {vector:#04x}, {count} so far, {ended}; returned");
-            serial::send_frame(FrameKind::Log, text.as_bytes());
+            let ended = ENDED_BY[usize::from(vector)].load(Ordering::Relaxed);
+            let ended = EndedAt::of(ended & ENDED_BY_APIC != 0, ended & ENDED_BY_PIC != 0);
+            serial::send_log(LogEvent::StrayInterrupt { vector, count, ended });
         }
     }
 }

@@ -1,4 +1,4 @@
-//! A command line as its bytes arrive, for the show and the console
+//! A command line as its bytes arrive, for the show and the server
 //! alike: the show keeps playing while a line is incomplete (bytes
 //! accumulate between its frames, `demo.rs`), and only a complete line
 //! stops it. A line is kept up to `protocol::MAX_LINE` bytes; an overlong
@@ -7,10 +7,9 @@
 //! frame saying so, so that a stray byte on the line (a cable plugged in,
 //! an adapter powering up) never holds anything up for good.
 
-use alloc::format;
 use alloc::vec::Vec;
 
-use protocol::{FrameKind, MAX_LINE, PARTIAL_LINE_IDLE_SECONDS};
+use protocol::{LogEvent, MAX_LINE, PARTIAL_LINE_IDLE_SECONDS};
 
 use crate::clock::Deadline;
 use crate::serial;
@@ -83,9 +82,11 @@ impl PendingLine {
         if !self.give_up.is_some_and(Deadline::passed) {
             return false;
         }
-        let what = if self.overlong { "an overlong line" } else { "an unfinished line" };
-        let text = format!("dropped {what} ({} bytes kept) idle for {PARTIAL_LINE_IDLE_SECONDS} s", self.bytes.len());
-        serial::send_frame(FrameKind::Log, text.as_bytes());
+        serial::send_log(LogEvent::LineDropped {
+            overlong: self.overlong,
+            kept: self.bytes.len(),
+            idle_seconds: PARTIAL_LINE_IDLE_SECONDS,
+        });
         self.bytes.clear();
         self.overlong = false;
         self.give_up = None;

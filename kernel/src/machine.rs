@@ -17,11 +17,9 @@
 //! on its CPU models, no subsystem IDs on its host bridge), so there the
 //! kernel is on an unknown machine, as on a PC.
 
-use alloc::format;
-use alloc::string::String;
 use core::arch::x86_64::__cpuid;
 
-use protocol::{Machine, PciAddress, PciId};
+use protocol::{Machine, MachineEvidence, PciAddress, PciId};
 use spin::Once;
 
 use crate::pci;
@@ -76,17 +74,9 @@ fn hypervisor_name() -> Option<[u8; 12]> {
 }
 
 impl Identity {
-    /// The `LOG` line saying what was seen, e.g. `machine: qemu (CPUID
+    /// What was seen, for the `LOG` frame at boot: `machine: qemu (CPUID
     /// hypervisor "TCGTCGTCGTCG", host bridge subsystem 1af4:1100)`.
-    pub fn evidence(&self) -> String {
-        let hypervisor = match self.hypervisor {
-            Some(name) => format!("hypervisor \"{}\"", name.escape_ascii()),
-            None => String::from("no hypervisor"),
-        };
-        let board = match self.board {
-            Some(id) => format!("host bridge subsystem {id}"),
-            None => String::from("no host bridge subsystem"),
-        };
-        format!("machine: {} (CPUID {hypervisor}, {board})", self.machine.name())
+    pub fn evidence(&self) -> MachineEvidence {
+        MachineEvidence { machine: self.machine, hypervisor: self.hypervisor, board: self.board }
     }
 }

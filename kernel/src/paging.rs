@@ -27,15 +27,15 @@ use core::sync::atomic::{AtomicU64, Ordering};
 
 use bootloader_api::info::MemoryRegionKind;
 use bootloader_api::BootInfo;
-use protocol::MemoryType;
+use protocol::{MemoryType, PageMapping};
 use spin::Mutex;
 use volatile::VolatilePtr;
 use x86_64::instructions::tlb;
 use x86_64::registers::control::Cr3;
 use x86_64::structures::paging::mapper::{MappedFrame, TranslateResult};
 use x86_64::structures::paging::{
-    FrameAllocator, Mapper, OffsetPageTable, Page, PageSize, PageTable, PageTableFlags, PhysFrame, Size2MiB, Size4KiB,
-    Translate,
+    FrameAllocator, Mapper, OffsetPageTable, Page, PageSize, PageTable, PageTableFlags, PhysFrame, Size1GiB, Size2MiB,
+    Size4KiB, Translate,
 };
 use x86_64::{align_up, PhysAddr, VirtAddr};
 
@@ -256,36 +256,11 @@ fn split_large_page(
     Ok(())
 }
 
-/// How one page is mapped.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct PageMapping {
-    /// Bytes the page spans.
-    size: u64,
-    /// The PAT entry its PWT, PCD (and, for 4 KiB pages, PAT) bits select.
-    pat_index: u8,
-}
-
-/// How a range is mapped, read back from the page tables and the PAT.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Mapping {
-    /// The distinct pages the range lies in.
-    pages: usize,
-    /// How the first of them is mapped, and whether all the others are
-    /// mapped the same way.
-    first: PageMapping,
-    uniform: bool,
-}
-
-impl Mapping {
-    /// The memory type every page of the range has, if they agree on one.
-    pub fn memory_type(&self) -> Option<MemoryType> {
-        self.uniform.then(|| pat::entry_type(self.first.pat_index)).flatten()
-    }
-}
-
-/// How the `len` bytes from `start` are mapped now; `None` before
-/// [`init`], or if part of the range is not mapped.
-pub fn mapping(start: VirtAddr, len: u64) -> Option<Mapping> {
+/// How the `len` bytes from `start` are mapped now, read back from the
+/// page tables and the PAT: the distinct pages the range lies in, how the
+/// first is mapped, and whether every other is mapped the same way.
+/// `None` before [`init`], or if part of the range is not mapped.
+pub fn mapping(start: VirtAddr, len: u64) -> Option<PageMapping> {
     let offset = VirtAddr::new(PHYSICAL_OFFSET.load(Ordering::Relaxed));
     if offset.is_null() {
         return None;
@@ -295,50 +270,34 @@ pub fn mapping(start: VirtAddr, len: u64) -> Option<Mapping> {
     // info), and the lock held keeps every other page table handle away.
     let table = unsafe { active_page_table(offset) };
     let mut seen: Option<PhysAddr> = None;
-    let mut mapping: Option<Mapping> = None;
+    let mut mapping: Option<PageMapping> = None;
     for page in pages(start, len) {
         let TranslateResult::Mapped { frame, flags, .. } = table.translate(page.start_address()) else { return None };
-        let (size, pat_bit) = match frame {
+        let (page_size, pat_bit) = match frame {
             MappedFrame::Size4KiB(_) => (Size4KiB::SIZE, flags.contains(PAT_BIT_4KIB)),
             // Bit 12 of a large page's entry, its PAT bit, is not a valid
             // frame address bit: the translation above fails if it is set.
             MappedFrame::Size2MiB(_) => (Size2MiB::SIZE, false),
-            MappedFrame::Size1GiB(_) => (1 << 30, false),
+            MappedFrame::Size1GiB(_) => (Size1GiB::SIZE, false),
         };
         if seen == Some(frame.start_address()) {
             continue;
         }
         seen = Some(frame.start_address());
-        let pat_index = u8::from(flags.contains(PageTableFlags::WRITE_THROUGH))
+        let pat_entry = u8::from(flags.contains(PageTableFlags::WRITE_THROUGH))
             | u8::from(flags.contains(PageTableFlags::NO_CACHE)) << 1
             | u8::from(pat_bit) << 2;
-        let this = PageMapping { size, pat_index };
+        let this = PageMapping { pages: 1, page_size, pat_entry, memory: pat::entry_type(pat_entry), uniform: true };
         mapping = Some(match mapping {
-            None => Mapping { pages: 1, first: this, uniform: true },
-            Some(so_far) => {
-                Mapping { pages: so_far.pages + 1, uniform: so_far.uniform && so_far.first == this, ..so_far }
-            }
+            None => this,
+            Some(so_far) => PageMapping {
+                pages: so_far.pages + 1,
+                uniform: so_far.uniform && (this.page_size, this.pat_entry) == (so_far.page_size, so_far.pat_entry),
+                ..so_far
+            },
         });
     }
     mapping
-}
-
-impl fmt::Display for Mapping {
-    /// E.g. `16 pages of 4 KiB, uncacheable (UC), PAT entry 3`.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let Self { pages, first: PageMapping { size, pat_index }, uniform } = *self;
-        write!(f, "{pages} page{}", if pages == 1 { "" } else { "s" })?;
-        if size >= Size2MiB::SIZE {
-            write!(f, " of {} MiB", size >> 20)?;
-        } else {
-            write!(f, " of {} KiB", size >> 10)?;
-        }
-        write!(f, ", {}", pat::Entry(pat_index))?;
-        if !uniform {
-            write!(f, " (the first; the others differ)")?;
-        }
-        Ok(())
-    }
 }
 
 /// 4 KiB frames of usable RAM from the boot info's memory map, from

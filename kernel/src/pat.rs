@@ -23,7 +23,6 @@
 //! so there is no other CPU to bring along.
 
 use core::arch::asm;
-use core::fmt;
 
 use protocol::MemoryType;
 use spin::Once;
@@ -122,17 +121,4 @@ pub fn store_fence() {
     // SAFETY: SFENCE orders stores and touches no memory itself; every
     // x86-64 CPU has it.
     unsafe { asm!("sfence", options(nostack, preserves_flags)) };
-}
-
-/// A PAT entry's number and what it holds, for `VGACHECK`: `PAT entry
-/// 1, write-combining (WC)`.
-pub struct Entry(pub u8);
-
-impl fmt::Display for Entry {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match entry_type(self.0) {
-            Some(memory_type) => write!(f, "{}, PAT entry {}", memory_type.description(), self.0),
-            None => write!(f, "a reserved type, PAT entry {}", self.0),
-        }
-    }
 }

@@ -1,5 +1,5 @@
 //! The two 8259 interrupt controllers: where their IRQs land, which ones
-//! pass, the end of an interrupt, and the console's halt, which counts on
+//! pass, the end of an interrupt, and the server's halt, which counts on
 //! the PIT's IRQ 0 to end it.
 //!
 //! The BIOS leaves the master on vectors 8-15, the CPU's own exception
@@ -27,6 +27,8 @@ pub const TIMER_VECTOR: u8 = MASTER_VECTORS + TIMER_IRQ;
 pub const COM1_VECTOR: u8 = MASTER_VECTORS + COM1_IRQ;
 /// The master's input the slave is cascaded on.
 const CASCADE_IRQ: u8 = 2;
+/// The RTC's IRQ 8: the slave's input 0.
+const RTC_IRQ_ON_SLAVE: u8 = 0;
 
 /// Initialisation command word 1: start initialising, ICW4 follows,
 /// cascaded, edge triggered.
@@ -79,12 +81,6 @@ pub fn remap() {
     }
 }
 
-/// Ends the interrupt the master is serving (IRQ 0 or 4, which only it
-/// raises).
-pub fn end_of_master_interrupt() {
-    pic::MASTER_COMMAND.write(END_OF_INTERRUPT);
-}
-
 /// Ends the interrupt on `vector` if a PIC has it in service, and says
 /// whether one did. A spurious IRQ (7 or 15: a request that went away
 /// before the CPU took it) is in no in-service register and gets no end
@@ -119,10 +115,23 @@ fn in_service(command: crate::port::IoPort<u8>) -> u8 {
 }
 
 /// The PIT's IRQ 0 handler's work: notes that the timer's interrupt
-/// arrives, and ends it.
+/// arrives.
 pub fn on_timer_tick() {
     TIMER_SEEN.store(true, Ordering::Release);
-    end_of_master_interrupt();
+}
+
+/// Lets the RTC's IRQ 8 in (`true`: the slave's input 0 and the master's
+/// cascade input unmasked) or masks it again, for the test-only `FAULT
+/// strayirq` (`fault.rs`).
+pub fn let_in_rtc(on: bool) {
+    let (slave, master) = match on {
+        true => (SLAVE_MASK & !(1 << RTC_IRQ_ON_SLAVE), MASTER_MASK & !(1 << CASCADE_IRQ)),
+        false => (SLAVE_MASK, MASTER_MASK),
+    };
+    x86_64::instructions::interrupts::without_interrupts(|| {
+        pic::SLAVE_DATA.write(slave);
+        pic::MASTER_DATA.write(master);
+    });
 }
 
 /// Lets IRQ 0 in and waits, a bounded time, for it to arrive, with

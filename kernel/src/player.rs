@@ -3,7 +3,7 @@
 //! [`play`] is the one way a frame gets there, for the demo and for
 //! `SHOW` alike, so what the host checks is what the demo plays.
 //!
-//! A still page is drawn straight into the screen's frame (video memory
+//! A still page is drawn straight into the screen's canvas (video memory
 //! at 0xA0000 on a VGA), as the books' listings drew: it is drawn once and
 //! then stays. An animation's frame is drawn off screen and copied whole
 //! at a vertical retrace, so the viewer never sees a frame half drawn over
@@ -19,7 +19,7 @@ use raster::MethodId;
 use scenes::show::{draw_labels, Entry, Stage, FRAMES_PER_SECOND, PALETTE};
 
 use crate::video::Screen;
-use crate::{bench, clock, heap, serial};
+use crate::{clock, heap, serial};
 
 /// Puts frame `frame` of `entry`, drawn with `method` and labelled with
 /// the rdtsc cycles the draw took, on the screen in the show's palette,
@@ -39,7 +39,7 @@ pub fn play(
     let allocations = heap::allocations();
     let (report, cycles, strays) = if entry.is_animated() {
         let strays = stage.stray_spans();
-        let (report, cycles) = bench::timed(|| stage.draw(entry, frame, method));
+        let (report, cycles) = clock::timed(|| stage.draw(entry, frame, method));
         let strays = stage.stray_spans().wrapping_sub(strays);
         stage.label(entry, frame, method, cycles);
         if let Some(pacer) = pacer {
@@ -54,10 +54,10 @@ pub fn play(
             pacer.wait();
         }
         screen.use_palette(&PALETTE);
-        let strays = screen.frame().stray_spans();
-        let (report, cycles) = bench::timed(|| stage.draw_still(entry, method, screen.frame()));
-        let strays = screen.frame().stray_spans().wrapping_sub(strays);
-        draw_labels(screen.frame(), entry, frame, method, cycles);
+        let strays = screen.canvas().stray_spans();
+        let (report, cycles) = clock::timed(|| stage.draw_still(entry, method, screen.canvas()));
+        let strays = screen.canvas().stray_spans().wrapping_sub(strays);
+        draw_labels(screen.canvas(), entry, frame, method, cycles);
         screen.present();
         (report, cycles, strays)
     };

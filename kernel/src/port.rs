@@ -8,7 +8,7 @@
 //! (the NMI's reason), the PS/2 controller, the interrupt controllers, PCI
 //! configuration reads, the POST code port (for [`io_delay`]), QEMU's
 //! debug-exit device (written only once the kernel has identified QEMU,
-//! `machine.rs`), and the ACPI PM timer at the port the firmware's tables
+//! `machine.rs`), the RTC's CMOS registers, and the ACPI PM timer at the port the firmware's tables
 //! name; [`com1`] hands COM1's eight
 //! registers to the `uart_16550` driver, and [`vmware_svga`] writes one
 //! register of that card. None of
@@ -214,6 +214,16 @@ pub mod system_control {
     use super::IoPort;
 
     pub const PORT_B: IoPort<u8> = IoPort::new(0x61);
+}
+
+/// The real-time clock's registers in the CMOS: an index port (bit 7 of
+/// what is written disables the NMI while set, so the kernel writes it
+/// clear, as the firmware leaves it) and a data port (`rtc.rs`).
+pub mod cmos {
+    use super::IoPort;
+
+    pub const INDEX: IoPort<u8> = IoPort::new(0x70);
+    pub const DATA: IoPort<u8> = IoPort::new(0x71);
 }
 
 /// The ACPI power management timer's counter, at the port the firmware's

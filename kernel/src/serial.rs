@@ -1,7 +1,7 @@
 //! COM1, the protocol channel (kernel/protocol): frames out, command bytes
 //! in, through the `uart_16550` crate's driver. Sending polls the UART.
 //! Receiving moves every waiting byte into a ring buffer, so bytes
-//! arriving while the demo draws a frame or the console answers a command
+//! arriving while the demo draws a frame or the server answers a command
 //! are kept (the UART's own FIFO holds only 16, about 1.4 ms at 115200
 //! baud): from IRQ 4's handler (`interrupts.rs`), and by polling wherever
 //! the kernel waits ([`poll`]: the demo's frame pacing, the retrace, the
@@ -26,11 +26,12 @@
 //! no COM1 nothing is set up: frames go nowhere and no byte ever arrives,
 //! so the demo runs on. Every wait on the UART ends by the clock.
 
+use alloc::string::ToString;
 use core::fmt::{self, Write};
 use core::hint::spin_loop;
 use core::sync::atomic::{AtomicBool, AtomicU32, AtomicU8, AtomicUsize, Ordering};
 
-use protocol::{FrameHeader, FrameKind, LineErrors, LineLosses};
+use protocol::{FrameHeader, FrameKind, LineErrors, LineLosses, LogEvent};
 use spin::Mutex;
 use uart_16550::backend::PioBackend;
 use uart_16550::spec::registers::{FifoTriggerLevel, IER, LSR};
@@ -280,6 +281,11 @@ pub fn losses() -> LineLosses {
 /// Sends one frame: header line, payload, `\n` (kernel/protocol/src/lib.rs).
 pub fn send_frame(kind: FrameKind, payload: &[u8]) {
     send_reply(kind, None, payload);
+}
+
+/// Sends a `LOG` frame telling `event`.
+pub fn send_log(event: LogEvent) {
+    send_frame(FrameKind::Log, event.to_string().as_bytes());
 }
 
 /// Sends the frame answering a command line, its header echoing the

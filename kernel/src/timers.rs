@@ -5,13 +5,12 @@
 //! than its counter wraps (the PIT every 55 ms, the PM timer's 24 bits
 //! every 4.7 s, the HPET's low 32 bits every 7 minutes at 10 MHz).
 
-use protocol::MemoryType;
+use protocol::{HpetRefusal, MemoryType};
 use volatile::VolatilePtr;
 
-use crate::acpi;
-use crate::paging;
 use crate::pit::{self, Stopwatch};
 use crate::port::{self, IoPort};
+use crate::{acpi, memory_map, paging};
 
 /// A timer that counts at a known rate.
 pub trait Timer {
@@ -75,41 +74,74 @@ pub struct Hpet {
     elapsed: u64,
 }
 
-/// Register offsets (IA-PC HPET specification): the upper half of the
-/// capabilities (the counter's period in femtoseconds), the general
-/// configuration (bit 0: the main counter runs), the main counter.
+/// Register offsets (IA-PC HPET specification): the capabilities' lower
+/// half (bits 0-7 the revision, never 0), their upper half (the counter's
+/// period in femtoseconds), the general configuration (bit 0: the main
+/// counter runs), the main counter.
+const HPET_CAPABILITIES: u64 = 0x00;
+const HPET_REVISION: u32 = 0xFF;
 const HPET_PERIOD: u64 = 0x04;
 const HPET_CONFIGURATION: u64 = 0x10;
 const HPET_ENABLE: u32 = 1;
 const HPET_COUNTER: u64 = 0xF0;
-/// The registers' extent: one page.
+/// The registers' extent, and the boundary the block starts on: 1 KiB.
 const HPET_REGISTERS_LEN: u64 = 0x400;
-/// The specification's longest period: 100 ns (10 MHz, the slowest).
-const HPET_MAX_PERIOD_FS: u64 = 100_000_000;
+/// The specification's longest period, 100 ns (10 MHz, the slowest), and
+/// the shortest Linux takes, 100 ps (10 GHz).
+const HPET_MAX_PERIOD_FS: u32 = 100_000_000;
+const HPET_MIN_PERIOD_FS: u32 = 100_000;
 const FEMTOSECONDS_PER_SECOND: u64 = 1_000_000_000_000_000;
 
 impl Hpet {
     /// The HPET the ACPI tables under `rsdp` describe, its registers mapped
     /// uncacheable and its main counter running (started here if the
     /// firmware left it stopped; no timer of it is armed, so nothing
-    /// interrupts).
-    pub fn find(rsdp: u64) -> Option<Self> {
-        let registers = paging::physical(acpi::hpet(rsdp)?)?;
-        paging::set_memory_type(registers, HPET_REGISTERS_LEN, MemoryType::Uncacheable).ok()?;
-        // SAFETY (of each `paging::register`): `registers` is the HPET's
-        // register block, mapped uncacheable just above; the offsets are
-        // its 32-bit registers inside it.
-        let period = u64::from(unsafe { paging::register(registers, HPET_PERIOD) }.read());
-        if period == 0 || period > HPET_MAX_PERIOD_FS {
-            return None;
+    /// interrupts); `None` with no HPET table. A table's address is checked
+    /// before anything is mapped (on a 1 KiB boundary, in no RAM of the
+    /// memory map: a wrong one could have a RAM page made uncacheable and
+    /// written), and what answers there before anything is written (a
+    /// revision, a period of 100 ps to 100 ns); a refusal says why.
+    pub fn find(rsdp: u64) -> Option<Result<Self, (u64, HpetRefusal)>> {
+        let address = acpi::hpet(rsdp)?;
+        Some(Self::at(address).map_err(|why| (address, why)))
+    }
+
+    fn at(address: u64) -> Result<Self, HpetRefusal> {
+        if !address.is_multiple_of(HPET_REGISTERS_LEN) {
+            return Err(HpetRefusal::Misaligned);
         }
+        if memory_map::overlaps_ram(address, HPET_REGISTERS_LEN) {
+            return Err(HpetRefusal::InRam);
+        }
+        // Not RAM, as the checks above found: an uncacheable mapping of it
+        // makes no Rust object or page table uncacheable. (Where the map
+        // does not reach it, there is nothing to use.)
+        let not_there = HpetRefusal::NotAnHpet { capabilities: u32::MAX };
+        let registers = paging::physical(address).ok_or(not_there)?;
+        paging::set_memory_type(registers, HPET_REGISTERS_LEN, MemoryType::Uncacheable).map_err(|_| not_there)?;
+        // SAFETY (of each `paging::register`): `registers` is the block the
+        // table names, device memory (or nothing) outside RAM, mapped
+        // uncacheable just above; the offsets are 32-bit registers inside
+        // its 1 KiB, and reading these two changes nothing.
+        let capabilities = unsafe { paging::register(registers, HPET_CAPABILITIES) }.read();
+        if capabilities & HPET_REVISION == 0 || capabilities == u32::MAX {
+            return Err(HpetRefusal::NotAnHpet { capabilities });
+        }
+        let period = unsafe { paging::register(registers, HPET_PERIOD) }.read();
+        if !(HPET_MIN_PERIOD_FS..=HPET_MAX_PERIOD_FS).contains(&period) {
+            return Err(HpetRefusal::Period { femtoseconds: period });
+        }
+        let period = u64::from(period);
+        // SAFETY: as above; an HPET answered, so this is its configuration
+        // register, whose bit 0 starts its counter.
         let configuration = unsafe { paging::register(registers, HPET_CONFIGURATION) };
         let config = configuration.read();
         if config & HPET_ENABLE == 0 {
             configuration.write(config | HPET_ENABLE);
         }
+        // SAFETY: as above, its main counter.
         let counter = unsafe { paging::register(registers, HPET_COUNTER) };
-        Some(Self { counter, hz: FEMTOSECONDS_PER_SECOND / period, last: counter.read(), elapsed: 0 })
+        Ok(Self { counter, hz: FEMTOSECONDS_PER_SECOND / period, last: counter.read(), elapsed: 0 })
     }
 }
 

@@ -16,11 +16,9 @@
 //! writes, not the picture; the harness proves the picture with QEMU's
 //! screendump.
 
-use alloc::format;
-use alloc::string::String;
 use alloc::vec::Vec;
-use core::fmt::{self, Write};
 
+use protocol::{Mismatch, RegisterGroup};
 use scenes::palette::ENTRIES;
 use volatile::VolatilePtr;
 
@@ -273,42 +271,6 @@ pub fn read_dac() -> [u8; DAC_LEN] {
     dac
 }
 
-/// Which register group a [`Mismatch`] is in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Group {
-    Misc,
-    Sequencer,
-    Crtc,
-    Graphics,
-    Attribute,
-    /// `index` is the byte offset in the DAC: entry * 3 + component.
-    Dac,
-}
-
-/// A register that does not read back what mode 13h wrote.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Mismatch {
-    pub group: Group,
-    pub index: usize,
-    pub expected: u8,
-    pub actual: u8,
-}
-
-impl fmt::Display for Mismatch {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let Self { index, expected, actual, .. } = *self;
-        match self.group {
-            Group::Misc => write!(f, "misc")?,
-            Group::Sequencer => write!(f, "sequencer[{index:#04x}]")?,
-            Group::Crtc => write!(f, "crtc[{index:#04x}]")?,
-            Group::Graphics => write!(f, "graphics[{index:#04x}]")?,
-            Group::Attribute => write!(f, "attribute[{index:#04x}]")?,
-            Group::Dac => write!(f, "dac[{}].{}", index / 3, ["red", "green", "blue"][index % 3])?,
-        }
-        write!(f, ": expected {expected:#04x}, read {actual:#04x}")
-    }
-}
-
 /// Waits for the start of a vertical retrace, the moment to change the
 /// picture without tearing: while the retrace bit is set (one already
 /// under way), then until it is set. Gives up after
@@ -337,11 +299,11 @@ pub fn verify(palette: &Palette) -> Vec<Mismatch> {
             mismatches.push(Mismatch { group, index, expected, actual });
         }
     };
-    check(Group::Misc, 0, mode.misc, vga::MISC_READ.read());
+    check(RegisterGroup::Misc, 0, mode.misc, vga::MISC_READ.read());
     let groups = [
-        (Group::Sequencer, SEQUENCER, mode.sequencer),
-        (Group::Crtc, CRTC, mode.crtc),
-        (Group::Graphics, GRAPHICS, mode.graphics),
+        (RegisterGroup::Sequencer, SEQUENCER, mode.sequencer),
+        (RegisterGroup::Crtc, CRTC, mode.crtc),
+        (RegisterGroup::Graphics, GRAPHICS, mode.graphics),
     ];
     for (group, registers, values) in groups {
         for (index, &value) in (0..).zip(values) {
@@ -349,22 +311,10 @@ pub fn verify(palette: &Palette) -> Vec<Mismatch> {
         }
     }
     for (index, &value) in (0..).zip(mode.attribute) {
-        check(Group::Attribute, usize::from(index), value, read_attribute(index));
+        check(RegisterGroup::Attribute, usize::from(index), value, read_attribute(index));
     }
     for (index, (&expected, actual)) in palette.as_flattened().iter().zip(read_dac()).enumerate() {
-        check(Group::Dac, index, expected, actual);
+        check(RegisterGroup::Dac, index, expected, actual);
     }
     mismatches
-}
-
-/// One line for people: `vga: 0 mismatches`, or the count and every
-/// mismatch, `; `-separated.
-pub fn summary(mismatches: &[Mismatch]) -> String {
-    let mut text = format!("vga: {} mismatches", mismatches.len());
-    for (i, mismatch) in mismatches.iter().enumerate() {
-        let separator = if i == 0 { ": " } else { "; " };
-        // Writing to a `String` cannot fail.
-        let _ = write!(text, "{separator}{mismatch}");
-    }
-    text
 }

@@ -5,22 +5,20 @@
 //!   palette is in the DAC, both set by the kernel's own register writes;
 //! - a firmware's framebuffer: the frame is the kernel's own memory, drawn
 //!   exactly as video memory would be, and presented scaled in the
-//!   framebuffer (`framebuffer.rs`) at the moments a VGA would show it;
+//!   framebuffer (`presenter.rs`) at the moments a VGA would show it;
 //! - nothing: the frame is the kernel's own memory, shown nowhere.
 //!
 //! Drawing, the methods, the demo and the protocol are the same on every
-//! path. What the methods draw into, the frame as a span sink, is
-//! `video/frame.rs`'s [`Frame`].
+//! path. What the methods draw into, the frame's memory as a span sink,
+//! is `video/canvas.rs`'s [`Canvas`].
 
 use alloc::boxed::Box;
-use alloc::format;
-use alloc::string::String;
 use alloc::vec;
 use alloc::vec::Vec;
 use core::ptr::{self, NonNull};
 
 use bootloader_api::BootInfo;
-use protocol::{Firmware, MemoryType, Video, DUMP_LEN, FRAMEBUFFER_LEN};
+use protocol::{Firmware, LogEvent, MemoryType, Mismatch, VgaCheck, Video, Window, DUMP_LEN, FRAMEBUFFER_LEN};
 use raster::{sink, MethodId};
 use scenes::palette::VGA_DEFAULT;
 use scenes::{DrawReport, Scene};
@@ -28,12 +26,12 @@ use volatile::{VolatilePtr, VolatileRef};
 
 use x86_64::VirtAddr;
 
-mod frame;
+mod canvas;
 
-pub use frame::Frame;
+pub use canvas::Canvas;
 
-use crate::framebuffer::Presenter;
 use crate::pci::{DisplayController, Displays};
+use crate::presenter::Presenter;
 use crate::vga::{self, Palette};
 use crate::{card, paging, pat};
 
@@ -50,17 +48,18 @@ enum Output {
     Nothing,
 }
 
-/// The screen: the frame, where it is shown, and in what palette.
+/// The screen: the frame's canvas, where it is shown, and in what palette.
 pub struct Screen {
-    /// The frame: 0xA0000 on the VGA path, the kernel's memory otherwise.
-    frame: Frame,
+    /// The frame's memory: 0xA0000 on the VGA path, the kernel's memory
+    /// otherwise.
+    canvas: Canvas,
     /// The palette the frame is shown in, set by [`Screen::use_palette`]:
     /// in the DAC on the VGA path.
     palette: &'static Palette,
     output: Output,
     /// See [`Screen::display`] and [`Screen::findings`].
     display: Option<DisplayController>,
-    findings: Vec<String>,
+    findings: Vec<LogEvent>,
 }
 
 impl Screen {
@@ -98,11 +97,7 @@ impl Screen {
             // answered at its standard ports.
             Firmware::Uefi => match vga.filter(DisplayController::is_the_vga) {
                 Some(display) if physical.is_some() && head != Some(display) => {
-                    findings.push(format!(
-                        "video: the firmware's framebuffer is not in the memory of the VGA at {}: the frame goes \
-                         to the framebuffer, where the firmware showed its screen",
-                        display.address
-                    ));
+                    findings.push(LogEvent::FramebufferBesideTheVga { vga_at: display.address });
                     false
                 }
                 Some(display) if vga::responds() => match card::identify(&display) {
@@ -116,10 +111,7 @@ impl Screen {
             },
         };
         if firmware == Firmware::Uefi && framebuffer.is_none() {
-            findings.push(String::from(
-                "video: the loader handed over no framebuffer (the firmware's graphics mode has none it can draw \
-                 in: a PixelBitmask or BltOnly mode, or no graphics output at all)",
-            ));
+            findings.push(LogEvent::NoFramebuffer);
         }
         let (mut screen, display) = if vga_usable {
             vga::set_mode_13h();
@@ -147,7 +139,7 @@ impl Screen {
         if let Output::Vga { .. } = output {
             vga::load_dac(&VGA_DEFAULT);
         }
-        Self { frame: Frame::new(pixels), palette: &VGA_DEFAULT, output, display: None, findings: Vec::new() }
+        Self { canvas: Canvas::new(pixels), palette: &VGA_DEFAULT, output, display: None, findings: Vec::new() }
     }
 
     /// The display controller the frame goes to: on the framebuffer path
@@ -158,7 +150,7 @@ impl Screen {
     }
 
     /// What [`Screen::open`] found worth a `LOG` line before `READY`.
-    pub fn findings(&self) -> &[String] {
+    pub fn findings(&self) -> &[LogEvent] {
         &self.findings
     }
 
@@ -184,45 +176,29 @@ impl Screen {
     }
 
     /// The `VGACHECK` answer for the path in use: on the VGA path every
-    /// mode-13h register and DAC entry read back (`Err` listing what
-    /// differs), and how the window is mapped (page size and memory type,
-    /// read back from the page tables and the PAT); on the others there
-    /// are no VGA registers in use to check.
-    pub fn check(&self) -> Result<String, String> {
+    /// mode-13h register and DAC entry read back, and how the window is
+    /// mapped (page size and memory type, read back from the page tables
+    /// and the PAT); on the framebuffer path how the framebuffer is mapped
+    /// (`framebuffer.rs`); with nothing to show the frame, that.
+    pub fn check(&self) -> VgaCheck {
         match &self.output {
-            Output::Vga { .. } => {
-                let mismatches = vga::verify(self.palette);
-                let end = WINDOW_PHYSICAL + WINDOW_LEN - 1;
-                let mapping = match paging::mapping(window_start(), WINDOW_LEN) {
-                    Some(mapping) => format!("window {WINDOW_PHYSICAL:#x}-{end:#x}: {mapping}"),
-                    None => String::from("window not mapped"),
-                };
-                let summary = format!("{}; {mapping}; PAT {:#018x}", vga::summary(&mismatches), pat::read());
-                if mismatches.is_empty() {
-                    Ok(summary)
-                } else {
-                    Err(summary)
-                }
-            }
-            Output::Framebuffer(presenter) => {
-                let p = presenter.presentation();
-                Ok(format!(
-                    "vga: none in use, the frame is presented in the firmware's {}x{} framebuffer at scale {}; {}; \
-                     PAT {:#018x}",
-                    p.width,
-                    p.height,
-                    p.scale,
-                    presenter.describe(),
-                    pat::read()
-                ))
-            }
-            Output::Nothing => Err(String::from("vga: none, and no framebuffer: nothing shows the frame")),
+            Output::Vga { .. } => VgaCheck::Vga {
+                mismatches: vga::verify(self.palette),
+                window: paging::mapping(window_start(), WINDOW_LEN).map(|mapping| Window {
+                    start: WINDOW_PHYSICAL,
+                    end: WINDOW_PHYSICAL + WINDOW_LEN - 1,
+                    mapping,
+                }),
+                pat: pat::read(),
+            },
+            Output::Framebuffer(presenter) => VgaCheck::Framebuffer(presenter.check()),
+            Output::Nothing => VgaCheck::Nothing,
         }
     }
 
     /// The `LOG` lines of [`Screen::check`] before `READY`: each register
     /// or DAC entry of the VGA path that did not read back as written.
-    pub fn mismatches(&self) -> Vec<vga::Mismatch> {
+    pub fn mismatches(&self) -> Vec<Mismatch> {
         match self.output {
             Output::Vga { .. } => vga::verify(self.palette),
             Output::Framebuffer(_) | Output::Nothing => Vec::new(),
@@ -246,8 +222,8 @@ impl Screen {
     /// all of it; nothing to do on the other paths.
     pub fn present(&mut self) {
         match &mut self.output {
-            Output::Vga { cirrus: true } => vga::rewrite_through_latches(self.frame.pixels()),
-            Output::Framebuffer(presenter) => presenter.show(self.frame.pixels(), self.palette),
+            Output::Vga { cirrus: true } => vga::rewrite_through_latches(self.canvas.pixels()),
+            Output::Framebuffer(presenter) => presenter.show(self.canvas.pixels(), self.palette),
             Output::Vga { cirrus: false } | Output::Nothing => {}
         }
     }
@@ -261,28 +237,28 @@ impl Screen {
         }
     }
 
-    /// The frame the methods draw into, for a drawing that is not a
+    /// The canvas the methods draw into, for a drawing that is not a
     /// scene's (a still page of the show and its labels).
-    pub fn frame(&mut self) -> &mut Frame {
-        &mut self.frame
+    pub fn canvas(&mut self) -> &mut Canvas {
+        &mut self.canvas
     }
 
     /// Fills the screen with `color` of the VGA default palette.
     pub fn clear(&mut self, color: u8) {
         self.use_palette(&VGA_DEFAULT);
-        sink::clear(&mut self.frame, color);
+        sink::clear(&mut self.canvas, color);
         self.present();
     }
 
     /// Draws `scene` with `method` in the VGA default palette and says how
-    /// it went. The frame's type is known to the fill, so each span is
-    /// stored by [`Frame`]'s `fill` inline, with no call.
+    /// it went. The canvas's type is known to the fill, so each span is
+    /// stored by [`Canvas`]'s `fill` inline, with no call.
     pub fn draw(&mut self, scene: &Scene, method: MethodId) -> Drawn {
         self.use_palette(&VGA_DEFAULT);
-        let strays = self.frame.stray_spans();
-        let report = scene.draw(method, &mut self.frame);
+        let strays = self.canvas.stray_spans();
+        let report = scene.draw(method, &mut self.canvas);
         self.present();
-        Drawn { report, stray_spans: self.frame.stray_spans().wrapping_sub(strays) }
+        Drawn { report, stray_spans: self.canvas.stray_spans().wrapping_sub(strays) }
     }
 
     /// Puts a whole frame on the screen with one volatile copy (a `memcpy`
@@ -290,7 +266,7 @@ impl Screen {
     /// row after row; bytes past 64,000 are ignored, a shorter frame
     /// replaces only the top of the screen.
     pub fn blit(&mut self, frame: &[u8]) {
-        self.frame.copy_from(frame);
+        self.canvas.copy_from(frame);
         self.present();
     }
 
@@ -301,7 +277,7 @@ impl Screen {
     pub fn dump(&self) -> Vec<u8> {
         let mut dump = vec![0; DUMP_LEN];
         let (framebuffer, dac) = dump.split_at_mut(FRAMEBUFFER_LEN);
-        self.frame.copy_into(framebuffer);
+        self.canvas.copy_into(framebuffer);
         match self.output {
             Output::Vga { .. } => dac.copy_from_slice(&vga::read_dac()),
             Output::Framebuffer(_) | Output::Nothing => dac.copy_from_slice(self.palette.as_flattened()),

@@ -22,15 +22,15 @@ use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context, Result};
 use boot_image::build_image;
-use boot_image::process::command_line;
+use install::files::system_file;
+use install::process::command_line;
 use protocol::Ready;
 
-use crate::prerequisites::{
-    ensure_bochs, system_file, BOCHS, BOCHS_BIOS, BOCHS_BIOS_ENV, BOCHS_CIRRUS_VGA_BIOS, BOCHS_CIRRUS_VGA_BIOS_ENV,
-};
-use crate::qemu::console::Console;
-use crate::qemu::serial::{forward_bytes, FrameReader};
+use crate::client::{forward_bytes, Console, FrameReader};
 use crate::supervisor::Supervised;
+use install::emulators::{
+    ensure_bochs, BOCHS, BOCHS_BIOS, BOCHS_BIOS_ENV, BOCHS_CIRRUS_VGA_BIOS, BOCHS_CIRRUS_VGA_BIOS_ENV,
+};
 
 /// Longest wait for Bochs to connect COM1 to the harness.
 const CONNECT_TIMEOUT: Duration = Duration::from_secs(30);

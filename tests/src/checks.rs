@@ -8,11 +8,10 @@ use raster::MethodId;
 use scenes::palette::VGA_DEFAULT;
 use scenes::{builtin, show};
 
+use crate::client::{Console, Dump};
 use crate::picture::compare::{compare_images, compare_palettes};
 use crate::picture::render::{builtin_scene, render, render_show, show_entry, SceneSource};
 use crate::picture::Image;
-use crate::qemu::console::Console;
-use crate::qemu::reply::Dump;
 use crate::qemu::Qemu;
 
 /// QEMU shows each mode-13h pixel as a 2x2 block of its 640x400 screen.

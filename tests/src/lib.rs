@@ -17,11 +17,10 @@
 
 pub mod bochs;
 pub mod browser;
+pub mod cable;
 pub mod checks;
-pub mod line;
-pub mod packages;
+pub mod client;
 pub mod picture;
-pub mod prerequisites;
 pub mod qemu;
 pub mod secure_boot;
 pub mod serial_check;
@@ -29,8 +28,7 @@ pub mod soak;
 pub mod supervisor;
 pub mod workspace;
 
+pub use client::{Console, Dump, Reply};
 pub use picture::compare::compare_images;
 pub use picture::{render, Image};
-pub use qemu::console::Console;
-pub use qemu::reply::{Dump, Reply};
 pub use qemu::{Adapter, Board, Clock, Cpu, Display, DisplayAhead, ExitDevice, Medium, Qemu, QemuOptions, SerialLine};

@@ -16,7 +16,7 @@ use protocol::HeapState;
 use raster::MethodId;
 use scenes::show::{Entry, ENTRIES_IN_ORDER};
 
-use crate::qemu::console::Console;
+use crate::client::Console;
 
 /// One `SHOW` of a cycle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,3 +1,3 @@
 //! Where things are in the workspace.
 
-pub use boot_image::workspace::{nightly_target_dir, root, target_dir};
+pub use install::workspace::{nightly_target_dir, root, target_dir};

@@ -19,7 +19,7 @@
 use anyhow::{ensure, Result};
 use harness::checks::{dump_matches_host_render, screen_matches_dump, show_matches_host_render};
 use harness::{Adapter, Medium, Qemu, QemuOptions};
-use protocol::{Firmware, Presentation, Video};
+use protocol::{ErrorReply, Firmware, LogEvent, Presentation, VgaCheck, Video};
 use raster::SCREEN;
 use scenes::builtin;
 use scenes::show::ENTRIES_IN_ORDER;
@@ -206,11 +206,9 @@ fn with_no_display_card_the_kernel_boots_and_says_so_over_serial() -> Result<()>
     let ready = qemu.ready;
     ensure!(ready.display.is_none(), "-vga none: READY names the display {:?}", ready.display);
     ensure!(ready.video == Video::None, "-vga none: READY names the video path {:?}", ready.video);
-    let check = qemu.console.request(&protocol::Command::VgaCheck)?;
-    ensure!(
-        check == harness::Reply::Err("vga: none, and no framebuffer: nothing shows the frame".into()),
-        "-vga none: VGACHECK answers {check:?}"
-    );
+    let check = qemu.console.refusal(&protocol::Command::VgaCheck)?;
+    let check = ErrorReply::parse(&check)?;
+    ensure!(check == ErrorReply::VgaCheck(VgaCheck::Nothing), "-vga none: VGACHECK answers ERR {check:?}");
     let page_1 = builtin::ABRASH38_1;
     dump_matches_host_render(&mut qemu.console, page_1.name, page_1.method)?;
     let losses = qemu.console.ping()?;
@@ -229,7 +227,7 @@ fn under_uefi_a_blt_only_display_gets_no_framebuffer_and_the_kernel_says_so() ->
     let ready = qemu.ready;
     ensure!(ready.display == Adapter::VirtioGpu.pci_id(), "virtio-gpu: READY names the display {:?}", ready.display);
     ensure!(ready.video == Video::None, "virtio-gpu: READY names the video path {:?}", ready.video);
-    let said = qemu.console.logs().iter().any(|log| log.starts_with("video: the loader handed over no framebuffer"));
+    let said = qemu.console.logs().contains(&LogEvent::NoFramebuffer);
     ensure!(said, "virtio-gpu: no LOG says there is no framebuffer: {:?}", qemu.console.logs());
     let losses = qemu.console.ping()?;
     ensure!(losses.none(), "virtio-gpu: PING says the serial line lost bytes: {losses}");

@@ -9,7 +9,7 @@ use std::collections::BTreeSet;
 
 use anyhow::{bail, ensure, Context, Result};
 use harness::{Clock, Qemu, QemuOptions, Reply};
-use protocol::{BenchRow, Command};
+use protocol::{BenchRow, Command, ErrorReply};
 use raster::{Framebuffer, MethodId, SCREEN};
 use scenes::builtin;
 
@@ -36,7 +36,7 @@ fn bench_answers_one_positive_cycle_count_per_method_for_every_demo_scene() -> R
         }
     }
     match qemu.console.request(&Command::Bench { scene: "no-such-scene", repeats: 1 })? {
-        Reply::Err(text) if text.contains("no-such-scene") => {}
+        Reply::Err(text) if ErrorReply::parse(&text)? == ErrorReply::UnknownScene("no-such-scene") => {}
         other => bail!("BENCH of an unknown scene answered {other:?}, expected an ERR naming it"),
     }
     let losses = qemu.console.ping()?;

@@ -21,7 +21,7 @@ use anyhow::{bail, ensure, Context, Result};
 use harness::bochs::Bochs;
 use harness::checks::{dump_matches_host_render, show_matches_host_render};
 use harness::Reply;
-use protocol::{Command, FaultKind, Firmware, Machine, PciId, Video, EXIT_SUCCESS};
+use protocol::{Command, ErrorReply, FaultKind, Firmware, Machine, PciId, Video, EXIT_SUCCESS};
 use scenes::builtin;
 
 #[test]
@@ -40,7 +40,7 @@ fn bochs_boots_the_image_and_reads_back_from_its_card_what_the_host_renders() ->
     ensure!(ready.machine == Some(Machine::Unknown), "Bochs: READY names the machine {:?}", ready.machine);
     for command in [Command::Exit(EXIT_SUCCESS), Command::Fault(FaultKind::DivideError)] {
         match bochs.console.request(&command)? {
-            Reply::Err(text) if text.contains("not identified as QEMU") => {}
+            Reply::Err(text) if ErrorReply::parse(&text)? == ErrorReply::NotQemu(command.name()) => {}
             other => bail!("Bochs: `{command}` answered {other:?}, expected ERR"),
         }
     }

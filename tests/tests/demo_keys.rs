@@ -24,7 +24,7 @@ use harness::checks::{as_on_screen, SCREEN_SCALE};
 use harness::picture::compare::{compare_image_rows, images_match_in_rows};
 use harness::render::{render_show, show_entry};
 use harness::{Image, Qemu, QemuOptions, Reply};
-use protocol::Command;
+use protocol::{Command, DemoReply, ErrorReply};
 use raster::MethodId;
 use scenes::show::{ENTRIES_IN_ORDER, FRAMES_PER_SECOND, STILL_FRAMES};
 
@@ -176,7 +176,8 @@ fn space_enter_digits_and_escape_move_the_running_demo() -> Result<()> {
     let _turn = my_turn();
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     let answer = qemu.console.ok(&Command::Demo { entry: Some(first.name), method: None })?;
-    ensure!(answer == format!("demo from={} stay=true method=own", first.name), "DEMO answered OK \"{answer}\"");
+    let resumed = DemoReply { from: first.name, stay: true, method: None };
+    ensure!(DemoReply::parse(&answer)? == resumed, "DEMO answered OK \"{answer}\"");
     for (i, (step, (name, _))) in STEPS.iter().zip(&expected).enumerate() {
         let name = format!("demo_keys.{i}.{name}");
         let pressed = Instant::now();
@@ -309,20 +310,22 @@ fn demo_resumes_the_show_on_the_named_entry_and_method_and_stays_there() -> Resu
     let _turn = my_turn();
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     let answer = qemu.console.ok(&Command::Demo { entry: Some(page.name), method: Some(MethodId::Wgt) })?;
-    ensure!(answer == "demo from=abrash38-3 stay=true method=wgt", "DEMO answered OK \"{answer}\"");
+    let expected = DemoReply { from: page.name, stay: true, method: Some(MethodId::Wgt) };
+    ensure!(DemoReply::parse(&answer)? == expected, "DEMO answered OK \"{answer}\"");
     screen_shows(&mut qemu, "demo.abrash38-3.wgt", &still)?;
     // Past twice the page's 3 s, it is still there.
     std::thread::sleep(2 * page_lasts());
     screen_still_shows(&mut qemu, "demo.abrash38-3.wgt.stays", &still)?;
 
     let answer = qemu.console.ok(&Command::Demo { entry: Some(rotate.name), method: Some(MethodId::Exact) })?;
-    ensure!(answer == "demo from=lamothe-rotate stay=true method=exact", "DEMO answered OK \"{answer}\"");
+    let expected = DemoReply { from: rotate.name, stay: true, method: Some(MethodId::Exact) };
+    ensure!(DemoReply::parse(&answer)? == expected, "DEMO answered OK \"{answer}\"");
     let shown = frames_seen(&mut qemu, &frames, Duration::from_secs(30), Duration::from_secs(30))?;
     moves_forward("lamothe-rotate with exact", &shown, frames.len())?;
     let losses = qemu.console.ping()?;
     ensure!(losses.none(), "PING after DEMO says the serial line lost bytes: {losses}");
     match qemu.console.request(&Command::Demo { entry: Some("no-such-entry"), method: None })? {
-        Reply::Err(text) if text.contains("no-such-entry") => Ok(()),
+        Reply::Err(text) if ErrorReply::parse(&text)? == ErrorReply::UnknownShowEntry("no-such-entry") => Ok(()),
         other => bail!("DEMO of an unknown entry answered {other:?}, expected an ERR naming it"),
     }
 }

@@ -16,6 +16,7 @@
 //! commands remove what they just made). Tokens built from shell variables
 //! (`$s`) or brace lists are the commands' own, not citations.
 
+use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
@@ -369,7 +370,162 @@ fn every_variable_the_code_reads_is_in_the_docs() -> Result<()> {
         .collect();
     let read = variables_read(root)?;
     assert!(read.iter().any(|name| name == "POLYLAB_IMAGE"), "the variables were not found: {read:?}");
-    let undocumented: Vec<&String> = read.iter().filter(|name| !docs.contains(name.as_str())).collect();
+    // Whole names, as the docs spell them: `POLYLAB_OVMF_CODE` documents
+    // that variable, not a `POLYLAB_OVMF` the code might read.
+    let name = Regex::new(r"POLYLAB_[A-Z0-9_]*[A-Z0-9]").expect("a valid pattern");
+    let documented: BTreeSet<&str> = name.find_iter(&docs).map(|found| found.as_str()).collect();
+    let undocumented: Vec<&String> = read.iter().filter(|name| !documented.contains(name.as_str())).collect();
     assert!(undocumented.is_empty(), "variables the code reads and no page names: {undocumented:?}");
     Ok(())
+}
+
+/// The backticked words of the text from the start of the line where
+/// `start` first stands to the end of the first `end` after it, or `None`
+/// where either is not there.
+fn quoted_between(text: &str, start: &str, end: &str) -> Option<Vec<String>> {
+    let from = text[..text.find(start)?].rfind('\n').map_or(0, |newline| newline + 1);
+    let to = from + text[from..].find(end)? + end.len();
+    let quoted = Regex::new(r"`([^`]+)`").expect("a valid pattern");
+    Some(quoted.captures_iter(&text[from..to]).map(|found| found[1].to_string()).collect())
+}
+
+/// The kernel's modules that have `unsafe` code (a block, a function, an
+/// impl or a trait), by the name `main.rs` declares them under; a file in
+/// a module's folder counts for the module.
+fn modules_with_unsafe(kernel_src: &Path) -> Result<Vec<String>> {
+    let unsafe_code = Regex::new(r"\bunsafe\s*(\{|fn\b|impl\b|trait\b|extern\b)").expect("a valid pattern");
+    let mut modules = Vec::new();
+    for file in sources(kernel_src).into_iter().filter(|file| file.extension().is_some_and(|e| e == "rs")) {
+        let text = std::fs::read_to_string(&file).with_context(|| format!("failed to read {}", file.display()))?;
+        let code = text.lines().map(|line| line.split("//").next().unwrap_or("")).collect::<Vec<_>>().join("\n");
+        let relative = file.strip_prefix(kernel_src).expect("under kernel/src");
+        let first = relative.components().next().expect("a file").as_os_str().to_string_lossy();
+        let module = first.trim_end_matches(".rs").to_string();
+        if unsafe_code.is_match(&code) && module != "main" && !modules.contains(&module) {
+            modules.push(module);
+        }
+    }
+    modules.sort();
+    Ok(modules)
+}
+
+/// The modules `main.rs`'s paragraph on `unsafe` names: its backticked
+/// words that are modules of `kernel_src`.
+fn modules_listed(kernel_src: &Path, main_rs: &str) -> Option<Vec<String>> {
+    let quoted =
+        quoted_between(main_rs, "`unsafe` code lives in these modules alone", "Everything above them is safe")?;
+    let mut modules: Vec<String> = quoted
+        .into_iter()
+        .filter(|word| kernel_src.join(format!("{word}.rs")).is_file() || kernel_src.join(word).is_dir())
+        .collect();
+    modules.sort();
+    modules.dedup();
+    Some(modules)
+}
+
+#[test]
+fn the_kernel_lists_every_module_with_unsafe_code_and_no_other() -> Result<()> {
+    let kernel_src = workspace::root().join("kernel/src");
+    let main_rs = std::fs::read_to_string(kernel_src.join("main.rs")).context("failed to read kernel/src/main.rs")?;
+    let listed = modules_listed(&kernel_src, &main_rs).context("kernel/src/main.rs has no paragraph on `unsafe`")?;
+    let found = modules_with_unsafe(&kernel_src)?;
+    assert!(found.iter().any(|module| module == "port"), "no unsafe code found: {found:?}");
+    assert_eq!(listed, found, "kernel/src/main.rs lists these modules as having `unsafe` code; the code has");
+    Ok(())
+}
+
+#[test]
+fn a_module_with_unsafe_code_left_off_the_list_is_caught() {
+    let kernel_src = workspace::root().join("kernel/src");
+    let text = "//! `unsafe` code lives in these modules alone, each block with a\n\
+                //! `// SAFETY:` note: `port` and `nowhere`; `clock`'s one\n\
+                //! RDTSC. Everything above them is safe\n//! code.\n//! `heap`";
+    assert_eq!(modules_listed(&kernel_src, text), Some(vec!["clock".to_string(), "port".to_string()]));
+    assert_eq!(modules_listed(&kernel_src, "//! no such paragraph"), None);
+}
+
+/// The files of `folder` (recursively) that the words `quoted` do not
+/// name, and the `.rs` words that name no file there: a word is a path
+/// from the root, or a file's name, which names every file of that name
+/// in the folder.
+fn reading_order_gaps(root: &Path, folder: &Path, quoted: &[String]) -> (Vec<String>, Vec<String>) {
+    let files: Vec<PathBuf> =
+        sources(folder).into_iter().filter(|f| f.extension().is_some_and(|e| e == "rs")).collect();
+    let names = |file: &Path, word: &str| {
+        root.join(word) == file || file.file_name().is_some_and(|name| name.to_string_lossy() == word)
+    };
+    let rust: Vec<&String> = quoted.iter().filter(|word| word.ends_with(".rs")).collect();
+    let unnamed = files
+        .iter()
+        .filter(|file| !rust.iter().any(|word| names(file, word)))
+        .map(|file| file.strip_prefix(root).unwrap_or(file).display().to_string())
+        .collect();
+    let strays = rust
+        .iter()
+        .filter(|word| !files.iter().any(|file| names(file, word)) && !root.join(word).is_file())
+        .map(|word| word.to_string())
+        .collect();
+    (unnamed, strays)
+}
+
+#[test]
+fn the_reading_order_of_exact_names_every_file_of_its_folder() -> Result<()> {
+    let root = workspace::root();
+    let page = std::fs::read_to_string(root.join("docs/development.md")).context("failed to read development.md")?;
+    let quoted = quoted_between(&page, "**`exact`, one polygon at a time.**", "holds this list to the folder")
+        .context("docs/development.md has no reading order for `exact`")?;
+    let (unnamed, strays) = reading_order_gaps(root, &root.join("kernel/raster/src/methods/exact"), &quoted);
+    assert!(unnamed.is_empty(), "exact's reading order in docs/development.md leaves out {unnamed:?}");
+    assert!(strays.is_empty(), "exact's reading order in docs/development.md names {strays:?}, not files of exact");
+    assert!(quoted.iter().any(|word| word == "kernel/raster/src/classify.rs"), "the reading order skips classify.rs");
+    Ok(())
+}
+
+#[test]
+fn a_file_of_exact_left_out_of_the_reading_order_is_caught() {
+    let root = workspace::root();
+    let folder = root.join("kernel/raster/src/methods/exact");
+    let mut quoted: Vec<String> =
+        ["kernel/raster/src/methods/exact/mod.rs", "clip.rs", "edge.rs", "monotone.rs", "spans.rs", "gone.rs"]
+            .map(String::from)
+            .to_vec();
+    quoted
+        .extend(["mod.rs", "scratch.rs", "build.rs", "walk.rs", "order.rs", "runs.rs", "columns.rs"].map(String::from));
+    let (unnamed, strays) = reading_order_gaps(root, &folder, &quoted);
+    assert_eq!(unnamed, ["kernel/raster/src/methods/exact/active_edges/tables.rs"]);
+    assert_eq!(strays, ["gone.rs"]);
+}
+
+/// The members of `[workspace]` in the root `Cargo.toml` under `key`.
+fn workspace_list(manifest: &str, key: &str) -> Option<Vec<String>> {
+    let list = Regex::new(&format!(r"(?m)^{key}\s*=\s*\[([^\]]*)\]")).expect("a valid pattern");
+    let entry = Regex::new(r#""([^"]+)""#).expect("a valid pattern");
+    let found = list.captures(manifest)?;
+    let mut members: Vec<String> = entry.captures_iter(&found[1]).map(|e| e[1].to_string()).collect();
+    members.sort();
+    Some(members)
+}
+
+#[test]
+fn the_host_crates_development_md_names_are_the_default_members() -> Result<()> {
+    let root = workspace::root();
+    let manifest = std::fs::read_to_string(root.join("Cargo.toml")).context("failed to read Cargo.toml")?;
+    let default_members = workspace_list(&manifest, "default-members").context("Cargo.toml has no default-members")?;
+    let page = std::fs::read_to_string(root.join("docs/development.md")).context("failed to read development.md")?;
+    let mut named = quoted_between(&page, "**Two toolchains.** The host crates", "build on stable Rust")
+        .context("docs/development.md does not list the host crates")?;
+    named.sort();
+    assert_eq!(named, default_members, "docs/development.md's host crates against Cargo.toml's default-members");
+    Ok(())
+}
+
+#[test]
+fn a_host_crate_left_out_of_the_list_is_caught() {
+    let manifest = "[workspace]\nmembers = [\"kernel\", \"a\", \"b\"]\ndefault-members = [\"b\", \"a\"]\n";
+    assert_eq!(workspace_list(manifest, "default-members"), Some(vec!["a".to_string(), "b".to_string()]));
+    let page = "- **Two toolchains.** The host crates, the workspace's default members\n  (`a`), build on stable Rust.";
+    assert_eq!(
+        quoted_between(page, "**Two toolchains.** The host crates", "build on stable Rust"),
+        Some(vec!["a".into()])
+    );
 }

@@ -10,7 +10,9 @@ use std::time::{Duration, Instant};
 
 use anyhow::{bail, ensure, Result};
 use harness::{Cpu, ExitDevice, Qemu, QemuOptions, Reply};
-use protocol::{qemu_status, Command, FaultKind, Machine, EXIT_FAILURE as FAILED, EXIT_SUCCESS as SUCCESS};
+use protocol::{
+    qemu_status, Command, ErrorReply, FatalReport, FaultKind, Machine, EXIT_FAILURE as FAILED, EXIT_SUCCESS as SUCCESS,
+};
 
 /// Longest wait for QEMU to exit once the kernel has asked it to.
 const EXIT_TIMEOUT: Duration = Duration::from_secs(30);
@@ -27,15 +29,15 @@ fn exit_16_leaves_qemu_with_status_33() -> Result<()> {
     Ok(())
 }
 
-/// Provokes `kind`, expects a FATAL frame whose text starts with `named`
+/// Provokes `kind`, expects a FATAL frame whose report is `reported`
 /// (so the right handler caught it), then QEMU's exit with the failure
 /// status (35).
-fn fault_is_reported_and_fails(kind: FaultKind, named: &str) -> Result<()> {
+fn fault_is_reported_and_fails(kind: FaultKind, reported: fn(&FatalReport) -> bool) -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     qemu.console.send(&Command::Fault(kind))?;
     let cause = format!("FAULT {}", kind.name());
     match qemu.console.reply()? {
-        Reply::Fatal(text) => ensure!(text.starts_with(named), "{cause} reported \"{text}\", expected \"{named}...\""),
+        Reply::Fatal(text) => ensure!(reported(&FatalReport::parse(&text)?), "{cause} reported \"{text}\""),
         other => bail!("{cause} answered {other:?}, expected FATAL"),
     }
     let status = qemu.wait_exit(EXIT_TIMEOUT)?;
@@ -77,7 +79,7 @@ fn where_qemu_is_not_identified_exit_and_fault_are_refused_and_nothing_is_touche
     );
     for command in [Command::Exit(SUCCESS), Command::Fault(FaultKind::Panic), Command::Fault(FaultKind::PageFault)] {
         match qemu.console.request(&command)? {
-            Reply::Err(text) if text.contains("not identified as QEMU") => {}
+            Reply::Err(text) if ErrorReply::parse(&text)? == ErrorReply::NotQemu(command.name()) => {}
             other => bail!("`{command}` on an unidentified machine answered {other:?}, expected ERR"),
         }
     }
@@ -89,30 +91,40 @@ fn where_qemu_is_not_identified_exit_and_fault_are_refused_and_nothing_is_touche
 
 #[test]
 fn breakpoint_is_reported_and_exits_with_status_35() -> Result<()> {
-    fault_is_reported_and_fails(FaultKind::Breakpoint, "breakpoint")
+    fault_is_reported_and_fails(FaultKind::Breakpoint, |report| {
+        matches!(report, FatalReport::Exception { vector: 3, error: None, .. })
+    })
 }
 
 #[test]
 fn page_fault_is_reported_and_exits_with_status_35() -> Result<()> {
-    fault_is_reported_and_fails(FaultKind::PageFault, "page fault")
+    fault_is_reported_and_fails(FaultKind::PageFault, |report| {
+        // A read (no write, no user, no protection bits) of the kernel's
+        // unmapped address, `kernel/src/fault.rs`.
+        matches!(report, FatalReport::PageFault { address: 0xdeadbeef000, code, .. } if code.bits() == 0)
+    })
 }
 
 #[test]
 fn double_fault_is_reported_and_exits_with_status_35() -> Result<()> {
-    fault_is_reported_and_fails(FaultKind::DoubleFault, "double fault")
+    fault_is_reported_and_fails(FaultKind::DoubleFault, |report| matches!(report, FatalReport::DoubleFault { .. }))
 }
 
 #[test]
 fn panic_is_reported_and_exits_with_status_35() -> Result<()> {
-    fault_is_reported_and_fails(FaultKind::Panic, "panic")
+    fault_is_reported_and_fails(FaultKind::Panic, |report| matches!(report, FatalReport::Panic(_)))
 }
 
 #[test]
 fn divide_error_is_reported_and_exits_with_status_35() -> Result<()> {
-    fault_is_reported_and_fails(FaultKind::DivideError, "divide error")
+    fault_is_reported_and_fails(FaultKind::DivideError, |report| {
+        matches!(report, FatalReport::Exception { vector: 0, error: None, .. })
+    })
 }
 
 #[test]
 fn invalid_opcode_is_reported_and_exits_with_status_35() -> Result<()> {
-    fault_is_reported_and_fails(FaultKind::InvalidOpcode, "invalid opcode")
+    fault_is_reported_and_fails(FaultKind::InvalidOpcode, |report| {
+        matches!(report, FatalReport::Exception { vector: 6, error: None, .. })
+    })
 }

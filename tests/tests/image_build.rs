@@ -10,9 +10,9 @@
 use std::path::Path;
 
 use anyhow::{ensure, Context, Result};
-use boot_image::patched_copy::{check_copy, PatchedBootloader, COPY_BUILD_FOLDER};
-use boot_image::process::command_line;
-use boot_image::stage_builds;
+use boot_image::patched_copy::{fingerprint, PatchedBootloader, COPY_BUILD_FOLDER};
+use boot_image::{stage_builds, stage_builds_with};
+use install::process::command_line;
 
 /// Runs every stage build, failing on a failed one; returns what cargo
 /// printed on its standard error, build by build.
@@ -57,30 +57,70 @@ fn copy_tree(from: &Path, to: &Path, skip: &str) -> Result<()> {
     Ok(())
 }
 
-/// The patched bootloader as the build made it passes its check; with the
-/// loader's call of `check_kernel` deleted by hand (the edit that once let
-/// a signed loader boot any kernel), or a build script added, it is
-/// refused, naming the file; the build makes it again only when the edits
-/// themselves change, so a hand edit can never reach a signed loader.
+/// The image build itself (the function `cargo xtask image` calls to
+/// build the kernel and the writer) over a patched bootloader edited by
+/// hand after the build made it: with the loader's call of
+/// `check_kernel` deleted (the edit that once let a signed loader boot
+/// any kernel), or a build script added, the build refuses, naming the
+/// file, before anything is compiled; the copy as the build made it
+/// passes. The copy lives in a target folder of the test's own, its stamp
+/// saying it is current, as the build's own is after a build.
 #[test]
-fn a_hand_edited_patched_bootloader_is_refused_naming_the_file() -> Result<()> {
+fn the_image_build_refuses_a_hand_edited_patched_bootloader_naming_the_file() -> Result<()> {
     stage_builds()?;
-    let made = PatchedBootloader::in_target_dir().dir;
-    let dir = tempfile::tempdir()?;
-    let copy = dir.path().join("bootloader");
-    copy_tree(&made, &copy, COPY_BUILD_FOLDER)?;
-    check_copy(&copy)?;
-    let main = copy.join("uefi/src/main.rs");
+    let made = PatchedBootloader::in_target_dir();
+    let target = tempfile::tempdir()?;
+    let copy = PatchedBootloader::under(target.path());
+    copy_tree(&made.dir, &copy.dir, COPY_BUILD_FOLDER)?;
+    std::fs::write(copy.stamp(), fingerprint())?;
+    let main = copy.dir.join("uefi/src/main.rs");
     let text = std::fs::read_to_string(&main)?;
     let call = "    polylab_verify::check_kernel(kernel_slice);\n";
     ensure!(text.contains(call), "the loader never calls check_kernel: {}", main.display());
     std::fs::write(&main, text.replace(call, ""))?;
-    let error = format!("{:#}", check_copy(&copy).err().context("a copy without check_kernel passed")?);
+    let refused = |why: &str| -> Result<String> {
+        let error = stage_builds_with(&copy).err().with_context(|| format!("a copy {why} was built"))?;
+        Ok(format!("{error:#}"))
+    };
+    let error = refused("without check_kernel")?;
     ensure!(error.contains("(changed uefi/src/main.rs)"), "{error}");
     std::fs::write(&main, text)?;
-    std::fs::write(copy.join("uefi/build.rs"), "fn main() {}\n")?;
-    let error = format!("{:#}", check_copy(&copy).err().context("a copy with a build script added passed")?);
+    std::fs::write(copy.dir.join("uefi/build.rs"), "fn main() {}\n")?;
+    let error = refused("with a build script added")?;
     ensure!(error.contains("(added uefi/build.rs)"), "{error}");
     eprintln!("harness: {error}");
+    std::fs::remove_file(copy.dir.join("uefi/build.rs"))?;
+    stage_builds_with(&copy).context("the copy as the build made it was refused")?;
+    Ok(())
+}
+
+/// The words of the builder's home folder as paths in the image would
+/// hold them: `$HOME/`, and cargo's and rustup's folders wherever they
+/// are (`~/.cargo/registry/src/...` in a panic location, say).
+fn builders_folders() -> Vec<String> {
+    ["HOME", "CARGO_HOME", "RUSTUP_HOME"]
+        .iter()
+        .filter_map(|var| std::env::var(var).ok())
+        .map(|folder| format!("{}/", folder.trim_end_matches('/')))
+        .filter(|folder| folder.len() > 1)
+        .collect()
+}
+
+#[test]
+fn the_image_holds_no_path_of_the_builders_home_folder() -> Result<()> {
+    let image = boot_image::build_image()?;
+    let bytes = std::fs::read(&image).with_context(|| format!("failed to read {}", image.display()))?;
+    let folders = builders_folders();
+    ensure!(!folders.is_empty(), "neither HOME nor CARGO_HOME nor RUSTUP_HOME is set: nothing to look for");
+    for folder in folders {
+        let found = bytes.windows(folder.len()).filter(|window| *window == folder.as_bytes()).count();
+        ensure!(
+            found == 0,
+            "{} holds {found} paths under {folder} (the boot stages, the loader and the kernel are built with \
+             cargo's trim-paths; `strings {} | grep {folder}` shows them)",
+            image.display(),
+            image.display()
+        );
+    }
     Ok(())
 }

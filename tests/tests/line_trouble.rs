@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, ensure, Result};
 use harness::checks::{distinct_screens, dump_matches_host_render};
 use harness::{Qemu, QemuOptions, Reply, SerialLine};
-use protocol::{LineErrors, PARTIAL_LINE_IDLE_SECONDS};
+use protocol::{Cleared, LineErrors, LogEvent, PARTIAL_LINE_IDLE_SECONDS};
 use scenes::builtin;
 
 /// Telnet's "interpret as command" and "break".
@@ -57,8 +57,9 @@ fn after_a_break_and_stray_bytes_the_show_plays_on_and_ping_counts_the_break() -
     let one_break = LineErrors { breaks: 1, ..LineErrors::default() };
     ensure!(losses.errors == Some(one_break), "PING counts {losses}, expected the one break and nothing else");
     ensure!(losses.overruns == 0 && losses.dropped == 0, "PING says the serial line lost bytes: {losses}");
-    let dropped =
-        qemu.console.logs().iter().any(|log| log == "dropped an unfinished line (6 bytes kept) idle for 10 s");
+    // The six bytes after the break, its 0 byte dropped.
+    let dropped = LogEvent::LineDropped { overlong: false, kept: 6, idle_seconds: PARTIAL_LINE_IDLE_SECONDS };
+    let dropped = qemu.console.logs().contains(&dropped);
     ensure!(dropped, "no LOG says the unfinished line was dropped: {:?}", qemu.console.logs());
     Ok(())
 }
@@ -78,14 +79,14 @@ fn with_com1_on_irq_3_the_kernel_hears_every_command_by_polling() -> Result<()> 
     let burst: String = (0..BURST).map(|i| format!("CLEAR {i}\n")).collect();
     qemu.console.send_bytes(burst.as_bytes())?;
     for i in 0..BURST {
+        let expected = Cleared { color: u8::try_from(i)? };
         match qemu.console.reply()? {
-            Reply::Ok(text) if text == format!("clear {i}") => {}
-            other => bail!("reply {i} of the burst is {other:?}, expected OK \"clear {i}\""),
+            Reply::Ok(text) if Cleared::parse(&text)? == expected => {}
+            other => bail!("reply {i} of the burst is {other:?}, expected OK {expected:?}"),
         }
     }
     let losses = qemu.console.ping()?;
     ensure!(losses.none(), "PING says the serial line lost bytes: {losses}");
-    let polling = "COM1: its interrupt (IRQ 4) did not arrive; receiving by polling alone";
-    ensure!(qemu.console.logs().iter().any(|log| log == polling), "no LOG says so: {:?}", qemu.console.logs());
+    ensure!(qemu.console.logs().contains(&LogEvent::Com1Polling), "no LOG says so: {:?}", qemu.console.logs());
     Ok(())
 }

@@ -6,7 +6,7 @@ use anyhow::{ensure, Result};
 use harness::checks::dump_matches_host_render;
 use harness::picture::compare::compare_palettes;
 use harness::{Qemu, QemuOptions};
-use protocol::Command;
+use protocol::{Command, LogEvent, Machine};
 use raster::MethodId;
 use scenes::builtin;
 use scenes::palette::VGA_DEFAULT;
@@ -56,7 +56,7 @@ fn kernel_lists_the_scenes_and_methods_the_host_knows() -> Result<()> {
 fn vga_registers_read_back_as_programmed() -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     let logs = qemu.console.logs();
-    let only_the_machine = matches!(logs, [machine] if machine.starts_with("machine: qemu "));
+    let only_the_machine = matches!(logs, [LogEvent::Machine(evidence)] if evidence.machine == Machine::Qemu);
     ensure!(only_the_machine, "the kernel logged at boot: {logs:?}");
     qemu.console.ok(&Command::VgaCheck)?;
     Ok(())

@@ -3,7 +3,8 @@
 
 use anyhow::{bail, ensure, Result};
 use harness::{Qemu, QemuOptions, Reply};
-use protocol::{Command, MAX_LINE};
+use protocol::{Command, CommandError, ErrorReply, MAX_LINE};
+use scenes::file::LineError;
 
 /// Sends PING and expects a pong that counts no lost bytes: the proof the
 /// kernel still serves.
@@ -16,27 +17,28 @@ fn still_serving(qemu: &mut Qemu) -> Result<()> {
 #[test]
 fn malformed_commands_get_errors_naming_the_problem_and_the_kernel_keeps_serving() -> Result<()> {
     let overlong = "A".repeat(MAX_LINE + 100);
-    let cases: [(&[u8], &str); 12] = [
-        (b"", "empty"),
-        (b"FROB 1", "FROB"),
-        (b"CLEAR", "colour"),
-        (b"CLEAR 256", "256"),
-        (b"DUMP now", "now"),
-        (b"POLY exact", "polygon"),
-        (b"FAULT nap", "nap"),
-        (b"DRAW no-such-scene", "no-such-scene"),
-        (b"DRAW abrash38-1 no-such-method", "no-such-method"),
-        (b"POLY abrash_float color=999 0,0 9,0 0,9", "999"),
-        (b"PI\xffNG", "ASCII"),
-        (overlong.as_bytes(), "longer"),
+    let command = ErrorReply::Command;
+    let cases: [(&[u8], ErrorReply); 12] = [
+        (b"", command(CommandError::Empty)),
+        (b"FROB 1", command(CommandError::Unknown("FROB"))),
+        (b"CLEAR", command(CommandError::MissingArgument("colour"))),
+        (b"CLEAR 256", command(CommandError::BadArgument("256"))),
+        (b"DUMP now", command(CommandError::ExtraArgument("now"))),
+        (b"POLY exact", command(CommandError::MissingArgument("polygon"))),
+        (b"FAULT nap", command(CommandError::BadArgument("nap"))),
+        (b"DRAW no-such-scene", ErrorReply::UnknownScene("no-such-scene")),
+        (b"DRAW abrash38-1 no-such-method", command(CommandError::UnknownMethod("no-such-method"))),
+        (b"POLY abrash_float color=999 0,0 9,0 0,9", ErrorReply::Polygon(LineError::BadColor("999".into()))),
+        (b"PI\xffNG", command(CommandError::NotAscii)),
+        (overlong.as_bytes(), command(CommandError::TooLong)),
     ];
     let mut qemu = Qemu::boot(QemuOptions::default())?;
-    for (line, named) in cases {
+    for (line, expected) in cases {
         qemu.console.send_bytes(&[line, b"\n"].concat())?;
         let shown = String::from_utf8_lossy(&line[..line.len().min(40)]).into_owned();
         match qemu.console.reply()? {
-            Reply::Err(text) if text.contains(named) => {}
-            other => bail!("`{shown}` answered {other:?}, expected an ERR naming `{named}`"),
+            Reply::Err(text) if ErrorReply::parse(&text)? == expected => {}
+            other => bail!("`{shown}` answered {other:?}, expected ERR {expected:?}"),
         }
     }
     still_serving(&mut qemu)

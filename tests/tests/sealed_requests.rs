@@ -1,12 +1,11 @@
 //! A sealing console against a stand-in kernel: each reply matched to
 //! the line it answers, a step the line damaged run again and counted, a
 //! genuine `ERR` or a `FATAL` not retried, and a silent line explained
-//! (`harness::line`'s sealed requests; no QEMU).
+//! (`harness::client`'s sealed requests; no QEMU).
 
 use std::time::Duration;
 
-use harness::line::TroubleKind;
-use harness::qemu::serial::FrameReader;
+use harness::client::{FrameReader, TroubleKind};
 use harness::Console;
 use protocol::FrameHeader;
 use protocol::{Command, FrameKind};

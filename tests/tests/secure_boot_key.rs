@@ -15,14 +15,14 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use anyhow::{ensure, Context, Result};
-use boot_image::once::once_per_process;
-use boot_image::process::output_of;
 use boot_image::secure_boot::key::SigningKey;
 use boot_image::secure_boot::{debian, Enrollment, CERTIFICATE_PATH, LOADER_PATH};
 use harness::secure_boot::{
     boot, first_boot, ready_and_page_1_exact, refused, scratch, FatImage, MokEntry, Screen, SHIM_REFUSES,
 };
 use harness::Adapter;
+use install::once::once_per_process;
+use install::process::output_of;
 
 /// The passphrase of the tests' key (it signs nothing but these images).
 const PASSPHRASE: &str = "polylab Secure Boot tests";

@@ -12,10 +12,11 @@ use std::time::Duration;
 
 use anyhow::{ensure, Context, Result};
 use boot_image::build_image;
-use harness::line::{open_console, FaultRates, Relay, TroubleKind};
+use harness::cable::{open_console, FaultRates, Relay};
+use harness::client::TroubleKind;
 use harness::serial_check::{self, write_reports, CheckOptions, CheckReport, Scope};
 use harness::{Qemu, QemuOptions, Reply, SerialLine};
-use protocol::{Command, Sealed, BENCH_DEFAULT_REPEATS};
+use protocol::{Cleared, Command, Sealed, BENCH_DEFAULT_REPEATS};
 use raster::MethodId;
 
 /// Retries of a step on a clean line: `cargo xtask check`'s default.
@@ -196,18 +197,18 @@ fn a_damaged_command_is_refused_and_changes_nothing_while_plain_commands_still_w
     let sealed = |seq, command: &Command| format!("{}\n", Sealed { seq, command });
     qemu.console.send_bytes(sealed(7, &Command::Clear(9)).as_bytes())?;
     match qemu.console.reply()? {
-        Reply::Ok(text) if text == "clear 9" => {}
+        Reply::Ok(text) if Cleared::parse(&text)? == Cleared { color: 9 } => {}
         other => anyhow::bail!("sealed CLEAR 9 answered {other:?}"),
     }
     // `CLEAR 9` becomes `CLEAR 1` by one flipped bit: the CRC no longer checks.
     let damaged = sealed(8, &Command::Clear(9)).replace("CLEAR 9", "CLEAR 1");
     qemu.console.send_bytes(damaged.as_bytes())?;
     match qemu.console.reply()? {
-        Reply::Err(text) if text == protocol::Damaged.to_string() => {}
+        Reply::Err(text) if protocol::ErrorReply::parse(&text)? == protocol::ErrorReply::Damaged => {}
         other => anyhow::bail!("`{}` answered {other:?}, expected ERR for a damaged line", damaged.trim_end()),
     }
     let dump = qemu.console.dump()?;
     ensure!(dump.pixels.iter().all(|&pixel| pixel == 9), "the damaged CLEAR 1 changed the screen");
-    ensure!(qemu.console.ok(&Command::Clear(3))? == "clear 3", "a plain CLEAR after the damaged line");
+    qemu.console.clear(3).context("a plain CLEAR after the damaged line")?;
     Ok(())
 }

@@ -11,7 +11,7 @@ use std::time::Duration;
 
 use anyhow::{bail, ensure, Context, Result};
 use harness::{Qemu, QemuOptions, Reply};
-use protocol::Pong;
+use protocol::{Cleared, Pong};
 
 /// Commands in the burst: 160 lines of 7 to 9 bytes, some 1.3 KB, 80
 /// times the UART's 16-byte FIFO.
@@ -31,10 +31,10 @@ fn a_burst_of_commands_sent_while_the_demo_plays_is_answered_in_full_in_order() 
     let burst: String = (0..BURST).map(|i| format!("CLEAR {}\n", colour(i))).collect();
     qemu.console.send_bytes(format!("{burst}PING\n").as_bytes())?;
     for i in 0..BURST {
-        let expected = format!("clear {}", colour(i));
+        let expected = Cleared { color: colour(i) as u8 };
         match qemu.console.reply()? {
-            Reply::Ok(text) if text == expected => {}
-            other => bail!("reply {i} of the burst is {other:?}, expected OK \"{expected}\""),
+            Reply::Ok(text) if Cleared::parse(&text)? == expected => {}
+            other => bail!("reply {i} of the burst is {other:?}, expected OK {expected:?}"),
         }
     }
     let Pong { losses, .. } = match qemu.console.reply()? {

@@ -20,14 +20,13 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use anyhow::{ensure, Context, Result};
-use boot_image::once::once_per_process;
-use boot_image::process::output_of;
-use boot_image::secure_boot::debian::Unpacked;
+use boot_image::secure_boot::debian::{PinnedDeb, Unpacked};
 use boot_image::secure_boot::key::SigningKey;
 use boot_image::secure_boot::{shim, Enrollment, SHIM_PATH};
-use boot_image::sources::sha256_hex;
 use harness::secure_boot::{boot, loader_hash, ready_and_page_1_exact, scratch, FatImage, MokEntry};
 use harness::Adapter;
+use install::once::once_per_process;
+use install::process::output_of;
 
 /// Debian's pool, where every package version lives until it is dropped.
 const POOL: &str = "http://deb.debian.org/debian/pool/main/s";
@@ -52,40 +51,35 @@ fn shim_15_dir() -> PathBuf {
     harness::workspace::target_dir().join("shim-15.8")
 }
 
-/// shim 15.8 and its MokManager, fetched and checked once, then unpacked,
-/// once per process: the tests run side by side, and two unpacking into
-/// one folder would take each other's files away.
+/// shim 15.8 and its MokManager, fetched once (the pool's files kept in
+/// target/shim-15.8), each checked against its pin and unpacked afresh
+/// where an unpacked file differs from its package's
+/// ([`Unpacked::get`]): a folder unpacked by an earlier run is never
+/// trusted as found.
 fn shim_15_packages() -> Result<Unpacked> {
-    static UNPACKED: OnceLock<Result<PathBuf, String>> = OnceLock::new();
-    once_per_process(&UNPACKED, fetch_and_unpack).map(Unpacked::given)
+    static DEBS: OnceLock<Result<Vec<PinnedDeb>, String>> = OnceLock::new();
+    let debs = once_per_process(&DEBS, fetch)?;
+    Ok(Unpacked::pinned(shim_15_dir().join("unpacked"), debs))
 }
 
-/// [`shim_15_packages`]'s work: the folder they are unpacked in.
-fn fetch_and_unpack() -> Result<PathBuf> {
+/// [`shim_15_packages`]'s downloads, where they are not there yet.
+fn fetch() -> Result<Vec<PinnedDeb>> {
     let dir = shim_15_dir();
-    let unpacked = Unpacked::given(dir.join("unpacked"));
-    for (package, pool_path, sha256) in PACKAGES {
-        let deb = dir.join(pool_path.rsplit('/').next().expect("a file name"));
-        if !deb.is_file() {
-            fetch(&format!("{POOL}/{pool_path}"), &deb)?;
-        }
-        let bytes = std::fs::read(&deb).with_context(|| format!("failed to read {}", deb.display()))?;
-        ensure!(
-            sha256_hex(&bytes) == sha256,
-            "{} has SHA-256 {}, not the {sha256} pinned here: not the package this test was written for",
-            deb.display(),
-            sha256_hex(&bytes)
-        );
-        if !dir.join("unpacked").join(package).is_dir() {
-            unpacked.unpack_deb(package, &deb)?;
-        }
-    }
-    Ok(dir.join("unpacked"))
+    PACKAGES
+        .iter()
+        .map(|(package, pool_path, sha256)| {
+            let deb = dir.join(pool_path.rsplit('/').next().expect("a file name"));
+            if !deb.is_file() {
+                download(&format!("{POOL}/{pool_path}"), &deb)?;
+            }
+            Ok(PinnedDeb { package, deb, sha256 })
+        })
+        .collect()
 }
 
 /// Downloads `url` to `to` with apt's downloader, failing with what it
 /// means when the pool no longer has the file.
-fn fetch(url: &str, to: &Path) -> Result<()> {
+fn download(url: &str, to: &Path) -> Result<()> {
     std::fs::create_dir_all(to.parent().expect("a folder")).context("failed to create the packages' folder")?;
     let partial = to.with_extension("partial");
     let mut download = Command::new("/usr/lib/apt/apt-helper");

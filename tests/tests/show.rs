@@ -8,7 +8,7 @@
 use anyhow::{bail, ensure, Result};
 use harness::checks::show_matches_host_render;
 use harness::{Qemu, QemuOptions, Reply};
-use protocol::ShowReply;
+use protocol::{CommandError, ErrorReply, ShowReply};
 use raster::{Heap, MethodId};
 use scenes::show::{self, Entry, ENTRIES_IN_ORDER};
 
@@ -141,11 +141,15 @@ fn kernel_lists_the_show_and_refuses_bad_show_commands_and_keeps_serving() -> Re
     let listing = qemu.console.list()?;
     let expected: Vec<(String, u32)> = ENTRIES_IN_ORDER.iter().map(|e| (e.name.to_string(), e.frames)).collect();
     ensure!(listing.shows == expected, "kernel lists the show {:?}, host has {expected:?}", listing.shows);
-    for (line, named) in [("SHOW nope 0", "nope"), ("SHOW race 0 nomethod", "nomethod"), ("SHOW race x", "`x`")] {
+    for (line, expected) in [
+        ("SHOW nope 0", ErrorReply::UnknownShowEntry("nope")),
+        ("SHOW race 0 nomethod", ErrorReply::Command(CommandError::UnknownMethod("nomethod"))),
+        ("SHOW race x", ErrorReply::Command(CommandError::BadArgument("x"))),
+    ] {
         qemu.console.send_bytes(format!("{line}\n").as_bytes())?;
         match qemu.console.reply()? {
-            Reply::Err(text) if text.contains(named) => {}
-            other => bail!("`{line}` answered {other:?}, expected an ERR naming `{named}`"),
+            Reply::Err(text) if ErrorReply::parse(&text)? == expected => {}
+            other => bail!("`{line}` answered {other:?}, expected ERR {expected:?}"),
         }
     }
     let losses = qemu.console.ping()?;

@@ -4,11 +4,15 @@
 //! device ahead of the VGA in bus order, the VGA found by the legacy VGA
 //! decoding rather than by its place on the bus.
 
-use anyhow::{ensure, Result};
+use anyhow::{bail, ensure, Result};
 use harness::checks::{dump_matches_host_render, screen_matches_dump};
 use harness::{Adapter, DisplayAhead, Qemu, QemuOptions};
-use protocol::{Command, Firmware, MemoryType, PciAddress, Video};
+use protocol::{Command, Firmware, FramebufferCheck, MemoryType, PageMapping, PciAddress, VgaCheck, Video, Window};
 use scenes::builtin;
+
+/// The PAT as a CPU starts with it: write-back, write-through, UC-,
+/// uncacheable, twice (Intel's manual, volume 3, "Page Attribute Table").
+const PAT_AT_RESET: u64 = 0x0007_0406_0007_0406;
 
 /// `VGACHECK` reads back how the kernel mapped the VGA window: 16 pages of
 /// 4 KiB, uncacheable by the PAT (the bootloader's map had it in one 2 MiB
@@ -20,10 +24,15 @@ use scenes::builtin;
 fn vgacheck_reports_the_window_in_4_kib_uncacheable_pages() -> Result<()> {
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     ensure!(qemu.ready.memory == Some(MemoryType::Uncacheable), "READY names the memory {:?}", qemu.ready.memory);
-    let text = qemu.console.ok(&Command::VgaCheck)?;
-    let expected = "vga: 0 mismatches; window 0xa0000-0xaffff: 16 pages of 4 KiB, uncacheable (UC), PAT entry 3; \
-                    PAT 0x0007040600070406";
-    ensure!(text == expected, "VGACHECK answered \"{text}\", expected \"{expected}\"");
+    let check = VgaCheck::parse(&qemu.console.ok(&Command::VgaCheck)?)?;
+    let uncacheable_4k =
+        PageMapping { pages: 16, page_size: 4096, pat_entry: 3, memory: Some(MemoryType::Uncacheable), uniform: true };
+    let expected = VgaCheck::Vga {
+        mismatches: Vec::new(),
+        window: Some(Window { start: 0xa0000, end: 0xaffff, mapping: uncacheable_4k }),
+        pat: PAT_AT_RESET,
+    };
+    ensure!(check == expected, "VGACHECK answered {check:?}, expected {expected:?}");
     Ok(())
 }
 
@@ -65,8 +74,11 @@ fn bios_finds_the_vga_behind_another_display_device() -> Result<()> {
 /// its screen on the one ahead and hands its framebuffer over: the frame
 /// must go there, the head a user looks at, not into mode 13h on the VGA
 /// behind. `READY` must name that device and its place, the framebuffer
-/// path and write-combining, and the page must reach that device's screen
-/// exactly (QMP's screendump of it).
+/// path and write-combining, `VGACHECK` write-combining on both of the
+/// framebuffer's mappings (the kernel's own and its alias in the map of
+/// all physical memory: a write-combining page aliased to a cacheable one
+/// is what the manual forbids), and the page must reach that device's
+/// screen exactly (QMP's screendump of it).
 fn uefi_shows_the_frame_on_the_head_the_firmware_used(ahead: DisplayAhead, slot: u8) -> Result<()> {
     let options = QemuOptions {
         firmware: Firmware::Uefi,
@@ -82,6 +94,14 @@ fn uefi_shows_the_frame_on_the_head_the_firmware_used(ahead: DisplayAhead, slot:
     ensure!(ready.display_at == head, "{on}: READY names the display at {:?}, not 00:{slot:02x}.0", ready.display_at);
     ensure!(matches!(ready.video, Video::Framebuffer(_)), "{on}: READY names the video path {:?}", ready.video);
     ensure!(ready.memory == Some(MemoryType::WriteCombining), "{on}: READY names the memory {:?}", ready.memory);
+    let check = VgaCheck::parse(&qemu.console.ok(&Command::VgaCheck)?)?;
+    let VgaCheck::Framebuffer(FramebufferCheck { mapping, alias, .. }) = check else {
+        bail!("{on}: VGACHECK answered {check:?}, not the framebuffer path")
+    };
+    for (name, mapping) in [("the framebuffer", mapping), ("its alias", alias)] {
+        let memory = mapping.and_then(|mapping| mapping.memory_type());
+        ensure!(memory == Some(MemoryType::WriteCombining), "{on}: VGACHECK maps {name} {mapping:?}");
+    }
     let page = builtin::ABRASH38_1;
     let dump = dump_matches_host_render(&mut qemu.console, page.name, page.method)?;
     screen_matches_dump(&format!("uefi.{ahead:?}.{}", page.name), &dump, &qemu.screendump_ahead()?, &ready.video)

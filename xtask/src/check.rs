@@ -8,7 +8,7 @@ use std::path::absolute;
 use std::time::Duration;
 
 use anyhow::{bail, Context, Result};
-use harness::line::open_console;
+use harness::cable::open_console;
 use harness::serial_check::{self, write_reports, CheckOptions, Progress, Scope};
 use indicatif::{ProgressBar, ProgressStyle};
 

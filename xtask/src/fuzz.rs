@@ -24,13 +24,13 @@ use std::time::{Duration, Instant};
 
 use ::fuzz::{Target, TARGETS};
 use anyhow::{bail, Context, Result};
-use boot_image::cargo::pinned;
-use boot_image::process::{command_line, run_streaming};
-use boot_image::toolchain::ensure_toolchain;
-use harness::prerequisites::ensure_cargo_fuzz;
 use harness::supervisor::Supervised;
 use harness::workspace;
 use indicatif::{ProgressBar, ProgressStyle};
+use install::process::{command_line, run_streaming};
+use install::toolchain::ensure_cargo_fuzz;
+use install::toolchain::ensure_toolchain;
+use install::toolchain::pinned;
 
 use crate::opt::FuzzOpt;
 
@@ -272,7 +272,7 @@ impl FuzzRun {
             Failure::Crash { input, reason } => {
                 let replay = format!(
                     "cargo +{} fuzz run --fuzz-dir {FUZZ_DIR} --sanitizer none --target-dir {} {} {input}",
-                    boot_image::cargo::PINNED_TOOLCHAIN,
+                    install::toolchain::PINNED_TOOLCHAIN,
                     places.root.display(),
                     self.target
                 );

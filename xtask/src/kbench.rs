@@ -1,5 +1,5 @@
 //! `cargo xtask kbench`: has the kernel time every method on every demo
-//! scene with `BENCH` and writes the table (`harness::serial_check::bench`)
+//! scene with `BENCH` and writes the table (`harness::serial_check::bench_table`)
 //! as kernel_bench.md and kernel_bench.json.
 //!
 //! Under QEMU (the default) the kernel boots under instruction counting:
@@ -16,8 +16,8 @@ use std::path::{absolute, Path};
 use std::time::Duration;
 
 use anyhow::{Context, Result};
-use harness::line::open_console;
-use harness::serial_check::bench::{BenchTable, TickUnit};
+use harness::cable::open_console;
+use harness::serial_check::bench_table::{BenchTable, TickUnit};
 use harness::{Clock, Console, Qemu, QemuOptions};
 use scenes::builtin;
 

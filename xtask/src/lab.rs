@@ -14,8 +14,8 @@
 use std::path::absolute;
 
 use anyhow::{Context, Result};
-use boot_image::process::run_streaming;
-use harness::prerequisites::{ensure_cairo, ensure_peer_libraries};
+use install::libraries::{ensure_cairo, ensure_peer_libraries};
+use install::process::run_streaming;
 
 use crate::opt::LabOpt;
 
@@ -30,7 +30,7 @@ pub fn lab(opt: &LabOpt) -> Result<()> {
     ensure_cairo()?;
     ensure_peer_libraries()?;
     let out = absolute(&opt.out).with_context(|| format!("bad output directory {}", opt.out.display()))?;
-    let mut command = boot_image::cargo::host();
+    let mut command = install::toolchain::host();
     command.env("RUSTFLAGS", NATIVE_RUSTFLAGS);
     command.args(["run", "--quiet", "--release", "--package", "lab", "--target-dir", NATIVE_TARGET_DIR, "--"]);
     if opt.quick {

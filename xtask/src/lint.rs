@@ -13,11 +13,13 @@
 use std::process::Command;
 
 use anyhow::{Context, Result};
-use boot_image::cargo::{host, pinned, NightlyBuild, KERNEL_TARGET, NIGHTLY_ONLY};
-use boot_image::process::run_streaming;
-use boot_image::toolchain::ensure_toolchain;
-use boot_image::workspace;
-use harness::prerequisites::{ensure_cairo, ensure_cxx, ensure_peer_libraries};
+use boot_image::cargo::{NightlyBuild, NIGHTLY_ONLY};
+use install::libraries::{ensure_cairo, ensure_peer_libraries};
+use install::process::run_streaming;
+use install::toolchain::ensure_cxx;
+use install::toolchain::ensure_toolchain;
+use install::toolchain::{host, pinned, KERNEL_TARGET};
+use install::workspace;
 
 pub fn lint() -> Result<()> {
     // Under `cargo xtask`, rustup names the running toolchain in
@@ -96,7 +98,7 @@ fn kernel_clippy() -> Command {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use boot_image::process::command_line;
+    use install::process::command_line;
 
     #[test]
     fn host_clippy_covers_every_host_crate_with_the_pinned_nightly_and_denies_warnings() {

@@ -23,6 +23,10 @@ use clap::Parser;
 use crate::opt::{Action, Cli, EnrollOpt};
 
 fn main() -> Result<()> {
+    // The Secure Boot key's passphrase leaves the environment before any
+    // thread or child starts: only the openssl that needs it gets it, on
+    // a pipe.
+    boot_image::secure_boot::key::take_passphrase();
     match Cli::parse().action {
         Action::Run(opt) => run::run(&opt),
         Action::Image(opt) => {

@@ -189,7 +189,11 @@ pub enum EnrollOpt {
 
 #[derive(Args, Debug)]
 pub struct TestOpt {
-    /// Passed on to `cargo test` (e.g. `-- --nocapture`).
+    /// Tests running at once, across the test binaries (default: three
+    /// per core).
+    #[arg(long, short, value_parser = clap::value_parser!(u16).range(1..))]
+    pub jobs: Option<u16>,
+    /// Passed on to `cargo test` (e.g. `-- --test pages`, `-- -- --nocapture`).
     #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
     pub cargo_args: Vec<String>,
 }

@@ -7,11 +7,11 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Result};
 use boot_image::build_image;
 use harness::checks::{screen_matches_dump, show_matches_host_render, source_matches_host_render};
-use harness::prerequisites::ensure_qemu_window;
 use harness::render::{entry_names, SceneFile, SceneSource};
 use harness::workspace::target_dir;
 use harness::{Clock, Display, Medium, Qemu, QemuOptions};
-use protocol::Command;
+use install::emulators::ensure_qemu_window;
+use protocol::{Command, Firmware};
 use raster::MethodId;
 use scenes::show::{self, Entry, ENTRIES_IN_ORDER};
 
@@ -102,12 +102,10 @@ fn in_a_window(shown: &OnScreen, method: Option<MethodId>, options: QemuOptions)
 /// loop); or draws the scene file into `<name>.png`. Every picture is the
 /// kernel's dump, checked against the host render, and a still's (or the
 /// file's) against QEMU's screendump too; each path and the cycles are
-/// printed. QEMU counts instructions, as for `record`: `SHOW` is not paced
-/// by the clock, and the cycles the labels and the summary give are then
-/// emulated instructions, the same from run to run.
+/// printed. QEMU counts instructions ([`headless_clock`]).
 fn headless(shown: &OnScreen, method: Option<MethodId>, options: QemuOptions, out: &Path) -> Result<()> {
     eprintln!("xtask: headless (no display, or --headless): writing the pictures into {}", out.display());
-    let mut qemu = Qemu::boot(QemuOptions { clock: Clock::InstructionCount, ..options })?;
+    let mut qemu = Qemu::boot(QemuOptions { clock: headless_clock(options.firmware), ..options })?;
     let png = |name: &str| -> PathBuf { out.join(format!("{name}.png")) };
     match shown {
         OnScreen::Show(entry) => {
@@ -139,6 +137,24 @@ fn headless(shown: &OnScreen, method: Option<MethodId>, options: QemuOptions, ou
     Ok(())
 }
 
+/// The guest's clock for a headless run under `firmware`. Under the BIOS,
+/// instructions, as for `record`: `SHOW` is not paced by the clock, and
+/// the cycles the labels and the summary give are then emulated
+/// instructions, the same from run to run. Under OVMF, the host's time:
+/// OVMF busy-waits on the ACPI PM timer for seconds while it boots
+/// (sampled: most of it in PEI, polling a TPM's registers at 0xFED40000
+/// that are not there until each wait times out), and at one instruction
+/// per nanosecond those seconds are billions of emulated instructions:
+/// 110 s of QEMU's CPU time before the kernel ran, against 5.5 s on the
+/// host's clock, so that the boot missed READY's deadline on a loaded
+/// machine.
+fn headless_clock(firmware: Firmware) -> Clock {
+    match firmware {
+        Firmware::Bios => Clock::InstructionCount,
+        Firmware::Uefi => Clock::RealTime,
+    }
+}
+
 /// Writes `image` to `path` (creating its folder) and prints the path.
 fn write_png(image: &harness::Image, path: &Path) -> Result<()> {
     if let Some(dir) = path.parent() {
@@ -153,12 +169,10 @@ fn write_png(image: &harness::Image, path: &Path) -> Result<()> {
 mod tests {
     use std::fs;
 
-    use harness::render::render_show;
-    use harness::Adapter;
-    use protocol::Firmware;
-
     use super::*;
     use crate::opt::{parse_command, Action};
+    use harness::render::render_show;
+    use harness::Adapter;
 
     fn parse(args: &[&str]) -> Result<RunOpt, clap::Error> {
         parse_command("run", args).map(|action| match action {
@@ -205,6 +219,12 @@ mod tests {
         let scene = run(&parse(&["--scene", "no-such-entry", "--headless"]).unwrap()).unwrap_err().to_string();
         assert!(scene.starts_with("`no-such-entry` is neither an entry of the show nor a scene file"), "{scene}");
         assert!(scene.ends_with(", race"), "{scene}");
+    }
+
+    #[test]
+    fn headless_runs_count_instructions_under_the_bios_only() {
+        assert_eq!(headless_clock(Firmware::Bios), Clock::InstructionCount);
+        assert_eq!(headless_clock(Firmware::Uefi), Clock::RealTime);
     }
 
     #[test]

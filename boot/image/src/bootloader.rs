@@ -27,7 +27,7 @@
 
 use anyhow::{ensure, Result};
 
-use crate::sources::{PinnedCrate, STAGE_2, UEFI_LOADER};
+use crate::sources::{PinnedCrate, BOOTLOADER, STAGE_2, UEFI_LOADER};
 
 pub use crate::sources::VERSION;
 
@@ -101,6 +101,53 @@ pub const STAGE_2_EDITS: &[Edit] = &[
             pixel_format: bootloader_x86_64_bios_common::PixelFormat::Rgb,
         },
 ",
+    },
+];
+
+/// Everything the image's copy of `bootloader` itself changes: its build
+/// script, which builds the BIOS stages with `cargo install` (the
+/// registry's stages 3 and 4, the boot sector, and the patched stage 2),
+/// passes them cargo's path trimming (a nightly feature), as the kernel's
+/// build and the loader's profile do; and `--force`, since `cargo install`
+/// skips a version it installed before into the same folder whatever its
+/// flags (a stage built without the trimming would stay).
+pub const BOOTLOADER_EDITS: &[Edit] = &[
+    Edit {
+        file: "build.rs",
+        purpose:
+            "build the BIOS boot sector with no path of the build machine in it, as the loader and the kernel are \
+                  built: cargo remaps the sources of the toolchain and of every crate to names without the \
+                  builder's home folder",
+        find: "    cmd.arg(\"--profile\").arg(\"stage-1\");\n",
+        replace: "    cmd.arg(\"--profile\").arg(\"stage-1\");\n    \
+                  cmd.args([\"--force\", \"-Ztrim-paths\", \"--config\", \"profile.stage-1.trim-paths=\\\"all\\\"\"]);\n",
+    },
+    Edit {
+        file: "build.rs",
+        purpose: "build the BIOS stage 2 with no path of the build machine in it, as the loader and the kernel are \
+                  built: cargo remaps the sources of the toolchain and of every crate to names without the \
+                  builder's home folder",
+        find: "    cmd.arg(\"--profile\").arg(\"stage-2\");\n",
+        replace: "    cmd.arg(\"--profile\").arg(\"stage-2\");\n    \
+                  cmd.args([\"--force\", \"-Ztrim-paths\", \"--config\", \"profile.stage-2.trim-paths=\\\"all\\\"\"]);\n",
+    },
+    Edit {
+        file: "build.rs",
+        purpose: "build the BIOS stage 3 with no path of the build machine in it, as the loader and the kernel are \
+                  built: cargo remaps the sources of the toolchain and of every crate to names without the \
+                  builder's home folder",
+        find: "    cmd.arg(\"--profile\").arg(\"stage-3\");\n",
+        replace: "    cmd.arg(\"--profile\").arg(\"stage-3\");\n    \
+                  cmd.args([\"--force\", \"-Ztrim-paths\", \"--config\", \"profile.stage-3.trim-paths=\\\"all\\\"\"]);\n",
+    },
+    Edit {
+        file: "build.rs",
+        purpose: "build the BIOS stage 4 with no path of the build machine in it, as the loader and the kernel are \
+                  built: cargo remaps the sources of the toolchain and of every crate to names without the \
+                  builder's home folder",
+        find: "    cmd.arg(\"--profile\").arg(\"stage-4\");\n",
+        replace: "    cmd.arg(\"--profile\").arg(\"stage-4\");\n    \
+                  cmd.args([\"--force\", \"-Ztrim-paths\", \"--config\", \"profile.stage-4.trim-paths=\\\"all\\\"\"]);\n",
     },
 ];
 
@@ -258,8 +305,10 @@ pub struct Patch {
     pub added_files: &'static [(&'static str, &'static str)],
 }
 
-/// Both patched crates.
-pub const PATCHES: [Patch; 2] = [
+/// The patched crates: `bootloader` itself (at the copy's root), stage 2
+/// and the UEFI loader.
+pub const PATCHES: [Patch; 3] = [
+    Patch { source: BOOTLOADER, folder: "", edits: BOOTLOADER_EDITS, added_files: &[] },
     Patch { source: STAGE_2, folder: "bios/stage-2", edits: STAGE_2_EDITS, added_files: &[] },
     Patch { source: UEFI_LOADER, folder: "uefi", edits: LOADER_EDITS, added_files: LOADER_FILES },
 ];

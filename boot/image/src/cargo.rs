@@ -1,61 +1,17 @@
 //! Typed `cargo +<pinned nightly>` invocations for the kernel and the image
-//! writer (`boot`).
+//! writer (`boot`); the toolchain itself is `install::toolchain`'s.
 
 use std::path::PathBuf;
 use std::process::Command;
 
-use crate::workspace;
+use install::toolchain::{pinned, KERNEL_TARGET};
+use install::workspace;
 
-/// The nightly that builds the kernel and `bootloader`'s BIOS stages
-/// (`docs/development.md#the-toolchain`: `x86_64` 0.15.5 needs >= 2026-07-10).
-pub const PINNED_TOOLCHAIN: &str = "nightly-2026-10-01";
-/// The kernel's target triple.
-pub const KERNEL_TARGET: &str = "x86_64-unknown-none";
 /// Workspace members that only build with the pinned nightly (`boot`'s
 /// bootloader build script uses `-Zbuild-std`; the kernel is bare metal):
 /// host-wide commands (`cargo test`, `cargo clippy`) exclude them, and the
 /// image is how they are tested.
 pub const NIGHTLY_ONLY: [&str; 2] = ["kernel", "boot"];
-
-/// Variables that a parent cargo (`cargo xtask`, `cargo test`) or rustup
-/// proxy sets: `RUSTC`, `RUSTDOC`, `CARGO` and the wrappers name the stable
-/// tools and would beat `+toolchain`, the flags are the host build's, and
-/// `RUSTUP_TOOLCHAIN` would pick stable for any tool the nightly cargo
-/// starts through a proxy.
-const PARENT_TOOLCHAIN_VARS: &[&str] = &[
-    "RUSTUP_TOOLCHAIN",
-    "RUSTUP_TOOLCHAIN_SOURCE",
-    "RUSTC",
-    "RUSTDOC",
-    "CARGO",
-    "RUSTFLAGS",
-    "CARGO_ENCODED_RUSTFLAGS",
-    "RUSTDOCFLAGS",
-    "CARGO_ENCODED_RUSTDOCFLAGS",
-    "RUSTC_WRAPPER",
-    "RUSTC_WORKSPACE_WRAPPER",
-    "CARGO_BUILD_TARGET",
-];
-
-/// `program` (a rustup proxy: `cargo` or `rustup`) with the pinned toolchain
-/// selected by `+toolchain`, the parent's toolchain variables removed, run
-/// from the workspace root.
-pub fn pinned(program: &str) -> Command {
-    let mut command = Command::new(program);
-    command.arg(format!("+{PINNED_TOOLCHAIN}")).current_dir(workspace::root());
-    for var in PARENT_TOOLCHAIN_VARS {
-        command.env_remove(var);
-    }
-    command
-}
-
-/// The cargo that runs the xtask (the stable toolchain, for the host
-/// crates), run from the workspace root.
-pub fn host() -> Command {
-    let mut command = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()));
-    command.current_dir(workspace::root());
-    command
-}
 
 /// One release build of a workspace package with the pinned nightly.
 #[derive(Clone, Copy, Debug)]
@@ -102,8 +58,7 @@ impl NightlyBuild<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::process::command_line;
-    use std::ffi::OsStr;
+    use install::process::command_line;
 
     #[test]
     fn kernel_build_uses_the_pinned_nightly_and_its_own_target_dir() {
@@ -127,15 +82,5 @@ mod tests {
         let command = NightlyBuild::IMAGE_WRITER.command();
         assert!(!command.get_args().any(|a| a == "--target"));
         assert_eq!(NightlyBuild::IMAGE_WRITER.artifact(), workspace::nightly_target_dir().join("release/boot"));
-    }
-
-    #[test]
-    fn parent_toolchain_variables_are_removed() {
-        let command = pinned("rustup");
-        let removed: Vec<&OsStr> =
-            command.get_envs().filter(|(_, value)| value.is_none()).map(|(key, _)| key).collect();
-        for var in ["RUSTUP_TOOLCHAIN", "RUSTC", "CARGO", "RUSTFLAGS"] {
-            assert!(removed.contains(&OsStr::new(var)), "{var} is not removed");
-        }
     }
 }

@@ -14,51 +14,43 @@
 //! # }
 //! ```
 
-pub mod apt;
 pub mod bootloader;
 pub mod cargo;
-pub mod once;
 pub mod patched_copy;
-pub mod process;
+pub mod provenance;
 pub mod secure_boot;
 pub mod sources;
-pub mod toolchain;
 pub mod tree;
-pub mod workspace;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use anyhow::{ensure, Context, Result};
+use anyhow::{Context, Result};
 
 use crate::cargo::NightlyBuild;
-use crate::once::once_per_process;
 use crate::patched_copy::PatchedBootloader;
-use crate::process::run_streaming;
 use crate::secure_boot::debian::{self, Unpacked};
 use crate::secure_boot::key::{self, SigningKey};
 use crate::secure_boot::{
     loader, shim, Enrollment, CERTIFICATE_PATH, HASH_ENROLL_PATH, LOADER_PATH, MOK_MANAGER_PATH, SHIM_PATH,
 };
-use crate::toolchain::ensure_toolchain;
+use install::once::once_per_process;
+use install::process::run_streaming;
+use install::toolchain::ensure_toolchain;
+use install::workspace;
 
-/// Names a prebuilt image to use instead of building one (`cargo xtask
-/// test` builds once and hands it to every test binary this way). A
-/// relative path is taken from the workspace root, since test binaries run
-/// in their package's directory.
-pub const IMAGE_ENV: &str = "POLYLAB_IMAGE";
+pub use provenance::IMAGE_ENV;
 
-/// The raw image, built once per process (or taken from [`IMAGE_ENV`]),
-/// its loader to be enrolled by its hash ([`Enrollment::Hash`]). Installs
-/// the pinned nightly first when it is missing.
+/// The raw image, built once per process (or taken from [`IMAGE_ENV`] if
+/// it is this tree's build, or [`provenance::MEANT_ENV`] says it is
+/// meant), its loader to be enrolled by its hash ([`Enrollment::Hash`]).
+/// Installs the pinned nightly first when it is missing.
 pub fn build_image() -> Result<PathBuf> {
     static IMAGE: OnceLock<Result<PathBuf, String>> = OnceLock::new();
     once_per_process(&IMAGE, || {
-        if let Some(image) = std::env::var_os(IMAGE_ENV) {
-            let image = workspace::root().join(image);
-            ensure!(image.is_file(), "{IMAGE_ENV} names {}, which is not a file", image.display());
-            eprintln!("image: using {} from {IMAGE_ENV}", image.display());
+        let given = provenance::image_given(std::env::var_os(IMAGE_ENV), std::env::var_os(provenance::MEANT_ENV))?;
+        if let Some(image) = given {
             return Ok(image);
         }
         build_image_with(&Enrollment::Hash, &debian_packages(), &image_path())
@@ -69,11 +61,13 @@ pub fn build_image() -> Result<PathBuf> {
 /// says, shim and MokManager from `debian`.
 pub fn build_image_with(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Result<PathBuf> {
     key::warn_of_old_key();
+    let sources = provenance::sources_digest(workspace::root())?;
     for mut build in stage_builds()? {
         run_streaming(&mut build).context("failed to build the kernel or the image writer")?;
     }
     PatchedBootloader::in_target_dir().ensure_used()?;
     write_image(enrollment, debian, image)?;
+    provenance::record(image, &sources)?;
     eprintln!("image: built {}", image.display());
     Ok(image.to_path_buf())
 }
@@ -82,8 +76,15 @@ pub fn build_image_with(enrollment: &Enrollment, debian: &Unpacked, image: &Path
 /// bootloader, made first if need be, else checked), in order. Both are
 /// no-ops when nothing changed: tests/tests/image_build.rs runs them twice.
 pub fn stage_builds() -> Result<Vec<Command>> {
+    stage_builds_with(&PatchedBootloader::in_target_dir())
+}
+
+/// [`stage_builds`] against the patched copy `patched` (a test's, for
+/// one): it is made first if need be, else checked file by file, and a
+/// copy edited by hand stops the build here, before anything compiles.
+pub fn stage_builds_with(patched: &PatchedBootloader) -> Result<Vec<Command>> {
     ensure_toolchain()?;
-    let patched = patched_copy::prepare()?;
+    patched_copy::prepare(patched)?;
     eprintln!("image: building the kernel and the image writer (the first build takes minutes)");
     let mut writer = NightlyBuild::IMAGE_WRITER.command();
     patched.configure(&mut writer)?;
@@ -97,9 +98,9 @@ pub fn users_signing_key() -> Result<SigningKey> {
 
 /// A key of one's own (`cargo xtask image --key --cert`): `key` (PEM,
 /// encrypted) and `cert` (PEM or DER); the passphrase from
-/// [`key::PASSPHRASE_ENV`] if set, else asked for.
+/// [`key::PASSPHRASE_ENV`] if set ([`key::take_passphrase`]), else asked for.
 pub fn own_signing_key(key: &Path, cert: &Path) -> Result<SigningKey> {
-    SigningKey::own(key, cert, std::env::var(key::PASSPHRASE_ENV).ok(), &own_key_dir())
+    SigningKey::own(key, cert, key::take_passphrase(), &own_key_dir())
 }
 
 /// Where a certificate of one's own given in DER is converted to PEM.

@@ -19,8 +19,9 @@ use std::process::Command;
 use anyhow::{ensure, Context, Result};
 
 use crate::bootloader::{apply_edits, Patch, PATCHES, VERSION};
-use crate::sources::{self, BOOTLOADER};
-use crate::{tree, workspace};
+use crate::sources;
+use crate::tree;
+use install::workspace;
 
 /// Folders `bootloader`'s build script watches (`cargo:rerun-if-changed`)
 /// that the copy has no crate in: they exist, empty, so that cargo does not
@@ -41,7 +42,13 @@ pub struct PatchedBootloader {
 impl PatchedBootloader {
     /// Under the nightly target directory.
     pub fn in_target_dir() -> Self {
-        let root = workspace::nightly_target_dir().join("patched-bootloader");
+        Self::under(&workspace::nightly_target_dir())
+    }
+
+    /// Under the nightly target directory `nightly_target_dir` (a test's
+    /// own, for one).
+    pub fn under(nightly_target_dir: &Path) -> Self {
+        let root = nightly_target_dir.join("patched-bootloader");
         Self { dir: root.join(format!("bootloader-{VERSION}")), lockfile: root.join("lock").join("Cargo.lock") }
     }
 
@@ -73,7 +80,7 @@ impl PatchedBootloader {
 
     /// A fingerprint of the patch, kept beside the copy: a copy made by
     /// other edits is made again.
-    fn stamp(&self) -> PathBuf {
+    pub fn stamp(&self) -> PathBuf {
         self.dir.with_extension("stamp")
     }
 
@@ -119,17 +126,16 @@ fn toml_string(path: &Path) -> Result<String> {
     Ok(quoted)
 }
 
-/// The patched copy, made unless one made from the same sources by the
-/// same edits is there (which is then checked file by file against a copy
-/// made afresh: a hand edit stops the build), and the lock file for a
-/// build against it, fresh from the workspace's.
-pub fn prepare() -> Result<PatchedBootloader> {
-    let patched = PatchedBootloader::in_target_dir();
+/// The patched copy `patched`, made unless one made from the same sources
+/// by the same edits is there (which is then checked file by file against
+/// a copy made afresh: a hand edit stops the build), and the lock file for
+/// a build against it, fresh from the workspace's.
+pub fn prepare(patched: &PatchedBootloader) -> Result<()> {
     let fingerprint = fingerprint();
-    if is_current(&patched, &fingerprint) {
+    if is_current(patched, &fingerprint) {
         check_copy(&patched.dir)?;
     } else {
-        make_copy(&patched)?;
+        make_copy(patched)?;
         std::fs::write(patched.stamp(), &fingerprint)
             .with_context(|| format!("failed to write {}", patched.stamp().display()))?;
     }
@@ -138,7 +144,7 @@ pub fn prepare() -> Result<PatchedBootloader> {
     let workspace_lock = workspace::root().join("Cargo.lock");
     std::fs::copy(&workspace_lock, &patched.lockfile)
         .with_context(|| format!("failed to copy {} to {}", workspace_lock.display(), patched.lockfile.display()))?;
-    Ok(patched)
+    Ok(())
 }
 
 /// Fails, naming every difference, unless the copy at `dir` holds exactly
@@ -230,11 +236,8 @@ fn make_tree(work_dir: &Path, to: &Path) -> Result<()> {
         .map(|(pinned, archive)| sources::read_checked(archive, pinned))
         .collect::<Result<_>>()?;
     for (pinned, bytes) in sources::PINNED.iter().zip(&checked) {
-        let to = match PATCHES.iter().find(|patch| patch.source == *pinned) {
-            Some(patch) => to.join(patch.folder),
-            None if *pinned == BOOTLOADER => to.to_path_buf(),
-            None => unreachable!("every pinned crate is bootloader or patched"),
-        };
+        let patch = PATCHES.iter().find(|patch| patch.source == *pinned).expect("every pinned crate is patched");
+        let to = to.join(patch.folder);
         if let Some(parent) = to.parent() {
             std::fs::create_dir_all(parent).with_context(|| format!("failed to create {}", parent.display()))?;
         }
@@ -272,7 +275,7 @@ fn apply_patch(patch: &Patch, dir: &Path) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bootloader::{LOADER_EDITS, STAGE_2_EDITS};
+    use crate::bootloader::{BOOTLOADER_EDITS, LOADER_EDITS, STAGE_2_EDITS};
 
     #[test]
     fn the_stamp_names_every_fetched_archives_digest_and_every_change() {
@@ -280,7 +283,7 @@ mod tests {
         for pinned in sources::PINNED {
             assert!(stamp.contains(&format!("{} sha256:{}", pinned.name, pinned.sha256)), "{stamp}");
         }
-        for edit in STAGE_2_EDITS.iter().chain(LOADER_EDITS) {
+        for edit in BOOTLOADER_EDITS.iter().chain(STAGE_2_EDITS).chain(LOADER_EDITS) {
             assert!(stamp.contains(edit.find) && stamp.contains(edit.replace), "{}", edit.purpose);
         }
         let verify = sources::sha256_hex(include_str!("../loader/verify.rs").as_bytes());

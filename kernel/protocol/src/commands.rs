@@ -5,6 +5,7 @@ use core::fmt;
 
 use raster::MethodId;
 
+use crate::replies::{ClockSource, Malformed, Prose};
 use crate::{BENCH_DEFAULT_REPEATS, BENCH_MAX_REPEATS, EVERY_ENTRY, MAX_LINE};
 
 /// Which CPU fault the test-only `FAULT` command provokes.
@@ -18,21 +19,43 @@ pub enum FaultKind {
     PageFault,
     DoubleFault,
     Panic,
-    /// An interrupt on a vector the kernel does not use, raised as a
-    /// device would raise it (through the local APIC where there is one):
-    /// the one kind the kernel survives, answering `OK`.
-    StrayInterrupt,
+    /// An interrupt on a vector (0x20 to 0xFF; [`STRAY_VECTOR`] unless
+    /// the line names another, `FAULT strayinterrupt 0x21`) raised as a
+    /// device would raise it, through the local APIC where there is one.
+    /// The stray kinds are the ones the kernel survives, answering `OK`.
+    StrayInterrupt(u8),
+    /// The RTC's IRQ 8, let through the two 8259s for one periodic
+    /// interrupt: a device's IRQ on the 8259 path (vector 0x28).
+    StrayIrq,
+    /// The RTC's IRQ 8 routed through the I/O APIC as a level-triggered
+    /// interrupt on [`STORM_VECTOR`], its line left high: it comes again
+    /// after every end of interrupt, as a level-triggered source the
+    /// firmware left unmasked does, until the kernel masks it.
+    InterruptStorm,
 }
 
+/// The vector `FAULT strayinterrupt` raises when the line names none: in
+/// the local APIC's priority class 9, which nothing on a PC is set up to
+/// use while the kernel runs.
+pub const STRAY_VECTOR: u8 = 0x99;
+/// The vector `FAULT interruptstorm` routes the RTC's IRQ to.
+pub const STORM_VECTOR: u8 = 0x9a;
+/// The lowest vector a stray interrupt may have: below are the CPU's
+/// exceptions.
+pub const FIRST_INTERRUPT_VECTOR: u8 = 0x20;
+
 impl FaultKind {
-    pub const ALL: [FaultKind; 7] = [
+    /// Every kind, a stray interrupt on [`STRAY_VECTOR`].
+    pub const ALL: [FaultKind; 9] = [
         FaultKind::DivideError,
         FaultKind::InvalidOpcode,
         FaultKind::Breakpoint,
         FaultKind::PageFault,
         FaultKind::DoubleFault,
         FaultKind::Panic,
-        FaultKind::StrayInterrupt,
+        FaultKind::StrayInterrupt(STRAY_VECTOR),
+        FaultKind::StrayIrq,
+        FaultKind::InterruptStorm,
     ];
 
     pub const fn name(self) -> &'static str {
@@ -43,7 +66,9 @@ impl FaultKind {
             FaultKind::PageFault => "pagefault",
             FaultKind::DoubleFault => "doublefault",
             FaultKind::Panic => "panic",
-            FaultKind::StrayInterrupt => "strayinterrupt",
+            FaultKind::StrayInterrupt(_) => "strayinterrupt",
+            FaultKind::StrayIrq => "strayirq",
+            FaultKind::InterruptStorm => "interruptstorm",
         }
     }
 }
@@ -98,6 +123,13 @@ pub enum Command<'a> {
     /// kernel measured it ([`TscRate`](crate::TscRate)), the unit of every
     /// rdtsc figure it reports.
     Clock,
+    /// `CLOCK pit|pmtimer|hpet [stalled]`: test only, and only on QEMU as
+    /// for `FAULT`: measures the TSC against that timer alone and makes it
+    /// the kernel's clock, answering as `CLOCK` does (`ERR` if no such
+    /// timer counts); `stalled`, with the kernel stalling itself inside
+    /// the measurement as a system management interrupt would, to prove
+    /// its defences.
+    ForceClock { source: ClockSource, stalled: bool },
 }
 
 /// Why a command line was rejected.
@@ -107,7 +139,8 @@ pub enum CommandError<'a> {
     NotAscii,
     TooLong,
     Unknown(&'a str),
-    MissingArgument(&'static str),
+    /// What the line lacks, in words (`colour`, `fault kind`).
+    MissingArgument(&'a str),
     BadArgument(&'a str),
     /// A method name that is none of [`MethodId::ALL`]'s.
     UnknownMethod(&'a str),
@@ -126,6 +159,37 @@ impl fmt::Display for CommandError<'_> {
             CommandError::UnknownMethod(word) => write!(f, "`{word}`: {}", raster::UnknownMethod),
             CommandError::ExtraArgument(word) => write!(f, "unexpected argument `{word}`"),
         }
+    }
+}
+
+impl<'a> CommandError<'a> {
+    /// Parses the text written by `Display`.
+    pub fn parse(text: &'a str) -> Result<Self, Malformed> {
+        let mut prose = Prose::new("ERR", text);
+        let sentences = [
+            ("empty command", CommandError::Empty),
+            ("command is not printable ASCII", CommandError::NotAscii),
+            ("command longer than ", CommandError::TooLong),
+        ];
+        let error = if let Some((_, error)) = sentences.into_iter().find(|(words, _)| prose.next_is(words)) {
+            if error == CommandError::TooLong {
+                prose.rest();
+            }
+            error
+        } else if prose.next_is("unknown command ") {
+            CommandError::Unknown(prose.quoted("")?)
+        } else if prose.next_is("missing argument: ") {
+            CommandError::MissingArgument(prose.rest())
+        } else if prose.next_is("bad argument ") {
+            CommandError::BadArgument(prose.quoted("")?)
+        } else if prose.next_is("unexpected argument ") {
+            CommandError::ExtraArgument(prose.quoted("")?)
+        } else {
+            let word = prose.quoted(": ")?;
+            prose.rest();
+            CommandError::UnknownMethod(word)
+        };
+        prose.written_by(error)
     }
 }
 
@@ -180,7 +244,20 @@ impl<'a> Command<'a> {
             }
             "VGACHECK" => Command::VgaCheck,
             "READY" => Command::Ready,
-            "CLOCK" => Command::Clock,
+            "CLOCK" => match words.next() {
+                None => Command::Clock,
+                Some(name) => {
+                    let measurable = [ClockSource::Pit, ClockSource::PmTimer, ClockSource::Hpet];
+                    let source = measurable.into_iter().find(|source| source.name() == name);
+                    let source = source.ok_or(CommandError::BadArgument(name))?;
+                    let stalled = match words.next() {
+                        None => false,
+                        Some("stalled") => true,
+                        Some(word) => return Err(CommandError::BadArgument(word)),
+                    };
+                    Command::ForceClock { source, stalled }
+                }
+            },
             "DEMO" => Command::Demo {
                 entry: words.next().filter(|&entry| entry != EVERY_ENTRY),
                 method: words.next().map(parse_method).transpose()?,
@@ -190,7 +267,21 @@ impl<'a> Command<'a> {
                 let kind = words.next().ok_or(CommandError::MissingArgument("fault kind"))?;
                 let fault =
                     FaultKind::ALL.into_iter().find(|k| k.name() == kind).ok_or(CommandError::BadArgument(kind))?;
-                Command::Fault(fault)
+                match (fault, words.next()) {
+                    (FaultKind::StrayInterrupt(_), Some(word)) => {
+                        let vector = word
+                            .strip_prefix("0x")
+                            .filter(|digits| digits.len() == 2)
+                            .and_then(|digits| u8::from_str_radix(digits, 16).ok())
+                            .filter(|&vector| {
+                                vector >= FIRST_INTERRUPT_VECTOR && !word[2..].contains(char::is_uppercase)
+                            })
+                            .ok_or(CommandError::BadArgument(word))?;
+                        Command::Fault(FaultKind::StrayInterrupt(vector))
+                    }
+                    (_, Some(extra)) => return Err(CommandError::ExtraArgument(extra)),
+                    (fault, None) => Command::Fault(fault),
+                }
             }
             other => return Err(CommandError::Unknown(other)),
         };
@@ -207,6 +298,28 @@ fn parse_u8(word: &str) -> Result<u8, CommandError<'_>> {
 
 fn parse_method(word: &str) -> Result<MethodId, CommandError<'_>> {
     word.parse().map_err(|_| CommandError::UnknownMethod(word))
+}
+
+impl Command<'_> {
+    /// The command's name, the first word of its line.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Command::Ping => "PING",
+            Command::List => "LIST",
+            Command::Draw { .. } => "DRAW",
+            Command::Show { .. } => "SHOW",
+            Command::Clear(_) => "CLEAR",
+            Command::Poly { .. } => "POLY",
+            Command::Dump => "DUMP",
+            Command::VgaCheck => "VGACHECK",
+            Command::Demo { .. } => "DEMO",
+            Command::Bench { .. } => "BENCH",
+            Command::Exit(_) => "EXIT",
+            Command::Fault(_) => "FAULT",
+            Command::Ready => "READY",
+            Command::Clock | Command::ForceClock { .. } => "CLOCK",
+        }
+    }
 }
 
 impl fmt::Display for Command<'_> {
@@ -230,9 +343,14 @@ impl fmt::Display for Command<'_> {
                 write!(f, "DEMO {} {method}", entry.unwrap_or(EVERY_ENTRY))
             }
             Command::Exit(code) => write!(f, "EXIT {code}"),
+            Command::Fault(FaultKind::StrayInterrupt(vector)) if *vector != STRAY_VECTOR => {
+                write!(f, "FAULT strayinterrupt {vector:#04x}")
+            }
             Command::Fault(kind) => write!(f, "FAULT {}", kind.name()),
             Command::Ready => write!(f, "READY"),
             Command::Clock => write!(f, "CLOCK"),
+            Command::ForceClock { source, stalled: false } => write!(f, "CLOCK {}", source.name()),
+            Command::ForceClock { source, stalled: true } => write!(f, "CLOCK {} stalled", source.name()),
         }
     }
 }
@@ -266,13 +384,21 @@ mod tests {
             Command::Fault(FaultKind::PageFault),
             Command::Fault(FaultKind::DivideError),
             Command::Fault(FaultKind::InvalidOpcode),
-            Command::Fault(FaultKind::StrayInterrupt),
+            Command::Fault(FaultKind::StrayInterrupt(STRAY_VECTOR)),
+            Command::Fault(FaultKind::StrayInterrupt(0x20)),
+            Command::Fault(FaultKind::StrayInterrupt(0xff)),
+            Command::Fault(FaultKind::StrayIrq),
+            Command::Fault(FaultKind::InterruptStorm),
             Command::Ready,
             Command::Clock,
+            Command::ForceClock { source: ClockSource::Hpet, stalled: false },
+            Command::ForceClock { source: ClockSource::Pit, stalled: true },
+            Command::ForceClock { source: ClockSource::PmTimer, stalled: false },
         ];
         for command in commands {
             let text = command.to_string();
             assert_eq!(Command::parse(text.as_bytes()), Ok(command), "{text}");
+            assert_eq!(text.split(' ').next(), Some(command.name()), "{text}");
         }
     }
 
@@ -284,9 +410,18 @@ mod tests {
         assert_eq!(Command::parse(b"CLEAR"), Err(CommandError::MissingArgument("colour")));
         assert_eq!(Command::parse(b"CLEAR 256"), Err(CommandError::BadArgument("256")));
         assert_eq!(Command::parse(b"DUMP now"), Err(CommandError::ExtraArgument("now")));
-        assert_eq!(Command::parse(b"CLOCK pit"), Err(CommandError::ExtraArgument("pit")));
+        assert_eq!(Command::parse(b"CLOCK cpuid"), Err(CommandError::BadArgument("cpuid")));
+        assert_eq!(Command::parse(b"CLOCK pit slow"), Err(CommandError::BadArgument("slow")));
+        assert_eq!(Command::parse(b"CLOCK pit stalled now"), Err(CommandError::ExtraArgument("now")));
         assert_eq!(Command::parse(b"POLY exact"), Err(CommandError::MissingArgument("polygon")));
         assert_eq!(Command::parse(b"FAULT nap"), Err(CommandError::BadArgument("nap")));
+        assert_eq!(Command::parse(b"FAULT strayinterrupt"), Ok(Command::Fault(FaultKind::StrayInterrupt(0x99))));
+        assert_eq!(Command::parse(b"FAULT strayinterrupt 0x99"), Ok(Command::Fault(FaultKind::StrayInterrupt(0x99))));
+        for vector in ["0x1f", "0x100", "0xFF", "255", "0x", "0x9"] {
+            let line = std::format!("FAULT strayinterrupt {vector}");
+            assert_eq!(Command::parse(line.as_bytes()), Err(CommandError::BadArgument(vector)), "{line}");
+        }
+        assert_eq!(Command::parse(b"FAULT strayirq 0x28"), Err(CommandError::ExtraArgument("0x28")));
         assert_eq!(Command::parse(b"BENCH"), Err(CommandError::MissingArgument("scene")));
         assert_eq!(Command::parse(b"BENCH abrash38-1 0"), Err(CommandError::BadArgument("0")));
         let too_many = std::format!("{}", u16::from(BENCH_MAX_REPEATS) + 1);

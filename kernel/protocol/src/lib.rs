@@ -10,7 +10,10 @@
 //! then `\n` ([`FrameHeader`], in `frames`); anything between frames is
 //! noise and the host skips it. The texts the frames carry are in
 //! `replies`, one file per reply ([`Ready`], [`Pong`], [`TscRate`],
-//! [`ShowReply`], [`DrawReply`], [`BenchReply`], [`Listing`], ...). A host
+//! [`ShowReply`], [`DrawReply`], [`BenchReply`], [`Listing`],
+//! [`VgaCheck`], ...), and in `events` the frames that are sentences for
+//! people, which the host reads back all the same: `ERR`
+//! ([`ErrorReply`]), `LOG` ([`LogEvent`]) and `FATAL` ([`FatalReport`]). A host
 //! on a line that can damage bytes seals its command lines (`#SEQ COMMAND
 //! CRC32`, [`Sealed`], in `sealed`): the kernel refuses a damaged one and
 //! echoes the sequence number in its reply's header.
@@ -19,16 +22,22 @@
 extern crate alloc;
 
 mod commands;
+mod events;
 mod frames;
 mod replies;
 mod sealed;
 
-pub use commands::{Command, CommandError, FaultKind};
+pub use commands::{Command, CommandError, FaultKind, FIRST_INTERRUPT_VECTOR, STORM_VECTOR, STRAY_VECTOR};
+pub use events::{
+    EndedAt, ErrorReply, FatalReport, HpetRefusal, LogEvent, MachineEvidence, MaskedAt, PageFaultCode,
+    DOUBLE_FAULT_VECTOR, EXCEPTION_NAMES, PAGE_FAULT_VECTOR,
+};
 pub use frames::{FrameHeader, FrameKind};
 pub use replies::{
-    BenchReply, BenchRow, Cleared, ClockReadings, ClockSource, DemoReply, DrawReply, Expected, Firmware, HeapState,
-    InterruptCounts, LineErrors, LineLosses, Listing, Machine, Malformed, MemoryType, PciAddress, PciId, Pong,
-    Presentation, Ready, ShowReply, TscRate, Video, BENCH_UNIT_LINE, OWN_METHOD, PONG,
+    BenchReply, BenchRow, Cleared, ClockReadings, ClockSource, DemoReply, DrawReply, Expected, Firmware,
+    FramebufferCheck, HeapState, InterruptCounts, LineErrors, LineLosses, Listing, Machine, Malformed, MemoryType,
+    Mismatch, PageMapping, PciAddress, PciId, Pong, Presentation, Raised, Ready, RegisterGroup, ShowReply, StrayRaised,
+    TscRate, VgaCheck, Video, Window, BENCH_UNIT_LINE, OWN_METHOD, PONG,
 };
 pub use sealed::{unseal, Damaged, Sealed, SEAL_MARK};
 

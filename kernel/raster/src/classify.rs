@@ -12,7 +12,35 @@ use core::cmp::Ordering;
 use alloc::vec::Vec;
 
 use crate::geometry::{Point, Polygon};
-use crate::methods::info::Class;
+
+/// Polygon classes, from cheapest to most general (Abrash ch. 41 naming in
+/// brackets).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Class {
+    /// Fewer than three distinct vertices, or no area.
+    Degenerate,
+    /// Exactly three vertices.
+    Triangle,
+    /// Monotone in y: every horizontal line meets the boundary at most
+    /// twice (Abrash's "convex", chapter 41's "monotone-vertical").
+    Convex,
+    /// Edges do not cross (Abrash's "nonconvex").
+    Simple,
+    /// Anything: self-intersecting, several contours (Abrash's "complex").
+    Complex,
+}
+
+impl Class {
+    pub const fn name(self) -> &'static str {
+        match self {
+            Class::Degenerate => "degenerate",
+            Class::Triangle => "triangle",
+            Class::Convex => "convex",
+            Class::Simple => "simple",
+            Class::Complex => "complex",
+        }
+    }
+}
 
 /// The class of `polygon`: [`Class::Degenerate`] when no contour encloses
 /// anything (fewer than three distinct vertices, or all on one line);

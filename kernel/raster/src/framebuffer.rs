@@ -96,6 +96,14 @@ impl Framebuffer {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sink::clear;
+
+    #[test]
+    fn clear_covers_every_pixel() {
+        let mut fb = Framebuffer::new(Size { width: 3, height: 3 });
+        clear(&mut fb, 9);
+        assert!(fb.pixels().iter().all(|&p| p == 9));
+    }
 
     #[test]
     fn spans_fill_their_half_open_range() {

@@ -78,8 +78,8 @@ extern crate alloc;
 
 // Every item has one path: the modules are private, and what a caller
 // uses is re-exported here, at the top, except three namespaces whose
-// items are called by their module's name: `methods` (the methods,
-// `methods::ALL`), `reference` (`reference::fill`, the judge) and `sink`
+// items are called by their module's name: `methods` (each method's
+// type, `methods::Exact`), `reference` (`reference::fill`, the judge) and `sink`
 // (`sink::clear`, `sink::set_bytes`, the stores).
 mod classify;
 mod coverage;
@@ -90,11 +90,12 @@ pub mod reference;
 pub mod sink;
 mod target;
 
-pub use classify::classify;
+pub use classify::{classify, Class};
 pub use coverage::{CoverageReport, CoverageSink};
 pub use framebuffer::Framebuffer;
 pub use geometry::{FillRule, PixelPoint, Point, Polygon, SUBPIXEL_BITS, SUBPIXEL_ONE};
 pub use methods::exact::{fill_auto, fill_auto_with, ExactPath, Scratch};
-pub use methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
-pub use methods::interface::{Method, MethodId, UnknownMethod};
+pub use methods::info::{Heap, MethodInfo, Refusal};
+pub use methods::interface::Method;
+pub use methods::method_id::{MethodId, UnknownMethod};
 pub use target::{Size, SpanSink, SCREEN};

@@ -1,6 +1,6 @@
 //! `reference`: the rule of `docs/conventions.md#what-exact-means`
 //! computed the plainest way, to judge every method by. Not a method (it is
-//! not in [`crate::methods::ALL`]): it is slow on purpose, visiting every
+//! not one of [`crate::MethodId::ALL`]): it is slow on purpose, visiting every
 //! pixel of the polygon's bounding box within the target and testing every
 //! edge at its sample point, with products in `i128` so that no `i32`
 //! input can overflow.
@@ -11,8 +11,19 @@
 use alloc::vec::Vec;
 
 use crate::geometry::{FillRule, Point, Polygon, SUBPIXEL_ONE};
-use crate::methods::info::Convention;
 use crate::target::SpanSink;
+
+/// Where a method samples a pixel, in subpixels from the pixel's top-left
+/// corner: (128, 128) is the centre (our convention), (0, 0) the integer
+/// grid point (Abrash's). The lab judges a method against the reference
+/// under our convention and under its own.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Convention {
+    pub sample_x: i32,
+    pub sample_y: i32,
+    /// One line for people: how the method decides which pixels are in.
+    pub summary: &'static str,
+}
 
 /// Where each pixel is sampled, in subpixels from its top-left corner.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,7 +1,7 @@
 //! Every method on hostile input: Pendleton's rule 3
 //! (`docs/conventions.md#garbage-in-never-crashes`: "no
 //! method may panic, loop forever, or write outside the target on any
-//! input"). One list of cases for every method in [`ALL`], each filled
+//! input"). One list of cases for every method of [`MethodId::ALL`], each filled
 //! with both fill rules into targets of odd sizes (two exceptions keep the
 //! debug build's run time down, each saying why); a case fails when a
 //! method panics (caught, so the report names every method and case that
@@ -20,8 +20,7 @@ use std::sync::{mpsc, Arc, Mutex};
 use std::thread;
 use std::time::Duration;
 
-use raster::methods::ALL;
-use raster::{CoverageSink, FillRule, Point, Polygon, Refusal, Size, SCREEN, SUBPIXEL_ONE};
+use raster::{CoverageSink, FillRule, MethodId, Point, Polygon, Refusal, Size, SCREEN, SUBPIXEL_ONE};
 
 /// More CPU time than this for one fill, in a debug build, is a hang (the
 /// slowest honest fills here take about a second).
@@ -135,7 +134,7 @@ fn cpu_time(thread: &str) -> Duration {
 
 fn describe(cases: &[Case], case: usize, method: usize, rule: FillRule, size: Size) -> String {
     let Size { width, height } = size;
-    format!("{} on {} ({}, {width}x{height})", ALL[method].info().name, cases[case].name, rule.name())
+    format!("{} on {} ({}, {width}x{height})", MethodId::ALL[method].name(), cases[case].name, rule.name())
 }
 
 /// Fills every case with every method, with each of its rules, into each
@@ -182,7 +181,7 @@ fn fill_all(cases: &[Case], running: &Mutex<Option<Running>>) -> Vec<String> {
     for (case_index, case) in cases.iter().enumerate() {
         for &rule in case.rules {
             let polygon = Polygon { rule, ..case.polygon.clone() };
-            for (method_index, method) in ALL.iter().enumerate() {
+            for (method_index, method) in MethodId::ALL.map(MethodId::method).into_iter().enumerate() {
                 for &size in case.targets {
                     fill += 1;
                     *running.lock().unwrap() =

@@ -58,6 +58,45 @@ impl fmt::Display for LineError {
     }
 }
 
+/// The error a [`LineError`] text around a word is, made from the word.
+type OfWord = fn(String) -> LineError;
+
+/// The texts [`LineError`]'s `Display` writes around a word: what comes
+/// before it, what after, and the error of that word.
+const AROUND_A_WORD: [(&str, &str, OfWord); 7] = [
+    ("unknown keyword `", "` (expected `clear` or `poly`)", LineError::UnknownKeyword),
+    ("bad colour `", "` (expected 0-255)", LineError::BadColor),
+    ("bad rule `", "` (expected evenodd or nonzero)", LineError::BadRule),
+    ("bad vertex `", "` (expected x,y)", LineError::BadVertex),
+    ("coordinate `", "` out of range (|v| < 8388608 pixels)", LineError::CoordinateOutOfRange),
+    ("unknown option `", "`", LineError::UnknownOption),
+    ("unexpected `", "`", LineError::Extra),
+];
+
+impl LineError {
+    /// Reads back the text `Display` writes (the kernel answers a `POLY`
+    /// whose polygon does not parse with it); `None` for any other text.
+    pub fn parse(text: &str) -> Option<Self> {
+        let error = match text {
+            "`poly` needs `color=N`" => LineError::MissingColor,
+            "empty contour around `|`" => LineError::EmptyContour,
+            _ => match text.strip_prefix("control character U+") {
+                Some(rest) => {
+                    let code = rest.strip_suffix(" (words are separated by spaces and tabs)")?;
+                    LineError::ControlCharacter(char::from_u32(u32::from_str_radix(code, 16).ok()?)?)
+                }
+                None => AROUND_A_WORD.iter().find_map(|(before, after, error)| {
+                    let word = text.strip_prefix(before)?.strip_suffix(after)?;
+                    Some(error(String::from(word)))
+                })?,
+            },
+        };
+        let mut written = String::new();
+        write!(written, "{error}").ok()?;
+        (written == text).then_some(error)
+    }
+}
+
 /// A [`LineError`] with its 1-based line number.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SceneFileError {
@@ -256,6 +295,30 @@ fn parse_coordinate(text: &str) -> Result<i32, LineError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_line_error_reads_back_from_its_text() {
+        let word = || String::from("x`y");
+        let errors = [
+            LineError::UnknownKeyword(word()),
+            LineError::MissingColor,
+            LineError::BadColor(String::from("999")),
+            LineError::BadRule(word()),
+            LineError::BadVertex(word()),
+            LineError::CoordinateOutOfRange(word()),
+            LineError::UnknownOption(word()),
+            LineError::EmptyContour,
+            LineError::Extra(word()),
+            LineError::ControlCharacter('\u{1b}'),
+        ];
+        for error in errors {
+            let text = alloc::format!("{error}");
+            assert_eq!(LineError::parse(&text), Some(error), "{text}");
+        }
+        for garbage in ["", "bad colour `999`", "control character U+1B (words are separated by spaces and tabs)"] {
+            assert_eq!(LineError::parse(garbage), None, "{garbage}");
+        }
+    }
 
     #[test]
     fn parses_clear_poly_comments_and_contours() {

@@ -1,7 +1,7 @@
 //! How far each classic method is from the exact reference on the pages of
 //! Listing 38.3 (`docs/scenes.md#chapter-38-sample-program`), under our convention (pixel centres,
 //! [`SampleOffset::CENTRE`]) and under the method's own
-//! ([`SampleOffset::of`] its [`Convention`](raster::Convention)): the
+//! ([`SampleOffset::of`] its [`Convention`](raster::reference::Convention)): the
 //! measured counts are pinned, each with the reason it is what it is.
 //!
 //! Counted polygon by polygon: each polygon the method draws is compared
@@ -25,9 +25,9 @@
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 
-use raster::methods::{AbrashAet, AbrashFloat, AbrashInt, Exact, Lamothe, LamotheFixed, Pendleton, Wgt, ALL};
+use raster::methods::{AbrashAet, AbrashFloat, AbrashInt, Exact, Lamothe, LamotheFixed, Pendleton, Wgt};
 use raster::reference::{self, SampleOffset};
-use raster::{CoverageSink, Method, Polygon, Size, SpanSink, SCREEN, SUBPIXEL_ONE};
+use raster::{CoverageSink, Method, MethodId, Polygon, Size, SpanSink, SCREEN, SUBPIXEL_ONE};
 use scenes::{builtin, Op};
 
 /// How one polygon, or a set of them, deviates from the reference.
@@ -575,6 +575,6 @@ fn exact_is_the_reference_on_every_page() {
 #[test]
 fn every_method_has_its_deviations_pinned_here() {
     let pinned = ["abrash_float", "abrash_int", "abrash_aet", "pendleton", "lamothe", "lamothe_fixed", "wgt", "exact"];
-    let names: Vec<&str> = ALL.iter().map(|m| m.info().name).collect();
+    let names = MethodId::ALL.map(MethodId::name);
     assert_eq!(names, pinned, "a method was added or renamed: pin its deviations in a test of its own");
 }

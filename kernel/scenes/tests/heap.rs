@@ -11,7 +11,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use raster::{methods, Framebuffer, Heap, Method, MethodId, Point, Polygon, SCREEN};
+use raster::{Framebuffer, Heap, Method, MethodId, Point, Polygon, SCREEN};
 use scenes::show::{Stage, ENTRIES_IN_ORDER};
 
 /// The system allocator, counting allocations.
@@ -81,11 +81,11 @@ fn methods_allocate_as_their_info_says_and_the_show_adds_nothing() {
     let many = polygon(&spikes);
     let mut target = Framebuffer::new(SCREEN);
     let mut wrong = Vec::new();
-    for method in methods::ALL {
+    for method in MethodId::ALL.map(MethodId::method) {
         let info = method.info();
-        let simple = [&triangle, &convex].map(|p| fill_allocations(*method, p, &mut target));
-        let complex = fill_allocations(*method, &star, &mut target);
-        let huge = fill_allocations(*method, &many, &mut target);
+        let simple = [&triangle, &convex].map(|p| fill_allocations(method, p, &mut target));
+        let complex = fill_allocations(method, &star, &mut target);
+        let huge = fill_allocations(method, &many, &mut target);
         let agrees = match info.heap {
             Heap::Never => simple == [0, 0] && complex == 0 && huge == 0,
             Heap::ManyEdges => simple == [0, 0] && complex == 0 && huge > 0,

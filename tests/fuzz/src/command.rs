@@ -9,9 +9,10 @@
 //! command it seals, which seals again to the same line.
 
 use protocol::{
-    unseal, BenchReply, BenchRow, Cleared, Command, DemoReply, DrawReply, FaultKind, FrameHeader, FrameKind,
-    LineErrors, LineLosses, Listing, Machine, PciAddress, PciId, Pong, Ready, Sealed, ShowReply, TscRate,
-    BENCH_MAX_REPEATS,
+    unseal, BenchReply, BenchRow, Cleared, Command, CommandError, DemoReply, DrawReply, EndedAt, ErrorReply,
+    FatalReport, FaultKind, FrameHeader, FrameKind, LineErrors, LineLosses, Listing, LogEvent, Machine,
+    MachineEvidence, Mismatch, PageFaultCode, PciAddress, PciId, Pong, Raised, Ready, RegisterGroup, Sealed, ShowReply,
+    StrayRaised, TscRate, VgaCheck, BENCH_MAX_REPEATS,
 };
 use raster::{CoverageSink, MethodId, Refusal, SCREEN};
 use scenes::file;
@@ -61,6 +62,21 @@ pub fn check(data: &[u8]) {
     }
     if let Ok(listing) = Listing::parse(text) {
         assert_eq!(Listing::parse(&listing.to_string()), Ok(listing.clone()), "{text:?}");
+    }
+    if let Ok(event) = LogEvent::parse(text) {
+        assert_eq!(LogEvent::parse(&event.to_string()), Ok(event), "{text:?}");
+    }
+    if let Ok(error) = ErrorReply::parse(text) {
+        assert_eq!(ErrorReply::parse(&error.to_string()), Ok(error.clone()), "{text:?}");
+    }
+    if let Ok(report) = FatalReport::parse(text) {
+        assert_eq!(FatalReport::parse(&report.to_string()), Ok(report), "{text:?}");
+    }
+    if let Ok(check) = VgaCheck::parse(text) {
+        assert_eq!(VgaCheck::parse(&check.to_string()), Ok(check.clone()), "{text:?}");
+    }
+    if let Ok(raised) = StrayRaised::parse(text) {
+        assert_eq!(StrayRaised::parse(&raised.to_string()), Ok(raised), "{text:?}");
     }
     if let Some(header) = FrameHeader::parse(text) {
         assert_eq!(FrameHeader::parse(&header.to_string()), Some(header), "{text:?}");
@@ -165,6 +181,28 @@ pub fn seeds() -> Vec<(String, Vec<u8>)> {
         .to_string(),
         Listing { scenes: vec!["abrash38-1".into()], shows: vec![("race".into(), 240)], methods: vec!["exact".into()] }
             .to_string(),
+        LogEvent::Machine(MachineEvidence {
+            machine: Machine::Qemu,
+            hypervisor: Some(*b"TCGTCGTCGTCG"),
+            board: Some(PciId { vendor: 0x1af4, device: 0x1100 }),
+        })
+        .to_string(),
+        LogEvent::Nmi { count: 1, reason: 0x20, serr: false, iochk: false }.to_string(),
+        LogEvent::StrayInterrupt { vector: 0x99, count: 2, ended: EndedAt::LocalApic }.to_string(),
+        LogEvent::LineDropped { overlong: true, kept: 6, idle_seconds: 10 }.to_string(),
+        ErrorReply::Command(CommandError::UnknownMethod("exakt")).to_string(),
+        ErrorReply::UnknownShowEntry("nope").to_string(),
+        ErrorReply::NotQemu("EXIT").to_string(),
+        FatalReport::PageFault { address: 0xdeadbeef000, code: PageFaultCode::new(2), at: 0x20_0000 }.to_string(),
+        FatalReport::Exception { vector: 13, error: Some(0x10), at: 0x20_0000 }.to_string(),
+        FatalReport::Panic("panicked at src/fault.rs:60:30:\nFAULT panic").to_string(),
+        VgaCheck::Vga {
+            mismatches: vec![Mismatch { group: RegisterGroup::Dac, index: 4, expected: 0, actual: 63 }],
+            window: None,
+            pat: 0x0007_0406_0007_0406,
+        }
+        .to_string(),
+        StrayRaised { vector: 0x99, raised: Raised::LocalApic, taken: 1 }.to_string(),
     ];
     seeds.extend(replies.into_iter().enumerate().map(|(i, text)| (format!("reply-{i}"), text.into_bytes())));
     seeds

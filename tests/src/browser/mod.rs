@@ -10,9 +10,9 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, Context, Result};
 use serde_json::{json, Value};
 
-use crate::prerequisites::{chromedriver, chromium, ensure_chromium};
 use crate::supervisor::Supervised;
-use boot_image::process::command_line;
+use install::browser::{chromedriver, chromium, ensure_chromium};
+use install::process::command_line;
 use webdriver::Session;
 
 /// Chromium's flags. This machine's network is closed: without the flags

@@ -5,8 +5,9 @@ use std::path::{Path, PathBuf};
 
 use protocol::Firmware;
 
+use super::board::HPET_TABLE_FILE;
 use super::options::{Clock, Cpu, Display, ExitDevice, Medium, QemuOptions, SerialLine};
-use crate::prerequisites::{ovmf_code, ovmf_secure_boot_code};
+use install::emulators::{ovmf_code, ovmf_secure_boot_code};
 
 /// The slot `QemuOptions::display_ahead` puts the card in, and the QEMU
 /// id screendumps name it by.
@@ -46,6 +47,12 @@ pub(super) fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions)
         // boots the image's BIOS side, like a PC's BIOS or CSM. `pit=off`
         // leaves the 8254 out, as on a legacy-free PC.
         flag(&mut args, "-machine", options.board.machine());
+    }
+    if options.hpet_table_at.is_some() {
+        // One more ACPI table, which QEMU adds to the ones it builds for
+        // the firmware: the HPET table, its body from the run's folder.
+        let table = run_dir.join(HPET_TABLE_FILE);
+        flag(&mut args, "-acpitable", with_path("sig=HPET,rev=1,oem_id=POLYLB,data=", &table, ""));
     }
     if options.firmware == Firmware::Uefi && !options.secure_boot {
         // OVMF instead, as a UEFI PC's flash: its code read-only, and its
@@ -318,6 +325,21 @@ mod tests {
         };
         let ramfb = arguments(options);
         assert!(has_pair(&ramfb, "-device", "ramfb") && !ramfb.iter().any(|a| a.contains("bochs-display")));
+    }
+
+    #[test]
+    fn an_hpet_table_of_the_runs_own_is_one_more_acpi_table_from_its_folder() {
+        assert!(!arguments(QemuOptions::default()).iter().any(|a| a == "-acpitable"));
+        let options =
+            QemuOptions { board: Board::PcWithoutHpet, hpet_table_at: Some(0x20_0000), ..QemuOptions::default() };
+        let args = arguments(options);
+        let at = args.iter().position(|a| a == "-acpitable").expect("an -acpitable flag");
+        assert!(args[at + 1].starts_with("sig=HPET,rev=1,oem_id=POLYLB,data="), "{args:?}");
+        assert!(args[at + 1].ends_with("hpet-table.bin"), "{args:?}");
+        assert!(has_pair(&args, "-machine", "pc,hpet=off"), "{args:?}");
+        let body = super::super::board::hpet_table_body(0x1234_5678_9abc);
+        assert_eq!(body.len(), 20, "the HPET table's body after its header");
+        assert_eq!(u64::from_le_bytes(body[8..16].try_into().unwrap()), 0x1234_5678_9abc);
     }
 
     #[test]

@@ -38,6 +38,10 @@ pub enum Board {
     /// The Q35 (ICH9) PC without a PIT: the ICH9's ACPI PM timer and the
     /// HPET.
     Q35WithoutPit,
+    /// The i440FX PC without its HPET (`hpet=off`): no HPET table either.
+    PcWithoutHpet,
+    /// The i440FX PC without a PIT or an HPET: the ACPI PM timer alone.
+    PcWithPmTimerAlone,
 }
 
 impl Board {
@@ -48,6 +52,27 @@ impl Board {
             Board::Pc => "pc",
             Board::PcWithoutPit => "pc,pit=off",
             Board::Q35WithoutPit => "q35,pit=off",
+            Board::PcWithoutHpet => "pc,hpet=off",
+            Board::PcWithPmTimerAlone => "pc,pit=off,hpet=off",
         }
     }
 }
+
+/// The body of an ACPI HPET table (what follows the 36-byte header QEMU's
+/// `-acpitable` writes), placing an HPET's registers at `address`: the
+/// event timer block ID (QEMU's: Intel's vendor ID, 3 comparators, 64-bit
+/// counter, legacy replacement capable, revision 1), the base address as a
+/// generic address in system memory, HPET number 0, a minimum tick of 128,
+/// no page protection (the IA-PC HPET specification, "ACPI table").
+pub(super) fn hpet_table_body(address: u64) -> Vec<u8> {
+    let mut body = 0x8086_A201u32.to_le_bytes().to_vec();
+    body.extend([0, 64, 0, 0]);
+    body.extend(address.to_le_bytes());
+    body.push(0);
+    body.extend(128u16.to_le_bytes());
+    body.push(0);
+    body
+}
+
+/// The file [`hpet_table_body`] is written to for a run.
+pub(super) const HPET_TABLE_FILE: &str = "hpet-table.bin";

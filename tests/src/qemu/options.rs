@@ -240,6 +240,11 @@ pub struct QemuOptions {
     /// one ahead).
     pub display_ahead: Option<DisplayAhead>,
     pub board: Board,
+    /// An ACPI HPET table of the run's own, placing the HPET's registers
+    /// at this physical address (on a board without QEMU's HPET, whose own
+    /// table it would stand beside): how a firmware's wrong table is
+    /// played.
+    pub hpet_table_at: Option<u64>,
 }
 
 #[cfg(test)]

@@ -10,20 +10,19 @@ use std::time::{Duration, Instant};
 
 use anyhow::{anyhow, bail, Context, Result};
 use boot_image::build_image;
-use boot_image::process::command_line;
+use install::process::command_line;
 use protocol::{Firmware, Ready};
 
 use super::arguments::{qemu_arguments, qmp_socket, uefi_variables, CARD_BEHIND_ID};
-use super::board::AHEAD_ID;
-use super::console::Console;
+use super::board::{hpet_table_body, AHEAD_ID, HPET_TABLE_FILE};
 use super::options::{Adapter, QemuOptions, SerialLine};
 use super::qmp::{Qmp, QMP_TIMEOUT};
-use super::serial::{forward_bytes, FrameReader};
+use crate::client::{forward_bytes, Console, FrameReader};
 use crate::picture::Image;
-use crate::prerequisites::{
+use crate::supervisor::Supervised;
+use install::emulators::{
     ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_secure_boot_ovmf, ovmf_microsoft_vars, ovmf_vars, QEMU,
 };
-use crate::supervisor::Supervised;
 
 /// Longest wait for QEMU to exit after QMP `quit`.
 const QUIT_TIMEOUT: Duration = Duration::from_secs(30);
@@ -111,6 +110,11 @@ impl Qemu {
         if options.firmware == Firmware::Uefi {
             std::fs::copy(variables, uefi_variables(&run_dir))
                 .with_context(|| format!("failed to copy {} into {}", variables.display(), run_dir.display()))?;
+        }
+        if let Some(address) = options.hpet_table_at {
+            let table = run_dir.join(HPET_TABLE_FILE);
+            std::fs::write(&table, hpet_table_body(address))
+                .with_context(|| format!("failed to write {}", table.display()))?;
         }
         let mut command = Command::new(QEMU);
         command.args(qemu_arguments(image, &run_dir, options));

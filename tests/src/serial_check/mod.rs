@@ -4,11 +4,11 @@
 //! every show entry, each `DUMP` compared with the host render; `VGACHECK`;
 //! `BENCH` of every method on every demo scene in the machine's TSC ticks;
 //! the line's losses (`PING`) and what was retried. Every step is retried
-//! as a whole when the line damages it (`crate::line`), so a picture is
+//! as a whole when the line damages it (`crate::client`'s sealing), so a picture is
 //! judged only on a dump that arrived intact. `report` writes the result
 //! for a person and for a program.
 
-pub mod bench;
+pub mod bench_table;
 mod report;
 
 use std::time::{Duration, Instant};
@@ -19,13 +19,11 @@ use raster::MethodId;
 use scenes::palette::VGA_DEFAULT;
 use scenes::{builtin, show};
 
-use crate::line::LineStats;
+use crate::client::{Console, Dump, LineStats, Reply};
 use crate::picture::compare::{compare_images, differing_palette_entries, differing_pixel_count};
 use crate::picture::render::{builtin_scene, render, render_show, show_entry};
-use crate::qemu::console::Console;
-use crate::qemu::reply::{Dump, Reply};
 use crate::Image;
-use bench::{BenchTable, TickUnit};
+use bench_table::{BenchTable, TickUnit};
 pub use report::write_reports;
 
 /// What the check covers.

@@ -9,7 +9,7 @@ use protocol::LineLosses;
 use serde_json::{json, Value};
 
 use super::CheckReport;
-use crate::line::{transfer_time, TroubleKind, BAUD};
+use crate::client::{transfer_time, TroubleKind, BAUD};
 
 /// Writes `report.md` and `report.json` into `dir` (made if missing) and
 /// returns their paths.
@@ -162,8 +162,8 @@ fn line_json(line: &LineLosses) -> Value {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::line::LineStats;
-    use crate::serial_check::bench::{BenchTable, TickUnit};
+    use crate::client::LineStats;
+    use crate::serial_check::bench_table::{BenchTable, TickUnit};
     use crate::serial_check::Picture;
     use protocol::{ClockReadings, ClockSource, LineErrors, TscRate};
     use raster::MethodId;

@@ -4,7 +4,7 @@
 use std::hint::black_box;
 
 use raster::reference::SampleOffset;
-use raster::{fill_auto, fill_auto_with, ExactPath, Framebuffer, Method, Polygon, Scratch, SpanSink, SCREEN};
+use raster::{fill_auto, fill_auto_with, ExactPath, Framebuffer, MethodId, Polygon, Scratch, SpanSink, SCREEN};
 
 use crate::convention::Own;
 use crate::corpus::Family;
@@ -16,7 +16,7 @@ use crate::peers::{self, Clock, Peer};
 /// polygon to polygon, as a program drawing frame after frame would.
 #[derive(Clone, Copy)]
 pub enum Contender {
-    Method(&'static dyn Method),
+    Method(MethodId),
     Peer(&'static dyn Peer),
     Path(usize),
     Auto,
@@ -34,15 +34,15 @@ pub const METHODS_CLOCK: Clock = Clock {
 };
 
 impl Contender {
-    /// Every method of `raster::methods::ALL`, then the peers.
+    /// Every method of `raster::MethodId::ALL`, then the peers.
     pub fn all() -> Vec<Contender> {
-        let methods = raster::methods::ALL.iter().map(|&m| Contender::Method(m));
+        let methods = MethodId::ALL.into_iter().map(Contender::Method);
         methods.chain(peers::ALL.iter().map(|&p| Contender::Peer(p))).collect()
     }
 
     pub fn name(&self) -> &'static str {
         match self {
-            Contender::Method(m) => m.info().name,
+            Contender::Method(id) => id.name(),
             Contender::Peer(p) => p.info().name,
             Contender::Path(which) => ExactPath::NAMES[*which],
             Contender::Auto => "fill_auto",
@@ -57,7 +57,7 @@ impl Contender {
     /// peer's crate and call.
     pub fn source(&self) -> &'static str {
         match self {
-            Contender::Method(m) => m.info().source,
+            Contender::Method(id) => id.method().info().source,
             Contender::Peer(p) => p.info().source,
             Contender::Path(_) => "ours: one of exact's paths alone",
             Contender::Auto => "ours: exact's classification, then the path it picks",
@@ -67,7 +67,10 @@ impl Contender {
     /// Arithmetic and convention, in words.
     pub fn summary(&self) -> String {
         match self {
-            Contender::Method(m) => format!("{}; {}", m.info().numeric, m.info().convention.summary),
+            Contender::Method(id) => {
+                let info = id.method().info();
+                format!("{}; {}", info.numeric, info.convention.summary)
+            }
             Contender::Peer(p) => p.info().summary.to_string(),
             Contender::Path(which) => {
                 format!("exact's {} path; refuses polygons outside its class", ExactPath::NAMES[*which])
@@ -88,7 +91,7 @@ impl Contender {
     /// reference.
     pub fn own(&self) -> Own {
         match self {
-            Contender::Method(m) => Own::Sample(SampleOffset::of(&m.info().convention)),
+            Contender::Method(id) => Own::Sample(SampleOffset::of(&id.method().info().convention)),
             Contender::Peer(p) => p.info().own,
             Contender::Path(_) | Contender::Auto => Own::Sample(SampleOffset::CENTRE),
         }
@@ -106,7 +109,7 @@ impl Contender {
     /// Draws `polygon` into `sink`, or says why it declined.
     pub fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str> {
         match self {
-            Contender::Method(m) => m.fill(polygon, sink).map_err(|refusal| refusal.describe()),
+            Contender::Method(id) => id.fill(polygon, sink).map_err(|refusal| refusal.describe()),
             Contender::Peer(p) => p.draw(polygon, sink),
             Contender::Path(which) => {
                 ExactPath::alone(*which, polygon).and_then(|path| path.fill(sink)).map_err(|refusal| refusal.describe())
@@ -119,26 +122,18 @@ impl Contender {
     /// own kind of target).
     pub fn pass<'a>(&self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a> {
         match *self {
-            Contender::Method(method) => {
+            Contender::Method(id) => {
                 let polygons = polygons.to_vec();
                 let mut screen = Framebuffer::new(SCREEN);
-                match method.id() {
-                    // Our methods, compiled for the framebuffer: its store is
-                    // inlined into the fill.
-                    Some(id) => Box::new(move || {
-                        for polygon in &polygons {
-                            // A refusal costs what it costs; it draws nothing.
-                            let _ = id.fill(polygon, &mut screen);
-                        }
-                        black_box(&mut screen);
-                    }),
-                    None => Box::new(move || {
-                        for polygon in &polygons {
-                            let _ = method.fill(polygon, &mut screen);
-                        }
-                        black_box(&mut screen);
-                    }),
-                }
+                // Compiled for the framebuffer: its store is inlined into
+                // the fill.
+                Box::new(move || {
+                    for polygon in &polygons {
+                        // A refusal costs what it costs; it draws nothing.
+                        let _ = id.fill(polygon, &mut screen);
+                    }
+                    black_box(&mut screen);
+                })
             }
             Contender::Peer(p) => p.pass(polygons),
             Contender::Path(which) => {

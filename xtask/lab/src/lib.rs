@@ -30,6 +30,7 @@ pub mod convention;
 pub mod corpus;
 pub mod goals;
 pub mod heap;
+pub mod lane;
 pub mod measure;
 pub mod modelling;
 pub mod peers;
@@ -89,7 +90,7 @@ pub fn run(options: &LabOptions) -> Result<()> {
 /// `runs` times over, family after family in each run, with a progress bar.
 fn measure_corpus(families: &[corpus::Family], quick: bool, runs: usize, timing: Timing) -> Results {
     let contenders = Contender::all();
-    let lanes = modelling::Lane::all().len();
+    let lanes = lane::Lane::all().len();
     let timed_lanes = contenders.len() + timing::Bound::ALL.len() + lanes;
     let work: u64 =
         families.iter().map(|f| 2 * f.polygons.len() as u64 + runs as u64 * timing::jobs(f, timed_lanes)).sum();

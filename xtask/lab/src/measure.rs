@@ -426,32 +426,39 @@ pub fn quietly<T>(f: impl FnOnce() -> T) -> T {
 mod tests {
     use super::*;
     use crate::corpus::Group;
-    use raster::{Method, MethodInfo, Point, Refusal, SpanSink};
+    use crate::peers::{Clock, Peer, PeerInfo};
+    use raster::{MethodId, Point, SpanSink};
 
-    /// A method that misbehaves on purpose, by colour: 1 draws the exact
+    /// A peer that misbehaves on purpose, by colour: 1 draws the exact
     /// fill, 2 panics, 3 declines, 4 draws everything twice, 5 writes off
     /// the target.
     struct Misfit;
 
-    static MISFIT: MethodInfo = MethodInfo {
+    static MISFIT: PeerInfo = PeerInfo {
         name: "misfit",
         source: "test",
-        convention: raster::Convention { sample_x: 128, sample_y: 128, summary: "test" },
-        numeric: "test",
-        handles: raster::Class::Complex,
-        rules: &[],
-        heap: raster::Heap::Never,
+        summary: "test",
+        own: Own::Sample(SampleOffset::CENTRE),
+        clock: Clock {
+            before: "test",
+            setup: "test",
+            fill: "test",
+            surface: "test",
+            pixel_format: "test",
+            anti_aliasing: "test",
+        },
+        variant_of: None,
     };
 
-    impl Method for Misfit {
-        fn info(&self) -> &'static MethodInfo {
+    impl Peer for Misfit {
+        fn info(&self) -> &PeerInfo {
             &MISFIT
         }
 
-        fn fill(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), Refusal> {
+        fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str> {
             match polygon.color {
                 2 => panic!("misfit"),
-                3 => return Err(Refusal::OutOfRange),
+                3 => return Err("coordinates out of the method's range"),
                 5 => sink.span(-1, 0, 1, 1),
                 _ => {}
             }
@@ -459,6 +466,10 @@ mod tests {
                 reference::fill(polygon, SampleOffset::CENTRE, sink);
             }
             Ok(())
+        }
+
+        fn pass<'a>(&self, _polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a> {
+            Box::new(|| {})
         }
     }
 
@@ -471,7 +482,7 @@ mod tests {
     }
 
     fn tally(family: &Family) -> Tally {
-        let judged = quietly(|| judge(family, &[Contender::Method(&Misfit)], &|| {}));
+        let judged = quietly(|| judge(family, &[Contender::Peer(&Misfit)], &|| {}));
         judged.tallies[0].clone().unwrap()
     }
 
@@ -509,11 +520,23 @@ mod tests {
     }
 
     #[test]
-    fn failed_polygons_are_not_timed() {
+    fn failed_polygons_and_what_a_peer_declines_are_not_timed() {
         let judged = quietly(|| {
-            judge(&family(vec![square(1), square(2), square(3)], vec![]), &[Contender::Method(&Misfit)], &|| {})
+            judge(&family(vec![square(1), square(2), square(3)], vec![]), &[Contender::Peer(&Misfit)], &|| {})
         });
-        assert_eq!(judged.timed[0], vec![0, 2]);
+        assert_eq!(judged.timed[0], vec![0]);
         assert_eq!(judged.exact.len(), 3);
+    }
+
+    #[test]
+    fn what_a_method_declines_is_timed() {
+        // Two squares in one polygon: `abrash_int` declines more than one
+        // contour, and deciding so is its work.
+        let mut two = square(1);
+        two.contours.push(square(1).contours.remove(0).into_iter().map(|p| Point::new(p.x + 5120, p.y)).collect());
+        let judged =
+            quietly(|| judge(&family(vec![square(1), two], vec![]), &[Contender::Method(MethodId::AbrashInt)], &|| {}));
+        assert_eq!(judged.tallies[0].as_ref().map(|t| t.refusals), Some(1));
+        assert_eq!(judged.timed[0], vec![0, 1]);
     }
 }

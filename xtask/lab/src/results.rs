@@ -11,8 +11,8 @@ use crate::corpus::{Axis, Family, Group};
 use crate::measure::{Judged, Tally};
 use crate::modelling::{self, PathRow, ShowRow};
 use crate::spans;
-use crate::stats::{median, Ratio, Spread};
-use crate::timing::{Bound, Samples, Speeds};
+use crate::stats::Spread;
+use crate::timing::{Bound, Samples, Speeds, Timed};
 
 /// The method held to zero wrong pixels, overdraw, gaps and failures.
 pub const EXACT: &str = "exact";
@@ -79,64 +79,6 @@ pub struct TimingInfo {
     /// The 1-minute load average when the timing started and when it
     /// ended, where the system tells it (`/proc/loadavg`).
     pub load_average: (Option<f64>, Option<f64>),
-}
-
-/// A lane's time on a family, over every run and repeat, as results.json
-/// gives it for every contender, bound and lane of "what modelling costs".
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
-pub struct Timed {
-    /// The median ns per polygon of every repeat of every run.
-    pub ns_per_polygon: Option<f64>,
-    /// The least and most of those repeats.
-    pub ns_min: Option<f64>,
-    pub ns_max: Option<f64>,
-    /// Its time over `exact`'s on the same family, repeat by repeat (the
-    /// two timed in turn), every run's repeats together, with its interval.
-    pub vs_exact: Option<Ratio>,
-    /// The same over the store bound's.
-    pub vs_store: Option<Ratio>,
-    /// Each run alone: its median and its ratio to `exact`'s.
-    pub runs: Vec<RunFigures>,
-    /// ns per polygon in every repeat, run by run.
-    pub samples_ns: Vec<Samples>,
-}
-
-/// One run's figures of a lane.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct RunFigures {
-    pub ns_per_polygon: Option<f64>,
-    pub vs_exact: Option<Ratio>,
-}
-
-impl Timed {
-    /// From a lane's samples in each run, and `exact`'s and the store
-    /// bound's in the same repeats of the same runs.
-    pub fn of(runs: &[&Samples], exact: &[&Samples], store: &[&Samples]) -> Timed {
-        let all: Samples = runs.iter().flat_map(|s| s.iter().copied()).collect();
-        let paired = |others: &[&Samples]| {
-            let (mine, theirs): (Samples, Samples) = runs
-                .iter()
-                .zip(others)
-                .filter(|(a, b)| a.len() == b.len())
-                .flat_map(|(a, b)| a.iter().copied().zip(b.iter().copied()))
-                .unzip();
-            Ratio::paired(&mine, &theirs)
-        };
-        let spread = Spread::of(&all);
-        Timed {
-            ns_per_polygon: spread.map(|s| s.median),
-            ns_min: spread.map(|s| s.min),
-            ns_max: spread.map(|s| s.max),
-            vs_exact: paired(exact),
-            vs_store: paired(store),
-            runs: runs
-                .iter()
-                .zip(exact)
-                .map(|(mine, exact)| RunFigures { ns_per_polygon: median(mine), vs_exact: Ratio::paired(mine, exact) })
-                .collect(),
-            samples_ns: runs.iter().map(|s| s.to_vec()).collect(),
-        }
-    }
 }
 
 /// The CPU features the lab was compiled to use (`cargo xtask lab` builds

@@ -7,9 +7,14 @@
 //! made on the first build that asks for it and kept outside `target/` (so
 //! that `cargo clean` does not force a new enrollment), and never stored
 //! in the clear: the private key is encrypted under a passphrase (AES-256),
-//! which `openssl` asks for on the terminal or [`PASSPHRASE_ENV`] gives;
-//! signing decrypts it into memory only and hands it to `sbsign` through a
-//! pipe. A key given with [`KEY_ENV`] (or `--key`) must be encrypted too.
+//! which the build asks for once on the terminal (a new key's twice, to
+//! catch a typing slip) or [`PASSPHRASE_ENV`] gives; every `openssl` that
+//! needs it reads it from a pipe on its standard input, and the variable
+//! is taken out of the environment before any child starts
+//! ([`take_passphrase`]), so no other child (cargo, apt-get, dpkg-deb,
+//! sbsign) sees it. Signing decrypts the key into memory only and hands it
+//! to `sbsign` through a pipe. A key given with [`KEY_ENV`] (or `--key`)
+//! must be encrypted too.
 //!
 //! Its certificate is made for this one job: not a CA, key usage
 //! digitalSignature, extended key usage codeSigning, a subject with a
@@ -27,7 +32,7 @@ use std::process::{Command, Stdio};
 use anyhow::{bail, ensure, Context, Result};
 use sha2::{Digest, Sha256};
 
-use crate::process::{command_line, find_in_path, output_of};
+use install::process::{command_line, find_in_path, output_of};
 
 /// A private key (PEM, encrypted) to sign with instead of the generated one; needs [`CERT_ENV`].
 pub const KEY_ENV: &str = "POLYLAB_SECURE_BOOT_KEY";
@@ -71,8 +76,8 @@ pub struct SigningKey {
     pub key: PathBuf,
     /// The certificate, PEM.
     pub cert: PathBuf,
-    /// The passphrase, if not to be asked for on the terminal.
-    passphrase: Option<String>,
+    /// The key's passphrase, given or asked for once.
+    passphrase: String,
 }
 
 impl std::fmt::Debug for SigningKey {
@@ -84,10 +89,11 @@ impl std::fmt::Debug for SigningKey {
 impl SigningKey {
     /// The key named by [`KEY_ENV`] and [`CERT_ENV`] if set, else the
     /// user's generated key, made now if there is none; the passphrase
-    /// from [`PASSPHRASE_ENV`] if set. A certificate given in DER is
-    /// converted into `scratch`.
+    /// from [`PASSPHRASE_ENV`] if set ([`take_passphrase`]), else asked
+    /// for on the terminal. A certificate given in DER is converted into
+    /// `scratch`.
     pub fn users(scratch: &Path) -> Result<Self> {
-        let passphrase = std::env::var(PASSPHRASE_ENV).ok();
+        let passphrase = take_passphrase();
         match (std::env::var_os(KEY_ENV), std::env::var_os(CERT_ENV)) {
             (Some(key), Some(cert)) => Self::own(Path::new(&key), Path::new(&cert), passphrase, scratch),
             (None, None) => Self::in_folder(&key_folder()?, passphrase),
@@ -95,10 +101,15 @@ impl SigningKey {
         }
     }
 
-    /// A key of one's own: `key` (PEM, encrypted) and `cert` (PEM or DER).
+    /// A key of one's own: `key` (PEM, encrypted) and `cert` (PEM or DER);
+    /// the passphrase asked for on the terminal unless given.
     pub fn own(key: &Path, cert: &Path, passphrase: Option<String>, scratch: &Path) -> Result<Self> {
         ensure_private(key)?;
         ensure_encrypted(key)?;
+        let passphrase = match passphrase {
+            Some(passphrase) => passphrase,
+            None => ask_at_terminal(&format!("Passphrase of the Secure Boot key {}: ", key.display()))?,
+        };
         let bytes =
             std::fs::read(cert).with_context(|| format!("failed to read the certificate {}", cert.display()))?;
         if bytes.starts_with(b"-----BEGIN") {
@@ -113,16 +124,41 @@ impl SigningKey {
         Ok(Self { key: key.to_path_buf(), cert: pem, passphrase })
     }
 
-    /// The key in `folder`, generated there first if it has none.
+    /// The key in `folder`, generated there first if it has none; the
+    /// passphrase asked for on the terminal unless given.
     pub fn in_folder(folder: &Path, passphrase: Option<String>) -> Result<Self> {
-        let key = Self { key: folder.join(KEY_FILE), cert: folder.join(CERT_FILE), passphrase };
-        if !key.key.exists() {
-            key.generate(folder)?;
+        Self::in_folder_asking(folder, passphrase, &mut ask_at_terminal)
+    }
+
+    /// [`Self::in_folder`], asking with `ask` (a prompt in, the answer
+    /// out): once for a key that is there, twice (the same question and
+    /// its confirmation) for a new one.
+    fn in_folder_asking(
+        folder: &Path,
+        passphrase: Option<String>,
+        ask: &mut dyn FnMut(&str) -> Result<String>,
+    ) -> Result<Self> {
+        let (key, cert) = (folder.join(KEY_FILE), folder.join(CERT_FILE));
+        let new = !key.exists();
+        let passphrase = match passphrase {
+            Some(passphrase) => passphrase,
+            None if new => {
+                let first = ask(&format!("A passphrase for your new Secure Boot key in {}: ", folder.display()))?;
+                let again = ask("The same passphrase again: ")?;
+                ensure!(first == again, "the two passphrases differ; nothing was made");
+                first
+            }
+            None => ask(&format!("Passphrase of your Secure Boot key {}: ", key.display()))?,
+        };
+        ensure!(!passphrase.is_empty(), "the Secure Boot key's passphrase is empty");
+        let signing = Self { key, cert, passphrase };
+        if new {
+            signing.generate(folder)?;
         }
-        ensure_private(&key.key)?;
-        ensure_encrypted(&key.key)?;
-        ensure!(key.cert.is_file(), "{} has no certificate {}", folder.display(), key.cert.display());
-        Ok(key)
+        ensure_private(&signing.key)?;
+        ensure_encrypted(&signing.key)?;
+        ensure!(signing.cert.is_file(), "{} has no certificate {}", folder.display(), signing.cert.display());
+        Ok(signing)
     }
 
     /// A new RSA 2048 key, encrypted, and its self-signed certificate
@@ -140,13 +176,8 @@ impl SigningKey {
              `sudo apt-get install openssl`), or give a key of your own with --key and --cert"
         );
         eprintln!(
-            "image: making your own Secure Boot key in {} (openssl, RSA 2048, encrypted under a passphrase{})",
-            folder.display(),
-            if self.passphrase.is_some() {
-                format!(" from {PASSPHRASE_ENV}")
-            } else {
-                ", which openssl asks for".into()
-            }
+            "image: making your own Secure Boot key in {} (openssl, RSA 2048, encrypted under your passphrase)",
+            folder.display()
         );
         let scratch_key = folder.join(format!("{KEY_FILE}.partial"));
         let scratch_cert = folder.join(format!("{CERT_FILE}.partial"));
@@ -160,51 +191,57 @@ impl SigningKey {
             .with_context(|| format!("failed to create {}", scratch_key.display()))?;
         let mut generate = openssl();
         generate.args(["genpkey", "-algorithm", "RSA", "-pkeyopt", "rsa_keygen_bits:2048", "-aes-256-cbc", "-out"]);
-        generate.arg(&scratch_key);
-        self.pass_passphrase(&mut generate, "-pass");
-        run_at_terminal(&mut generate).context("failed to make the Secure Boot key")?;
+        generate.arg(&scratch_key).args(["-pass", "stdin"]);
+        self.run_with_passphrase(&mut generate).context("failed to make the Secure Boot key")?;
         let config = tempfile::NamedTempFile::new().context("failed to create a temporary file")?;
         std::fs::write(config.path(), CERTIFICATE_CONFIG.replace("{id}", &random_id()?))
             .context("failed to write the certificate's profile")?;
         let mut certify = openssl();
         certify.args(["req", "-new", "-x509", "-sha256", "-days", &VALIDITY_DAYS.to_string(), "-config"]);
         certify.arg(config.path()).arg("-key").arg(&scratch_key).arg("-out").arg(&scratch_cert);
-        self.pass_passphrase(&mut certify, "-passin");
-        run_at_terminal(&mut certify).context("failed to make the Secure Boot key's certificate")?;
+        certify.args(["-passin", "stdin"]);
+        self.run_with_passphrase(&mut certify).context("failed to make the Secure Boot key's certificate")?;
         ensure_private(&scratch_key)?;
         std::fs::rename(&scratch_cert, &self.cert)
             .with_context(|| format!("failed to write {}", self.cert.display()))?;
         std::fs::rename(&scratch_key, &self.key).with_context(|| format!("failed to write {}", self.key.display()))
     }
 
-    /// Gives `command` (an openssl command, its arguments written) the
-    /// passphrase by `option` (`-pass`, `-passin`) from its own
-    /// environment, if there is one; else openssl asks.
-    fn pass_passphrase(&self, command: &mut Command, option: &str) {
-        if let Some(passphrase) = &self.passphrase {
-            command.env(PASSPHRASE_ENV, passphrase).arg(option).arg(format!("env:{PASSPHRASE_ENV}"));
-        }
+    /// Runs `command` (an openssl command reading the passphrase with
+    /// `stdin`) with the passphrase written to its standard input, and
+    /// returns its standard output; fails unless it succeeds.
+    fn run_with_passphrase(&self, command: &mut Command) -> Result<Vec<u8>> {
+        let line = command_line(command);
+        let mut child = command
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .with_context(|| format!("failed to start `{line}`"))?;
+        let mut stdin = child.stdin.take().context("openssl's standard input")?;
+        let written = stdin.write_all(format!("{}\n", self.passphrase).as_bytes());
+        drop(stdin);
+        let output = child.wait_with_output().with_context(|| format!("failed to wait for `{line}`"))?;
+        ensure!(
+            output.status.success() && written.is_ok(),
+            "`{line}` failed with {}: {}",
+            output.status,
+            String::from_utf8_lossy(&output.stderr).trim()
+        );
+        Ok(output.stdout)
     }
 
     /// The private key decrypted (PEM), in memory only.
     pub fn decrypted(&self) -> Result<Vec<u8>> {
         let mut decrypt = openssl();
-        decrypt.arg("pkey").arg("-in").arg(&self.key);
-        self.pass_passphrase(&mut decrypt, "-passin");
-        let line = command_line(&decrypt);
-        let output = decrypt
-            .stdin(Stdio::inherit())
-            .stderr(Stdio::inherit())
-            .output()
-            .with_context(|| format!("failed to start `{line}`"))?;
-        ensure!(
-            output.status.success(),
-            "`{line}` could not decrypt the Secure Boot key {} ({}): type its passphrase at a terminal, or set \
-             {PASSPHRASE_ENV}",
-            self.key.display(),
-            output.status
-        );
-        Ok(output.stdout)
+        decrypt.arg("pkey").arg("-in").arg(&self.key).args(["-passin", "stdin"]);
+        self.run_with_passphrase(&mut decrypt).with_context(|| {
+            format!(
+                "could not decrypt the Secure Boot key {} (a wrong passphrase?): type it again, or set \
+                 {PASSPHRASE_ENV}",
+                self.key.display()
+            )
+        })
     }
 
     /// Fails if the certificate has expired: shim would not mind, but the
@@ -238,18 +275,25 @@ impl SigningKey {
     }
 }
 
-/// Runs `command` with the terminal at hand (openssl asks for a
-/// passphrase there), failing unless it succeeds.
-fn run_at_terminal(command: &mut Command) -> Result<()> {
-    let line = command_line(command);
-    let output = command.stdin(Stdio::inherit()).output().with_context(|| format!("failed to start `{line}`"))?;
-    ensure!(
-        output.status.success(),
-        "`{line}` failed with {}: {} (with no terminal to type a passphrase at, set {PASSPHRASE_ENV})",
-        output.status,
-        String::from_utf8_lossy(&output.stderr).trim()
-    );
-    Ok(())
+/// The passphrase in [`PASSPHRASE_ENV`], taken out of this process's
+/// environment the first time (so that no child started after inherits
+/// it), and kept for every later call. `cargo xtask` calls it first thing,
+/// before any thread or child starts.
+pub fn take_passphrase() -> Option<String> {
+    static TAKEN: std::sync::OnceLock<Option<String>> = std::sync::OnceLock::new();
+    TAKEN
+        .get_or_init(|| {
+            let passphrase = std::env::var(PASSPHRASE_ENV).ok();
+            std::env::remove_var(PASSPHRASE_ENV);
+            passphrase
+        })
+        .clone()
+}
+
+/// Asks for a passphrase on the terminal, not echoing it.
+fn ask_at_terminal(prompt: &str) -> Result<String> {
+    rpassword::prompt_password(prompt)
+        .with_context(|| format!("no terminal to ask for the Secure Boot key's passphrase at: set {PASSPHRASE_ENV}"))
 }
 
 /// 16 random hex digits, the certificate's identifier.
@@ -344,17 +388,18 @@ mod tests {
         assert_eq!(std::fs::metadata(&folder).unwrap().permissions().mode() & 0o777, 0o700);
         assert!(std::fs::read_to_string(&key.key).unwrap().starts_with("-----BEGIN ENCRYPTED PRIVATE KEY-----"));
         assert!(String::from_utf8(key.decrypted().unwrap()).unwrap().starts_with("-----BEGIN PRIVATE KEY-----"));
-        let wrong = SigningKey { passphrase: Some("another".into()), ..key.clone() };
+        let wrong = SigningKey { passphrase: "another".into(), ..key.clone() };
         assert!(wrong.decrypted().unwrap_err().to_string().contains("could not decrypt"));
         let der = key.certificate_der().unwrap();
         assert_eq!(der[0], 0x30, "a DER SEQUENCE");
         let again = test_key(&folder);
         assert_eq!(again.certificate_der().unwrap(), der, "the second build keeps the key");
-        let own = SigningKey::own(&key.key, &key.cert, None, dir.path()).unwrap();
+        let given = Some("a passphrase for the tests".to_string());
+        let own = SigningKey::own(&key.key, &key.cert, given.clone(), dir.path()).unwrap();
         assert_eq!(own.cert, key.cert, "a PEM certificate is taken as it is");
         let der_file = dir.path().join("cert.der");
         std::fs::write(&der_file, &der).unwrap();
-        let converted = SigningKey::own(&key.key, &der_file, None, &dir.path().join("scratch")).unwrap();
+        let converted = SigningKey::own(&key.key, &der_file, given, &dir.path().join("scratch")).unwrap();
         assert_eq!(converted.certificate_der().unwrap(), der, "a DER certificate is converted");
     }
 
@@ -386,11 +431,11 @@ mod tests {
         let key = dir.path().join("k.pem");
         std::fs::write(&key, "-----BEGIN PRIVATE KEY-----\n").unwrap();
         std::fs::set_permissions(&key, std::fs::Permissions::from_mode(0o644)).unwrap();
-        let error = SigningKey::own(&key, &key, None, dir.path()).unwrap_err().to_string();
+        let error = SigningKey::own(&key, &key, Some("p".into()), dir.path()).unwrap_err().to_string();
         assert!(error.contains("can be read by others (mode 644)"), "{error}");
         assert!(error.ends_with(&format!("chmod 600 {}", key.display())), "{error}");
         std::fs::set_permissions(&key, std::fs::Permissions::from_mode(0o600)).unwrap();
-        let error = SigningKey::own(&key, &key, None, dir.path()).unwrap_err().to_string();
+        let error = SigningKey::own(&key, &key, Some("p".into()), dir.path()).unwrap_err().to_string();
         assert!(error.contains("is not encrypted"), "{error}");
         assert!(error.contains("-aes-256-cbc"), "{error}");
     }
@@ -401,5 +446,51 @@ mod tests {
             fingerprint(b"abc"),
             "BA:78:16:BF:8F:01:CF:EA:41:41:40:DE:5D:AE:22:23:B0:03:61:A3:96:17:7A:9C:B4:10:FF:61:F2:00:15:AD"
         );
+    }
+
+    #[test]
+    fn a_first_key_build_asks_for_the_passphrase_once_and_confirms_it_and_a_later_one_once() {
+        let dir = tempfile::tempdir().unwrap();
+        let asked = std::cell::RefCell::new(Vec::new());
+        let mut ask = |prompt: &str| {
+            asked.borrow_mut().push(prompt.to_string());
+            Ok("typed once".to_string())
+        };
+        let key = SigningKey::in_folder_asking(dir.path(), None, &mut ask).unwrap();
+        let signing = key.decrypted().unwrap();
+        assert!(String::from_utf8(signing).unwrap().starts_with("-----BEGIN PRIVATE KEY-----"));
+        let first: Vec<String> = asked.take();
+        assert_eq!(first.len(), 2, "{first:?}");
+        assert!(first[0].starts_with("A passphrase for your new") && first[1].starts_with("The same"), "{first:?}");
+        let again = SigningKey::in_folder_asking(dir.path(), None, &mut ask).unwrap();
+        again.decrypted().unwrap();
+        again.certificate_der().unwrap();
+        assert_eq!(asked.take().len(), 1, "a later build asks once");
+        let mut slip = |prompt: &str| Ok(if prompt.starts_with("The same") { "typo" } else { "typed" }.to_string());
+        let error = SigningKey::in_folder_asking(&dir.path().join("other"), None, &mut slip).unwrap_err();
+        assert!(error.to_string().contains("differ"), "{error}");
+    }
+
+    /// Set in the copy of this test binary the test below starts.
+    const CHILD: &str = "PASSPHRASE_TEST_CHILD";
+
+    #[test]
+    fn the_passphrase_leaves_the_environment_before_any_child_starts() {
+        if std::env::var_os(CHILD).is_some() {
+            assert_eq!(take_passphrase().as_deref(), Some("a secret"));
+            let env = output_of(&mut Command::new("env")).unwrap();
+            assert!(!env.contains(PASSPHRASE_ENV), "a child inherits {PASSPHRASE_ENV}");
+            assert_eq!(take_passphrase().as_deref(), Some("a secret"), "kept for later calls");
+            return;
+        }
+        let name = "secure_boot::key::tests::the_passphrase_leaves_the_environment_before_any_child_starts";
+        let child = Command::new(std::env::current_exe().unwrap())
+            .args(["--exact", name, "--test-threads=1"])
+            .env(CHILD, "1")
+            .env(PASSPHRASE_ENV, "a secret")
+            .output()
+            .unwrap();
+        let printed = String::from_utf8_lossy(&child.stdout);
+        assert!(child.status.success() && printed.contains("1 passed"), "{printed}");
     }
 }

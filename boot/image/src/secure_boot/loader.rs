@@ -16,7 +16,7 @@ use object::{LittleEndian as LE, Object, ObjectSection};
 use sha2::{Digest, Sha256};
 
 use super::key::SigningKey;
-use crate::process::command_line;
+use install::process::command_line;
 
 /// The bytes that start the digest placeholder in the loader (its
 /// `MARKER`); the kernel's SHA-256 follows, then `boot.json`'s.

@@ -23,7 +23,7 @@ impl fmt::Display for PciId {
 }
 
 impl PciId {
-    fn parse(text: &str) -> Option<Self> {
+    pub(crate) fn parse(text: &str) -> Option<Self> {
         let (vendor, device) = text.split_once(':')?;
         Some(Self { vendor: hex(vendor, 4)?, device: hex(device, 4)? })
     }
@@ -51,7 +51,7 @@ impl fmt::Display for PciAddress {
 }
 
 impl PciAddress {
-    fn parse(text: &str) -> Option<Self> {
+    pub(crate) fn parse(text: &str) -> Option<Self> {
         let (bus, rest) = text.split_once(':')?;
         let (device, function) = rest.split_once('.')?;
         let address = Self { bus: hex(bus, 2)?, device: hex(device, 2)?, function: hex(function, 1)? };

@@ -44,9 +44,11 @@
 use alloc::vec::Vec;
 
 use super::abrash_int::ErrorTermStep;
+use crate::classify::Class;
 use crate::geometry::{FillRule, Polygon};
-use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::interface::{Builtin, MethodId};
+use crate::methods::info::{Heap, MethodInfo, Refusal};
+use crate::methods::interface::Builtin;
+use crate::reference::Convention;
 use crate::target::SpanSink;
 
 /// Listing 40.1.
@@ -67,7 +69,6 @@ static INFO: MethodInfo = MethodInfo {
 };
 
 impl Builtin for AbrashAet {
-    const ID: MethodId = MethodId::AbrashAet;
     const INFO: &'static MethodInfo = &INFO;
 
     fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {

@@ -20,9 +20,11 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
+use crate::classify::Class;
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::interface::{Builtin, MethodId};
+use crate::methods::info::{Heap, MethodInfo, Refusal};
+use crate::methods::interface::Builtin;
+use crate::reference::Convention;
 use crate::target::SpanSink;
 
 /// Listing 38.1.
@@ -46,7 +48,6 @@ static INFO: MethodInfo = MethodInfo {
 };
 
 impl Builtin for AbrashFloat {
-    const ID: MethodId = MethodId::AbrashFloat;
     const INFO: &'static MethodInfo = &INFO;
 
     fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {

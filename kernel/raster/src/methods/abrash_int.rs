@@ -27,9 +27,10 @@
 use core::ops::Range;
 
 use super::abrash_float::{fill_with, Segment, CONVENTION};
+use crate::classify::Class;
 use crate::geometry::{FillRule, Polygon};
-use crate::methods::info::{Class, Heap, MethodInfo, Refusal};
-use crate::methods::interface::{Builtin, MethodId};
+use crate::methods::info::{Heap, MethodInfo, Refusal};
+use crate::methods::interface::Builtin;
 use crate::target::SpanSink;
 
 /// Listings 38.1, 39.1 and 39.2.
@@ -46,7 +47,6 @@ static INFO: MethodInfo = MethodInfo {
 };
 
 impl Builtin for AbrashInt {
-    const ID: MethodId = MethodId::AbrashInt;
     const INFO: &'static MethodInfo = &INFO;
 
     fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {

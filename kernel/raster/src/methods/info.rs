@@ -1,52 +1,15 @@
 //! What a fill method is, as data: the metadata the kernel, the host
 //! renderer, the tests and the lab list and compare methods by, and why a
-//! method declines a polygon. The interface itself, [`Method`], is in
+//! method declines a polygon. The classes it may handle are `classify.rs`'s
+//! ([`Class`]), the sample point of its convention the reference's
+//! ([`Convention`]). The interface itself, [`Method`], is in
 //! [`methods`](crate::methods) with the methods.
 //!
 //! [`Method`]: crate::methods::Method
 
+use crate::classify::Class;
 use crate::geometry::FillRule;
-
-/// Polygon classes, from cheapest to most general (Abrash ch. 41 naming in
-/// brackets).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Class {
-    /// Fewer than three distinct vertices, or no area.
-    Degenerate,
-    /// Exactly three vertices.
-    Triangle,
-    /// Monotone in y: every horizontal line meets the boundary at most
-    /// twice (Abrash's "convex", chapter 41's "monotone-vertical").
-    Convex,
-    /// Edges do not cross (Abrash's "nonconvex").
-    Simple,
-    /// Anything: self-intersecting, several contours (Abrash's "complex").
-    Complex,
-}
-
-impl Class {
-    pub const fn name(self) -> &'static str {
-        match self {
-            Class::Degenerate => "degenerate",
-            Class::Triangle => "triangle",
-            Class::Convex => "convex",
-            Class::Simple => "simple",
-            Class::Complex => "complex",
-        }
-    }
-}
-
-/// Where a method samples a pixel, in subpixels from the pixel's top-left
-/// corner: (128, 128) is the centre (our convention), (0, 0) the integer
-/// grid point (Abrash's). The lab judges a method against the reference
-/// under our convention and under its own.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Convention {
-    pub sample_x: i32,
-    pub sample_y: i32,
-    /// One line for people: how the method decides which pixels are in.
-    pub summary: &'static str,
-}
+use crate::reference::Convention;
 
 /// When a method takes memory from the heap while it fills.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

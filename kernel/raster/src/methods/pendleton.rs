@@ -49,9 +49,11 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
+use crate::classify::Class;
 use crate::geometry::{FillRule, Point, Polygon, SUBPIXEL_BITS};
-use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::interface::{Builtin, MethodId};
+use crate::methods::info::{Heap, MethodInfo, Refusal};
+use crate::methods::interface::Builtin;
+use crate::reference::Convention;
 use crate::target::SpanSink;
 
 /// `poly()` and its helpers.
@@ -73,7 +75,6 @@ static INFO: MethodInfo = MethodInfo {
 };
 
 impl Builtin for Pendleton {
-    const ID: MethodId = MethodId::Pendleton;
     const INFO: &'static MethodInfo = &INFO;
 
     fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {

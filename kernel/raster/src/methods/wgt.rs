@@ -47,9 +47,11 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
+use crate::classify::Class;
 use crate::geometry::{FillRule, Polygon};
-use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::interface::{Builtin, MethodId};
+use crate::methods::info::{Heap, MethodInfo, Refusal};
+use crate::methods::interface::Builtin;
+use crate::reference::Convention;
 use crate::target::SpanSink;
 
 /// The tutorial's `fillpoly`.
@@ -73,7 +75,6 @@ static INFO: MethodInfo = MethodInfo {
 };
 
 impl Builtin for Wgt {
-    const ID: MethodId = MethodId::Wgt;
     const INFO: &'static MethodInfo = &INFO;
 
     fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {

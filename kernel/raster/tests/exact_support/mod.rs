@@ -1,5 +1,6 @@
 //! What the `exact_*` tests share: the polygon generators and the
-//! comparison with the reference.
+//! comparison with the reference (`method_ids.rs` takes its corpus from
+//! the generators too).
 //!
 //! The generators are plain functions of a stream of random draws
 //! ([`Draws`]), so that one generator serves two ends: proptest feeds it

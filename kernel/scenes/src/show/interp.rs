@@ -206,8 +206,8 @@ mod tests {
     use alloc::vec::Vec;
 
     use super::*;
-    use raster::methods::{self, Exact};
-    use raster::{MethodInfo, Polygon, SCREEN};
+    use raster::methods::Exact;
+    use raster::{MethodId, MethodInfo, Polygon, SCREEN};
 
     fn px(x: i32, y: i32) -> Point {
         Point::from_pixels(x, y)
@@ -295,7 +295,7 @@ mod tests {
     fn a_zero_area_triangle_draws_nothing() {
         for points in [[px(10, 10), px(50, 50), px(90, 90)], [px(7, 7); 3]] {
             let v = points.map(|at| Vertex::new(at, [1]));
-            for &method in methods::ALL {
+            for method in MethodId::ALL.map(MethodId::method) {
                 let (target, report) = paint(method, |p| p.triangle(&v, &mut |_, _, _: &[i32; 1]| Some(9)));
                 assert!(target.pixels().iter().all(|&p| p == 0), "{} drew a line", method.info().name);
                 assert_eq!(report, DrawReport { polygons: 1, ..DrawReport::default() });

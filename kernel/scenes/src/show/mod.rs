@@ -212,6 +212,77 @@ mod tests {
         }
     }
 
+    /// The shaded entries (`shaded.rs`).
+    fn shaded_entries() -> [&'static Entry; 3] {
+        ["wgt-gouraud", "wgt-texture", "pendleton-zbuffer"].map(|name| entry(name).unwrap())
+    }
+
+    /// Frame `frame` of `entry` drawn by `exact` on a stage that has drawn
+    /// before (the stage must not carry anything from one frame over),
+    /// which must draw it whole.
+    fn whole_frame(stage: &mut Stage, entry: &Entry, frame: u32) -> Vec<u8> {
+        let (pixels, report) = frame_of(stage, entry, frame, MethodId::Exact);
+        assert_eq!(report.refused, 0, "{} frame {frame}: {report:?}", entry.name);
+        pixels
+    }
+
+    /// Modelling more than needed costs time, not pixels: four attributes
+    /// and a depth buffer draw each shaded frame as it is drawn without.
+    #[test]
+    fn overmodelled_shaded_frames_are_the_frames_they_overmodel() {
+        let mut stage = Stage::new();
+        for entry in shaded_entries() {
+            for frame in [0, 37, entry.frames - 1] {
+                let needed = whole_frame(&mut stage, entry, frame);
+                let report = stage.draw_modelled(entry, frame, MethodId::Exact, Modelling::Forced).unwrap();
+                assert_eq!(report.refused, 0, "{} frame {frame}", entry.name);
+                assert!(stage.pixels() == needed.as_slice(), "{} frame {frame} differs", entry.name);
+            }
+        }
+        let still = entry("abrash38-1").unwrap();
+        assert_eq!(stage.draw_modelled(still, 0, MethodId::Exact, Modelling::Forced), None);
+    }
+
+    #[test]
+    fn shaded_frames_differ_from_each_other() {
+        let mut stage = Stage::new();
+        for entry in shaded_entries() {
+            let quarters: Vec<Vec<u8>> = (0..4).map(|q| whole_frame(&mut stage, entry, q * entry.frames / 4)).collect();
+            for a in 0..4 {
+                for b in a + 1..4 {
+                    assert!(quarters[a] != quarters[b], "{}: quarters {a} and {b} are the same", entry.name);
+                }
+            }
+            let next = whole_frame(&mut stage, entry, 1);
+            assert!(next != quarters[0], "{}: frame 1 is frame 0", entry.name);
+        }
+    }
+
+    #[test]
+    fn shaded_pixels_are_black_or_ramp_colours() {
+        let expected: [&[Ramp]; 3] = [&[Ramp::Gold], &[Ramp::Red, Ramp::Gold], &[Ramp::Red, Ramp::Green, Ramp::Blue]];
+        let mut stage = Stage::new();
+        for (entry, ramps) in shaded_entries().into_iter().zip(expected) {
+            // For each ramp, the frames that show more than a speck of it.
+            let mut shown = [0; 4];
+            let frames: Vec<u32> = (0..entry.frames).step_by(5).collect();
+            for &frame in &frames {
+                let pixels = whole_frame(&mut stage, entry, frame);
+                let used: Vec<Option<Ramp>> = pixels.iter().map(|&p| Ramp::of(p)).collect();
+                let allowed = |(&p, r): (&u8, &Option<Ramp>)| p == 0 || r.is_some_and(|r| ramps.contains(&r));
+                assert!(pixels.iter().zip(&used).all(allowed), "{} frame {frame}: a stray colour", entry.name);
+                for &ramp in ramps {
+                    shown[ramp as usize] += usize::from(used.iter().filter(|&&r| r == Some(ramp)).count() > 500);
+                }
+            }
+            // A rectangle turned edge-on is a line for a few frames.
+            for &ramp in ramps {
+                let seen = shown[ramp as usize];
+                assert!(seen >= frames.len() * 9 / 10, "{}: {ramp:?} in {seen} of {} frames", entry.name, frames.len());
+            }
+        }
+    }
+
     #[test]
     fn a_still_drawn_onto_another_target_is_the_stage_s_frame_and_an_animation_is_black() {
         let mut stage = Stage::new();

@@ -39,6 +39,14 @@ impl Ramp {
             Ramp::Gold => [63, 52, 12],
         }
     }
+
+    /// The ramp palette index `color` belongs to, if any: what the tests
+    /// read a frame's colours back as.
+    #[cfg(test)]
+    pub(super) fn of(color: u8) -> Option<Ramp> {
+        let ramps = [Ramp::Red, Ramp::Green, Ramp::Blue, Ramp::Gold];
+        color.checked_sub(RAMP_BASE).map(|i| ramps[usize::from(i / RAMP_LEVELS)])
+    }
 }
 
 /// The show's palette: the VGA default for entries 0-127 (every still page

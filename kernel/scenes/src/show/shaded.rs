@@ -314,88 +314,8 @@ mod tests {
     use alloc::vec::Vec;
 
     use super::*;
-    use crate::show::entries::{entry, Entry};
-    use crate::show::ramp::{RAMP_BASE, RAMP_LEVELS};
-    use crate::show::Stage;
     use raster::methods::Exact;
-    use raster::{CoverageSink, MethodId, Polygon, SCREEN};
-
-    /// The three entries drawn here.
-    fn entries() -> [&'static Entry; 3] {
-        ["wgt-gouraud", "wgt-texture", "pendleton-zbuffer"].map(|name| entry(name).unwrap())
-    }
-
-    /// Frame `frame` of `entry` drawn by `method` on a stage that has drawn
-    /// before (the stage must not carry anything from one frame over).
-    fn frame_of(stage: &mut Stage, entry: &Entry, frame: u32, method: MethodId) -> Vec<u8> {
-        let report = stage.draw(entry, frame, method);
-        assert_eq!(report.refused, 0, "{} frame {frame}: {report:?}", entry.name);
-        stage.pixels().to_vec()
-    }
-
-    /// Modelling more than needed costs time, not pixels: four attributes
-    /// and a depth buffer draw each shaded frame as it is drawn without.
-    #[test]
-    fn overmodelled_frames_are_the_frames_they_overmodel() {
-        let mut stage = Stage::new();
-        for entry in entries() {
-            for frame in [0, 37, entry.frames - 1] {
-                let needed = frame_of(&mut stage, entry, frame, MethodId::Exact);
-                let report = stage.draw_modelled(entry, frame, MethodId::Exact, Modelling::Forced).unwrap();
-                assert_eq!(report.refused, 0, "{} frame {frame}", entry.name);
-                assert!(stage.pixels() == needed.as_slice(), "{} frame {frame} differs", entry.name);
-            }
-        }
-        let still = entry("abrash38-1").unwrap();
-        assert_eq!(stage.draw_modelled(still, 0, MethodId::Exact, Modelling::Forced), None);
-    }
-
-    /// The ramp a palette index belongs to, if any.
-    fn ramp_of(color: u8) -> Option<Ramp> {
-        let ramps = [Ramp::Red, Ramp::Green, Ramp::Blue, Ramp::Gold];
-        color.checked_sub(RAMP_BASE).map(|i| ramps[usize::from(i / RAMP_LEVELS)])
-    }
-
-    #[test]
-    fn frames_differ_from_each_other() {
-        let mut stage = Stage::new();
-        for entry in entries() {
-            let quarters: Vec<Vec<u8>> =
-                (0..4).map(|q| frame_of(&mut stage, entry, q * entry.frames / 4, MethodId::Exact)).collect();
-            for a in 0..4 {
-                for b in a + 1..4 {
-                    assert!(quarters[a] != quarters[b], "{}: quarters {a} and {b} are the same", entry.name);
-                }
-            }
-            let next = frame_of(&mut stage, entry, 1, MethodId::Exact);
-            assert!(next != quarters[0], "{}: frame 1 is frame 0", entry.name);
-        }
-    }
-
-    #[test]
-    fn pixels_are_black_or_ramp_colours() {
-        let expected: [&[Ramp]; 3] = [&[Ramp::Gold], &[Ramp::Red, Ramp::Gold], &[Ramp::Red, Ramp::Green, Ramp::Blue]];
-        let mut stage = Stage::new();
-        for (entry, ramps) in entries().into_iter().zip(expected) {
-            // For each ramp, the frames that show more than a speck of it.
-            let mut shown = [0; 4];
-            let frames: Vec<u32> = (0..entry.frames).step_by(5).collect();
-            for &frame in &frames {
-                let pixels = frame_of(&mut stage, entry, frame, MethodId::Exact);
-                let used: Vec<Option<Ramp>> = pixels.iter().map(|&p| ramp_of(p)).collect();
-                let allowed = |(&p, r): (&u8, &Option<Ramp>)| p == 0 || r.is_some_and(|r| ramps.contains(&r));
-                assert!(pixels.iter().zip(&used).all(allowed), "{} frame {frame}: a stray colour", entry.name);
-                for &ramp in ramps {
-                    shown[ramp as usize] += usize::from(used.iter().filter(|&&r| r == Some(ramp)).count() > 500);
-                }
-            }
-            // A rectangle turned edge-on is a line for a few frames.
-            for &ramp in ramps {
-                let seen = shown[ramp as usize];
-                assert!(seen >= frames.len() * 9 / 10, "{}: {ramp:?} in {seen} of {} frames", entry.name, frames.len());
-            }
-        }
-    }
+    use raster::{CoverageSink, Polygon, SCREEN};
 
     #[test]
     fn the_light_goes_round_the_triangle() {
@@ -430,7 +350,7 @@ mod tests {
     /// `a` and how many `b`.
     fn shares(solo: &[Framebuffer], together: &Framebuffer, a: usize, b: usize) -> (usize, usize) {
         let both = |i: usize| solo[a].pixels()[i] != 0 && solo[b].pixels()[i] != 0;
-        let shown = |i: usize, s: usize| ramp_of(together.pixels()[i]) == ramp_of(solo[s].pixels()[i]);
+        let shown = |i: usize, s: usize| Ramp::of(together.pixels()[i]) == Ramp::of(solo[s].pixels()[i]);
         let overlap: Vec<usize> = (0..together.pixels().len()).filter(|&i| both(i)).collect();
         (overlap.iter().filter(|&&i| shown(i, a)).count(), overlap.iter().filter(|&&i| shown(i, b)).count())
     }

@@ -16,12 +16,9 @@ mod shapes;
 mod stress;
 mod tiling;
 
-pub use family::{Axis, Family, Group, Sweep};
+pub use family::{Axis, Family, Group, Sweep, SEED};
 
 use family::random_family;
-
-/// The corpus seed. Changing it changes every family.
-pub const SEED: u64 = 0x1AB_5EED;
 
 /// How much of each kind the corpus holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -25,8 +25,8 @@ use std::sync::{Mutex, MutexGuard, OnceLock};
 use raster::{Polygon, SpanSink, SCREEN};
 
 use super::integer::{whole_pixel_contour, Canvas, Contour, IntegerPeer, Reach};
+use super::peer::{Clock, PeerInfo};
 use super::rows::emit_row;
-use super::{Clock, PeerInfo};
 use crate::convention::Own;
 
 /// What `polygon()` takes: within 2,047 px its fixed point cannot overflow.

@@ -15,8 +15,8 @@ use cairo::{Antialias, Context, Format, ImageSurface};
 use raster::reference::SampleOffset;
 use raster::{FillRule, Polygon, SpanSink, SCREEN};
 
+use super::peer::{Clock, Peer, PeerInfo};
 use super::rows::emit_rows;
-use super::{Clock, Peer, PeerInfo};
 use crate::convention::Own;
 
 /// Cairo's aliased fill into a 320x200 A8 surface, its paths set up for

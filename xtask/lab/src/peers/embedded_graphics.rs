@@ -11,7 +11,7 @@ use embedded_graphics::primitives::{PrimitiveStyle, Rectangle, Styled, Triangle}
 use raster::reference::SampleOffset;
 use raster::{Framebuffer, Polygon, SpanSink, SCREEN};
 
-use super::{Clock, Peer, PeerInfo};
+use super::peer::{Clock, Peer, PeerInfo};
 use crate::convention::Own;
 use crate::corpus::Family;
 

@@ -23,8 +23,8 @@ use std::slice;
 use raster::{Polygon, SpanSink, SCREEN};
 
 use super::integer::{whole_pixel_contour, Canvas, Contour, IntegerPeer, Reach};
+use super::peer::{Clock, PeerInfo};
 use super::rows::emit_row;
-use super::{Clock, PeerInfo};
 use crate::convention::Own;
 
 /// What `gdImageFilledPolygon` takes: within 23,170 px its products fit.

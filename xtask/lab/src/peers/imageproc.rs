@@ -15,8 +15,8 @@ use imageproc::point::Point;
 use raster::{Polygon, SpanSink, SCREEN};
 
 use super::integer::{whole_pixel_contour, Canvas, Contour, IntegerPeer, Reach};
+use super::peer::{Clock, PeerInfo};
 use super::rows::emit_rows;
-use super::{Clock, PeerInfo};
 use crate::convention::Own;
 
 /// imageproc's `draw_polygon_mut` into a grey image.

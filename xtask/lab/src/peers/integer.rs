@@ -19,7 +19,7 @@ use std::slice;
 
 use raster::{classify, Class, FillRule, Polygon, SpanSink};
 
-use super::{Peer, PeerInfo};
+use super::peer::{Peer, PeerInfo};
 use crate::corpus::Family;
 
 /// An integer peer's polygon: its one contour in whole pixels, or why the

@@ -26,8 +26,8 @@
 //! Each file's own notes say how its peer is called and what it computes
 //! in. A peer's picture is read back as spans by `rows.rs`.
 //!
-//! Adding a peer: a file with a value implementing [`Peer`] (a unit
-//! struct, or an `IntegerPeer` over a `Canvas` for a library taking
+//! Adding a peer: a file with a value implementing [`Peer`] (`peer.rs`: a
+//! unit struct, or an `IntegerPeer` over a `Canvas` for a library taking
 //! whole-pixel contours), its `mod` line here and its place in [`ALL`].
 //! Its [`PeerInfo`] says what it does inside the clock ([`Clock`]): a row
 //! of the table in docs/lab.md, which a test holds to these.
@@ -38,6 +38,7 @@ mod embedded_graphics;
 mod gd;
 mod imageproc;
 mod integer;
+mod peer;
 mod rows;
 mod sdl_gfx;
 #[cfg(test)]
@@ -45,69 +46,7 @@ mod test_support;
 mod tiny_skia;
 mod vello_cpu;
 
-use raster::{Polygon, SpanSink};
-
-use crate::convention::Own;
-use crate::corpus::Family;
-
-/// What a peer is, as data: the peers' counterpart of a method's
-/// `raster::MethodInfo`.
-#[derive(Clone, Copy, Debug)]
-pub struct PeerInfo {
-    /// Its name in the results and the charts.
-    pub name: &'static str,
-    /// The library, its version and the call made.
-    pub source: &'static str,
-    /// Arithmetic and convention, in words.
-    pub summary: &'static str,
-    /// How it decides which pixels are in: what it is judged against
-    /// "under its own convention".
-    pub own: Own,
-    /// What it does inside the timed pass and what before it.
-    pub clock: Clock,
-    /// For a second way of timing a peer (its paths built inside the
-    /// clock or before it), the peer it times otherwise: the same library
-    /// drawing the same pixels, left out of the charts of accuracy.
-    pub variant_of: Option<&'static str>,
-}
-
-/// What a contender does inside the clock and what it is given before it
-/// starts: the rows of docs/lab.md's table of what each contender does
-/// inside the clock, generated from these (`crate::report::clock_table`)
-/// so that the table cannot drift from the code.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Clock {
-    /// What is made of each polygon before the clock starts.
-    pub before: &'static str,
-    /// Path or vertex set-up inside the clock, per polygon.
-    pub setup: &'static str,
-    /// The fill inside the clock, per polygon (and per pass, where some of
-    /// it is done once a pass).
-    pub fill: &'static str,
-    /// What it fills into.
-    pub surface: &'static str,
-    pub pixel_format: &'static str,
-    /// Anti-aliasing, and the threshold that makes a pixel in or out.
-    pub anti_aliasing: &'static str,
-}
-
-/// A peer library, as the lab runs it.
-pub trait Peer: Sync {
-    fn info(&self) -> &PeerInfo;
-
-    /// Whether it runs on `family` at all; every family, unless it says
-    /// otherwise.
-    fn takes(&self, _family: &Family) -> bool {
-        true
-    }
-
-    /// Draws `polygon` into `sink`, or says why nothing could be drawn.
-    fn draw(&self, polygon: &Polygon, sink: &mut dyn SpanSink) -> Result<(), &'static str>;
-
-    /// One timed pass: fills every polygon it accepts of `polygons`, in
-    /// order, into its own target. Inputs are converted before the pass.
-    fn pass<'a>(&self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a>;
-}
+pub use peer::{Clock, Peer, PeerInfo};
 
 /// Every peer, in the order the results and the charts list them. Where a
 /// peer's API lets a program build its path once, it is here twice: with
@@ -128,10 +67,11 @@ pub static ALL: [&dyn Peer; 11] = [
 
 #[cfg(test)]
 mod tests {
-    use raster::{CoverageSink, FillRule, SCREEN};
+    use raster::{CoverageSink, FillRule, Polygon, SCREEN};
 
     use super::test_support::{family, square, Spans};
     use super::*;
+    use crate::convention::Own;
 
     const INTEGER_PEERS: [&dyn Peer; 4] = [&allegro::ALLEGRO, &sdl_gfx::SDL_GFX, &gd::GD, &imageproc::IMAGEPROC];
 

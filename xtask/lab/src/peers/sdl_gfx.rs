@@ -24,8 +24,8 @@ use sdl2::render::Canvas;
 use sdl2::surface::Surface;
 
 use super::integer::{whole_pixel_contour, Contour, IntegerPeer, Reach};
+use super::peer::{Clock, PeerInfo};
 use super::rows::emit_rows;
-use super::{Clock, PeerInfo};
 use crate::convention::Own;
 
 /// What `filledPolygonRGBA` takes: within 16,383 px its products fit.

@@ -10,8 +10,8 @@ use raster::reference::SampleOffset;
 use raster::{FillRule, Polygon, SpanSink, SCREEN};
 use tiny_skia::{Mask, Path, PathBuilder, Transform};
 
+use super::peer::{Clock, Peer, PeerInfo};
 use super::rows::emit_rows;
-use super::{Clock, Peer, PeerInfo};
 use crate::convention::Own;
 
 /// tiny-skia's aliased fill into a 320x200 mask, its paths built before

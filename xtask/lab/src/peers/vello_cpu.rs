@@ -20,8 +20,8 @@ use vello_cpu::kurbo::BezPath;
 use vello_cpu::peniko::Fill;
 use vello_cpu::{Pixmap, RasterizerSettings, RenderContext, Resources, TargetInit};
 
+use super::peer::{Clock, Peer, PeerInfo};
 use super::rows::emit_rows;
-use super::{Clock, Peer, PeerInfo};
 use crate::convention::Own;
 
 /// vello_cpu's aliasing threshold: painted above 127/255 of a pixel.

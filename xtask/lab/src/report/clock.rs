@@ -62,7 +62,7 @@ mod tests {
         for bound in Bound::ALL {
             assert!(table.contains(&format!("\n| {} |", bound.name())), "{}", bound.name());
         }
-        let methods = format!("\n| the {} methods of `raster` |", raster::methods::ALL.len());
+        let methods = format!("\n| the {} methods of `raster` |", raster::MethodId::ALL.len());
         assert!(table.contains(&methods), "{table}");
     }
 }

@@ -7,6 +7,7 @@
 //! clock in `clock.rs`.
 
 mod clock;
+mod format;
 mod modelling;
 mod speed;
 
@@ -16,7 +17,8 @@ use std::fmt::Write;
 
 use crate::corpus::Group;
 use crate::results::{Kind, Results, Row, EXACT, ZERO_FLOOR};
-use crate::stats::{pareto_front, Ratio};
+use crate::stats::pareto_front;
+use format::{count, duration, ratio};
 
 /// The whole report.
 pub fn markdown(results: &Results) -> String {
@@ -125,7 +127,7 @@ fn exact_goals(out: &mut String, results: &Results) {
     let _ = writeln!(out, "## `{EXACT}` against its goals\n");
     let rows: Vec<&Row> = results.rows_of(EXACT).collect();
     if rows.is_empty() {
-        let _ = writeln!(out, "No `{EXACT}` method in `raster::methods::ALL` yet.\n");
+        let _ = writeln!(out, "No `{EXACT}` method in `raster::MethodId::ALL` yet.\n");
         return;
     }
     let sum = |pick: fn(&Row) -> Option<u64>| rows.iter().filter_map(|r| pick(r)).sum::<u64>();
@@ -260,64 +262,5 @@ fn group(g: Group) -> &'static str {
         Group::Tiling => "tiling",
         Group::Stress => "stress",
         Group::Real => "real",
-    }
-}
-
-/// A ratio with its interval: `1.55× (1.49–1.61)`, or alone where it has
-/// none.
-fn ratio(r: &Ratio) -> String {
-    match (r.low, r.high) {
-        (Some(low), Some(high)) => format!("{:.2}× ({low:.2}–{high:.2})", r.ratio),
-        _ => format!("{:.2}×", r.ratio),
-    }
-}
-
-/// Nanoseconds, readably.
-fn duration(ns: f64) -> String {
-    if ns >= 1e6 {
-        format!("{:.2} ms", ns / 1e6)
-    } else if ns >= 1e3 {
-        format!("{:.2} µs", ns / 1e3)
-    } else {
-        format!("{ns:.0} ns")
-    }
-}
-
-/// An integer with thin thousands separators.
-fn count(n: u64) -> String {
-    let digits = n.to_string();
-    let mut grouped = String::new();
-    for (i, d) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i).is_multiple_of(3) {
-            grouped.push(',');
-        }
-        grouped.push(d);
-    }
-    grouped
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn counts_group_thousands() {
-        assert_eq!(count(0), "0");
-        assert_eq!(count(999), "999");
-        assert_eq!(count(1_234_567), "1,234,567");
-    }
-
-    #[test]
-    fn ratios_carry_their_interval() {
-        let r = Ratio { ratio: 1.554, low: Some(1.49), high: Some(1.612), pairs: 7 };
-        assert_eq!(ratio(&r), "1.55× (1.49–1.61)");
-        assert_eq!(ratio(&Ratio { low: None, high: None, pairs: 1, ..r }), "1.55×");
-    }
-
-    #[test]
-    fn durations_pick_their_unit() {
-        assert_eq!(duration(820.4), "820 ns");
-        assert_eq!(duration(1_500.0), "1.50 µs");
-        assert_eq!(duration(2_500_000.0), "2.50 ms");
     }
 }

@@ -4,8 +4,8 @@
 
 use std::fmt::Write;
 
-use super::{count, duration, ratio};
-use crate::modelling::Lane;
+use super::format::{count, duration, ratio};
+use crate::lane::Lane;
 use crate::results::{Results, EXACT};
 
 /// What modelling costs: each family through each of exact's paths, fill_auto

@@ -5,9 +5,10 @@
 
 use std::fmt::Write;
 
-use super::{count, duration, ratio};
-use crate::results::{Kind, Results, Row, Timed, EXACT};
+use super::format::{count, duration, ratio};
+use crate::results::{Kind, Results, Row, EXACT};
 use crate::stats::{disagreement, median};
+use crate::timing::Timed;
 
 /// Per family: `exact`, finding its spans alone (`fill_auto` into a sink
 /// that stores nothing) and the store bound, with the ratios that say
@@ -89,7 +90,7 @@ pub(super) fn runs_disagreement(out: &mut String, results: &Results) {
     let mut times = Vec::new();
     let mut ratios = Vec::new();
     for r in results.rows.iter().filter(|r| r.name != EXACT) {
-        let figure = |pick: fn(&crate::results::RunFigures) -> Option<f64>| -> Vec<f64> {
+        let figure = |pick: fn(&crate::timing::RunFigures) -> Option<f64>| -> Vec<f64> {
             r.time.runs.iter().filter_map(pick).collect()
         };
         if let Some(d) = disagreement(&figure(|f| f.ns_per_polygon)) {
@@ -110,8 +111,7 @@ pub(super) fn runs_disagreement(out: &mut String, results: &Results) {
     let columns: Vec<String> = (1..=runs).map(|r| format!("run {r}")).collect();
     let _ = writeln!(
         out,
-        "| family | `{EXACT}`, {} | disagree | closest peer | its time / `{EXACT}`'s, {} | disagree |\n\
-         |---|---:|---:|---|---:|---:|",
+        "| family | `{EXACT}`, {} | disagree | closest peer | its time / `{EXACT}`'s, {} | disagree |\n|---|---:|---:|---|---:|---:|",
         columns.join(", "),
         columns.join(", "),
     );

@@ -54,10 +54,12 @@ pub use active_edges::Scratch;
 pub use edge_flags::Bounds;
 use monotone::{fill_monotone, fill_triangle};
 
+use crate::classify::Class;
 use crate::classify::{is_monotone, Shape};
 use crate::geometry::{FillRule, Point, Polygon};
-use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::interface::{Builtin, MethodId};
+use crate::methods::info::{Heap, MethodInfo, Refusal};
+use crate::methods::interface::Builtin;
+use crate::reference::Convention;
 use crate::target::{Size, SpanSink};
 
 /// The exact method.
@@ -83,7 +85,6 @@ static INFO: MethodInfo = MethodInfo {
 };
 
 impl Builtin for Exact {
-    const ID: MethodId = MethodId::Exact;
     const INFO: &'static MethodInfo = &INFO;
 
     /// The automatic path: the cheapest exact stage for the polygon's class.

@@ -23,9 +23,11 @@
 //! - Classes: triangles; quads and convex polygons through the parent
 //!   module's split and fan.
 
+use crate::classify::Class;
 use crate::geometry::{FillRule, PixelPoint, Polygon};
-use crate::methods::info::{Class, Convention, Heap, MethodInfo, Refusal};
-use crate::methods::interface::{Builtin, MethodId};
+use crate::methods::info::{Heap, MethodInfo, Refusal};
+use crate::methods::interface::Builtin;
+use crate::reference::Convention;
 use crate::target::SpanSink;
 
 use super::halves::{fill_polygon, EdgePair, FlatHalves};
@@ -54,7 +56,6 @@ static INFO: MethodInfo = MethodInfo {
 };
 
 impl Builtin for LamotheFixed {
-    const ID: MethodId = MethodId::LamotheFixed;
     const INFO: &'static MethodInfo = &INFO;
 
     fn fill_into<S: SpanSink + ?Sized>(&self, polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {

@@ -1,0 +1,74 @@
+//! Running child processes the way the installs, the builds, the harness
+//! and the xtask want them: the exact command line printed first, failure
+//! turned into an error that says which command failed.
+
+use std::ffi::OsStr;
+use std::process::Command;
+
+use anyhow::{bail, Context, Result};
+
+/// The command as a person would type it: program, then arguments, each
+/// quoted when the shell would need it. Environment changes are not shown.
+pub fn command_line(command: &Command) -> String {
+    std::iter::once(command.get_program()).chain(command.get_args()).map(shell_word).collect::<Vec<_>>().join(" ")
+}
+
+fn shell_word(word: &OsStr) -> String {
+    let word = word.to_string_lossy();
+    let plain = !word.is_empty() && word.chars().all(|c| c.is_ascii_alphanumeric() || "-_./=:,+@%".contains(c));
+    if plain {
+        word.into_owned()
+    } else {
+        format!("'{}'", word.replace('\'', r"'\''"))
+    }
+}
+
+/// Prints `command`, runs it with inherited standard streams (so its output
+/// streams to the user) and fails unless it exits successfully.
+pub fn run_streaming(command: &mut Command) -> Result<()> {
+    let line = command_line(command);
+    eprintln!("running {line}");
+    let status = command.status().with_context(|| format!("failed to start `{line}`"))?;
+    if !status.success() {
+        bail!("`{line}` failed with {status}");
+    }
+    Ok(())
+}
+
+/// Runs `command` quietly and returns its standard output, failing (with
+/// its standard error) unless it exits successfully. For look-ups, not for
+/// work the user should watch.
+pub fn output_of(command: &mut Command) -> Result<String> {
+    let line = command_line(command);
+    let output = command.output().with_context(|| format!("failed to start `{line}`"))?;
+    if !output.status.success() {
+        bail!("`{line}` failed with {}: {}", output.status, String::from_utf8_lossy(&output.stderr).trim());
+    }
+    String::from_utf8(output.stdout).with_context(|| format!("`{line}` printed something that is not UTF-8"))
+}
+
+/// Whether this process runs as root (`id -u` says 0).
+pub fn is_root() -> bool {
+    output_of(Command::new("id").arg("-u")).is_ok_and(|uid| uid.trim() == "0")
+}
+
+/// The first `program` on the `PATH`.
+pub fn find_in_path(program: &str) -> Option<std::path::PathBuf> {
+    let path = std::env::var_os("PATH")?;
+    std::env::split_paths(&path).map(|dir| dir.join(program)).find(|candidate| candidate.is_file())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn command_lines_quote_only_what_the_shell_needs() {
+        let mut command = Command::new("qemu-system-x86_64");
+        command.args(["-drive", "format=raw,file=/tmp/a b.img", "-m", "128M", "it's", ""]);
+        assert_eq!(
+            command_line(&command),
+            r"qemu-system-x86_64 -drive 'format=raw,file=/tmp/a b.img' -m 128M 'it'\''s' ''"
+        );
+    }
+}

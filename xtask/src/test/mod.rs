@@ -1,0 +1,180 @@
+//! `cargo xtask test`: everything, the QEMU harness included. The test
+//! binaries run side by side (`schedule.rs`), the longest first
+//! (`order.rs`); a run whose arguments the runner does not understand
+//! (`selection.rs`) is left to `cargo test`, one binary after another.
+
+mod order;
+mod schedule;
+mod selection;
+mod units;
+
+use anyhow::Result;
+use boot_image::{build_image, IMAGE_ENV};
+use install::browser::ensure_chromium;
+use install::emulators::{ensure_bochs, ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_secure_boot_ovmf};
+use install::libraries::{ensure_cairo, ensure_peer_libraries};
+use install::process::run_streaming;
+use install::toolchain::ensure_toolchain;
+use install::toolchain::ensure_wasm_target;
+use install::virt_firmware::ensure_virt_fw_vars;
+
+use crate::opt::TestOpt;
+use selection::{cargo_part, Selection};
+use units::cargo_test;
+
+/// Tests run at once per core, by default. A QEMU test spends much of its
+/// time waiting (for a reply, a deadline, a show watched at its pace): run
+/// alone with one test thread per core, serial_check kept 0.55 of a core
+/// busy over its run, secure_boot 0.37, clock 0.48, loader_refusals 0.54
+/// (user and system time over wall time, load 3.4 to 9); a binary's
+/// tests run two at a time on this machine, so at two tests per core only
+/// two such binaries run at once, about a core's worth of work for two
+/// cores. Three per core keeps three of them running.
+const JOBS_PER_CORE: usize = 3;
+
+pub fn test(opt: &TestOpt) -> Result<()> {
+    ensure_toolchain()?;
+    // The lab, a workspace member, builds its peers against libcairo,
+    // Allegro 4, SDL2 with SDL2_gfx, and GD: needed before cargo compiles
+    // it, which no test can do for itself.
+    if builds_the_lab(&opt.cargo_args) {
+        ensure_cairo()?;
+        ensure_peer_libraries()?;
+    }
+    let whole = is_whole_run(&opt.cargo_args);
+    let Some(selection) = Selection::parse(&opt.cargo_args) else {
+        let image = install_and_build_image(whole)?;
+        return run_streaming(cargo_test(&opt.cargo_args).env(IMAGE_ENV, image));
+    };
+    // The test binaries (stable, target/debug) build while the packages
+    // install and then the image builds (the pinned nightly, its own
+    // target folder): installing mostly waits on the network, and each
+    // build has stretches that keep one core busy or none (linking; the
+    // bootloader's stages, one after another), which the other fills.
+    let build = units::Build::start(&selection)?;
+    let image = match install_and_build_image(whole) {
+        Ok(image) => image,
+        Err(error) => {
+            build.stop();
+            return Err(error);
+        }
+    };
+    let mut units = build.finish()?;
+    let threads = std::thread::available_parallelism().map_or(1, usize::from);
+    let jobs = opt.jobs.map_or(threads * JOBS_PER_CORE, usize::from);
+    match units.len() {
+        0 => anyhow::bail!("`cargo test` built no test binary for {:?}", opt.cargo_args),
+        1 => schedule::run_alone(&units.remove(0), &image, threads),
+        _ => schedule::run(units, &image, jobs, threads),
+    }
+}
+
+/// For a whole run, installs what its tests need (so that nothing
+/// installs in the middle of their output; a chosen few install their
+/// own, when they start QEMU, Bochs or a browser: `install`); then
+/// builds the image.
+fn install_and_build_image(whole: bool) -> Result<std::path::PathBuf> {
+    if whole {
+        ensure_qemu()?;
+        // The adapter matrix runs QEMU's QXL card, a module of its own in
+        // Debian's QEMU 8 and later.
+        ensure_qemu_qxl()?;
+        // The adapter matrix boots OVMF too, and one test boots Bochs.
+        ensure_ovmf()?;
+        // The Secure Boot tests boot OVMF's Secure Boot build and write MOK
+        // lists into its variable store with virt-fw-vars.
+        ensure_secure_boot_ovmf()?;
+        ensure_virt_fw_vars()?;
+        ensure_bochs()?;
+        // The explorer page's tests: its engine is built for wasm32 and
+        // run in headless Chromium.
+        ensure_wasm_target()?;
+        ensure_chromium()?;
+    }
+    build_image()
+}
+
+/// Whether `cargo test` runs every test: no package, target or name is
+/// chosen.
+fn is_whole_run(cargo_args: &[String]) -> bool {
+    cargo_part(cargo_args).is_empty()
+}
+
+/// Whether `cargo test --workspace ARGS` compiles the lab crate: unless
+/// the arguments choose only integration tests by name (`--test NAME`;
+/// the lab has none) or only packages other than the lab.
+fn builds_the_lab(cargo_args: &[String]) -> bool {
+    let args = cargo_part(cargo_args);
+    let packages: Vec<&str> = values_of(args, &["--package", "-p"]).collect();
+    let other_targets = ["--lib", "--bins", "--benches", "--all-targets", "--doc"];
+    let tests_only =
+        values_of(args, &["--test"]).next().is_some() && !args.iter().any(|arg| other_targets.contains(&arg.as_str()));
+    (packages.is_empty() || packages.contains(&"lab")) && !tests_only
+}
+
+/// The values `args` gives any of `flags`, as `FLAG VALUE` or `FLAG=VALUE`.
+fn values_of<'a>(args: &'a [String], flags: &'a [&str]) -> impl Iterator<Item = &'a str> {
+    args.iter().enumerate().filter_map(move |(at, arg)| {
+        flags.iter().find_map(|flag| match arg.strip_prefix(flag)? {
+            "" => args.get(at + 1).map(String::as_str),
+            value => value.strip_prefix('='),
+        })
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use install::process::command_line;
+
+    fn args(line: &str) -> Vec<String> {
+        line.split_whitespace().map(String::from).collect()
+    }
+
+    #[test]
+    fn extra_arguments_go_to_cargo_test() {
+        let command = cargo_test(&["--test".into(), "pages".into(), "--".into(), "--nocapture".into()]);
+        assert!(
+            command_line(&command)
+                .ends_with(" test --workspace --exclude kernel --exclude boot --test pages -- --nocapture"),
+            "{}",
+            command_line(&command)
+        );
+        assert_eq!(command.get_current_dir(), Some(install::workspace::root()));
+        // With --workspace, cargo would test every package whatever -p says.
+        for chosen in ["-p harness --lib", "--package=raster -- --nocapture"] {
+            let line = command_line(&cargo_test(&args(chosen)));
+            assert!(line.ends_with(&format!(" test {chosen}")), "{line}");
+        }
+    }
+
+    #[test]
+    fn the_command_line_gives_cargo_and_the_test_binaries_their_parts() {
+        let parse = |line: &str| match crate::opt::parse_command("test", &line.split_whitespace().collect::<Vec<_>>()) {
+            Ok(crate::opt::Action::Test(opt)) => (opt.jobs, opt.cargo_args),
+            other => panic!("{line}: {other:?}"),
+        };
+        assert_eq!(parse("-- --test pages"), (None, args("--test pages")));
+        assert_eq!(parse("--jobs 3 -- --test pages -- --nocapture"), (Some(3), args("--test pages -- --nocapture")));
+        assert_eq!(parse("-- -- --nocapture"), (None, args("-- --nocapture")));
+        assert!(crate::opt::parse_command("test", &["--jobs", "0"]).is_err());
+    }
+
+    #[test]
+    fn only_a_whole_run_installs_everything_up_front() {
+        assert!(is_whole_run(&args("")));
+        assert!(is_whole_run(&args("-- --nocapture")));
+        assert!(!is_whole_run(&args("--test pages")));
+        assert!(!is_whole_run(&args("every_page -- --nocapture")));
+    }
+
+    #[test]
+    fn cairo_is_installed_only_when_the_lab_is_compiled() {
+        for chosen in ["--test pages", "--test=pages --test bochs", "-p harness", "--package=xtask --lib"] {
+            assert!(!builds_the_lab(&args(chosen)), "{chosen}");
+        }
+        for all in ["", "-- --test pages", "every_page", "-p lab", "--package=lab", "--test pages --lib"] {
+            assert!(builds_the_lab(&args(all)), "{all}");
+        }
+    }
+}
