@@ -79,14 +79,19 @@ proptest! {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(300))]
 
-    /// Scribbles of 40 to 120 edges on the small target: rows with a
-    /// crossing for every four columns or more, whose crossings the edge
-    /// table sums per column instead of sorting them.
+    /// Scribbles of 40 to 120 edges on the small target, rows with a
+    /// crossing for every four columns or more: by `exact`, and by both
+    /// paths that take any polygon (fill_auto gives such short ones to the
+    /// edge flags).
     #[test]
     fn dense_scribbles_match_reference(contour in nearby_points(40..120), non_zero: bool) {
         let rule = if non_zero { raster::FillRule::NonZero } else { raster::FillRule::EvenOdd };
         let polygon = Polygon { contours: vec![contour], color: 1, rule };
         prop_assert_matches_reference(exact, &polygon, TARGET)?;
+        for which in [2, 3] {
+            let path = ExactPath::alone(which, &polygon).expect("both take a scribble");
+            prop_assert_matches_reference(|_, sink| path.fill(sink), &polygon, TARGET)?;
+        }
     }
 }
 
@@ -125,22 +130,44 @@ fn paths_take_their_classes() {
     let notched = Polygon::new(vec![px(0, 0), px(9, 0), px(9, 8), px(4, 3), px(0, 8)], 1);
     let mut two = triangle.clone();
     two.contours.push(vec![px(20, 0), px(29, 2), px(23, 8)]);
-    let takes = |p: &Polygon| [0, 1, 2].map(|which| ExactPath::alone(which, p).is_ok());
-    assert_eq!(takes(&triangle), [true, true, true]);
-    assert_eq!(takes(&monotone), [false, true, true]);
-    assert_eq!(takes(&notched), [false, false, true]);
-    assert_eq!(takes(&two), [false, false, true]);
+    // The notch 60 px deep: 60 rows for 5 edges.
+    let tall = Polygon::new(vec![px(0, 0), px(9, 0), px(9, 80), px(4, 20), px(0, 80)], 1);
+    // 513 px across: too wide for the edge flags.
+    let wide = Polygon::new(vec![px(0, 0), px(513, 0), px(513, 8), px(4, 3), px(0, 8)], 1);
+    let mut wound = notched.clone();
+    wound.rule = FillRule::NonZero;
+    let mut many = wound.clone();
+    many.contours.extend(std::iter::repeat_n(notched.contours[0].clone(), 51));
+    let takes = |p: &Polygon| [0, 1, 2, 3].map(|which| ExactPath::alone(which, p).is_ok());
+    assert_eq!(takes(&triangle), [true, true, true, true]);
+    assert_eq!(takes(&monotone), [false, true, true, true]);
+    assert_eq!(takes(&notched), [false, false, true, true]);
+    assert_eq!(takes(&two), [false, false, true, true]);
+    assert_eq!(takes(&wide), [false, false, true, false]);
+    // Under the non-zero rule the edge flags take under 256 edges.
+    assert_eq!(
+        (takes(&wound), many.vertex_count(), takes(&many)),
+        ([false, false, true, true], 260, [false, false, true, false])
+    );
     let chosen = |p: &Polygon| ExactPath::choose(p).map(|path| path.name());
     assert_eq!(
-        [&triangle, &monotone, &notched, &two].map(chosen),
-        [Some("triangle"), Some("monotone"), Some("active edges"), Some("active edges")]
+        [&triangle, &monotone, &notched, &two, &tall, &wide].map(chosen),
+        [
+            Some("triangle"),
+            Some("monotone"),
+            Some("edge flags"),
+            Some("edge flags"),
+            Some("active edges"),
+            Some("active edges")
+        ]
     );
-    // No fourth path.
-    assert_eq!(ExactPath::alone(3, &triangle).map(|path| path.name()), Err(Refusal::OutsideClass));
+    // No fifth path.
+    assert_eq!(ExactPath::alone(4, &triangle).map(|path| path.name()), Err(Refusal::OutsideClass));
     // A collinear contour that doubles back: nothing to draw, but telling
-    // that needs the collinearity test, which the common case skips.
+    // that needs the collinearity test, which the common case skips: it
+    // goes to a path that takes any polygon.
     let zigzag = Polygon::new(vec![px(0, 0), px(5, 5), px(2, 2), px(9, 9), px(1, 1)], 1);
-    assert_eq!(chosen(&zigzag), Some("active edges"));
+    assert_eq!(chosen(&zigzag), Some("edge flags"));
     assert_eq!(chosen(&Polygon::default()), None);
 }
 

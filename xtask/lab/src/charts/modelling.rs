@@ -16,10 +16,11 @@ use crate::stats::Ratio;
 type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// The lanes drawn per family, each with its colour.
-const LANES: [(&str, RGBColor); 4] = [
+const LANES: [(&str, RGBColor); 5] = [
     ("triangle", RGBColor(44, 160, 44)),
     ("monotone", RGBColor(31, 119, 180)),
     ("active edges", RGBColor(214, 39, 40)),
+    ("edge flags", RGBColor(148, 103, 189)),
     ("fill_auto", RGBColor(60, 60, 60)),
 ];
 /// Bars stop at this many times the cheapest path's time.

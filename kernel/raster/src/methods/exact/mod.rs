@@ -24,10 +24,11 @@
 //!   its edges, never 2^24 rows; no pixel is emitted twice within a fill.
 //!
 //! - Speed: triangles and monotone polygons cost two edge steps and one
-//!   span per row; the rest walk monotone chains, each inside run as two
-//!   edges between vertices where no crossings swap, else one row at a
-//!   time, sorting only where edges cross (or, where there is a crossing for
-//!   every four columns, summing them per column instead).
+//!   span per row; polygons of many edges for their height flag their
+//!   crossings in a grid of bits, read in order with no sort; the rest
+//!   walk monotone chains a row at a time (two chains alone by the
+//!   two-edge loop), sorting only where edges cross (or, where there is a
+//!   crossing for every four columns, summing them per column instead).
 //! - Memory: nothing is allocated for a polygon of up to 256 edges (64
 //!   when they may be 512 px or longer); a larger one takes its tables from
 //!   a [`Scratch`], which the caller may keep ([`fill_auto_with`]).
@@ -36,18 +37,21 @@
 //! one it was called from: [`fill_auto`] chooses an [`ExactPath`] (the one
 //! enum of the paths, carrying what each takes of the polygon) and
 //! [`ExactPath::fill`] dispatches it (the one dispatcher): to `monotone.rs`
-//! (the triangle fill and the two-side walk) or `active_edges/` (the edge
-//! table, for the rest). Both cut the polygon to the target in `clip.rs`,
+//! (the triangle fill and the two-side walk), `edge_flags/` (the flag
+//! grid) or `active_edges/` (the edge table). Each cuts the polygon to
+//! the target in `clip.rs`,
 //! step its edges with `edge.rs` and hand their spans to the sink in
 //! `spans.rs`.
 
 mod active_edges;
 mod clip;
 mod edge;
+mod edge_flags;
 mod monotone;
 mod spans;
 
 pub use active_edges::Scratch;
+pub use edge_flags::Bounds;
 use monotone::{fill_monotone, fill_triangle};
 
 use crate::classify::Class;
@@ -60,6 +64,10 @@ use crate::target::{Size, SpanSink};
 
 /// The exact method.
 pub struct Exact;
+
+/// The edge flags fill a polygon of up to this many rows per edge faster
+/// than the active edge table.
+const FLAGS_ROWS_PER_EDGE: i64 = 2;
 
 static INFO: MethodInfo = MethodInfo {
     name: "exact",
@@ -117,12 +125,17 @@ pub enum ExactPath<'a> {
     /// Any polygon: the active edge table, on the stack or in a [`Scratch`].
     #[non_exhaustive]
     ActiveEdges { polygon: &'a Polygon },
+    /// A polygon within 512 px across (of under 256 edges under the
+    /// non-zero rule), with the box of its vertices: the edge flags, on
+    /// the stack.
+    #[non_exhaustive]
+    EdgeFlags { polygon: &'a Polygon, bounds: Bounds },
 }
 
 impl<'a> ExactPath<'a> {
     /// The paths' names, from the narrowest class to the widest: the
     /// places [`ExactPath::alone`] asks for them by.
-    pub const NAMES: [&'static str; 3] = ["triangle", "monotone", "active edges"];
+    pub const NAMES: [&'static str; 4] = ["triangle", "monotone", "active edges", "edge flags"];
 
     /// The path [`fill_auto`] fills `polygon` by, or `None` when it draws
     /// nothing at all: its classification, in linear time.
@@ -141,13 +154,26 @@ impl<'a> ExactPath<'a> {
             return Some(match contour.as_slice() {
                 &[a, b, c] => ExactPath::Triangle { corners: [a, b, c], polygon },
                 _ if is_monotone(contour) => ExactPath::Monotone { contour, polygon },
-                _ => ExactPath::ActiveEdges { polygon },
+                _ => Self::general(polygon),
             });
         }
         match Shape::of(polygon) {
             Shape::Empty => None,
             Shape::Monotone(contour) => Some(ExactPath::Monotone { contour, polygon }),
-            Shape::Contour(_) | Shape::Contours => Some(ExactPath::ActiveEdges { polygon }),
+            Shape::Contour(_) | Shape::Contours => Some(Self::general(polygon)),
+        }
+    }
+
+    /// The cheaper of the two paths that take any polygon (the second
+    /// only within its class): the edge flags where the polygon has many
+    /// edges for its height, the active edge table otherwise.
+    #[inline(always)]
+    fn general(polygon: &'a Polygon) -> Self {
+        let (bounds, edges) = (Bounds::of(polygon), polygon.vertex_count());
+        if bounds.takes(edges, polygon.rule) && bounds.rows() <= FLAGS_ROWS_PER_EDGE * edges as i64 {
+            ExactPath::EdgeFlags { polygon, bounds }
+        } else {
+            ExactPath::ActiveEdges { polygon }
         }
     }
 
@@ -163,6 +189,11 @@ impl<'a> ExactPath<'a> {
                 Ok(ExactPath::Monotone { contour, polygon })
             }
             (2, _) => Ok(ExactPath::ActiveEdges { polygon }),
+            (3, _) => {
+                let bounds = Bounds::of(polygon);
+                let takes = bounds.takes(polygon.vertex_count(), polygon.rule);
+                takes.then_some(ExactPath::EdgeFlags { polygon, bounds }).ok_or(Refusal::OutsideClass)
+            }
             _ => Err(Refusal::OutsideClass),
         }
     }
@@ -179,6 +210,7 @@ impl<'a> ExactPath<'a> {
             ExactPath::Triangle { .. } => 0,
             ExactPath::Monotone { .. } => 1,
             ExactPath::ActiveEdges { .. } => 2,
+            ExactPath::EdgeFlags { .. } => 3,
         }
     }
 
@@ -227,6 +259,10 @@ impl<'a> ExactPath<'a> {
                 Ok(())
             }
             ExactPath::ActiveEdges { polygon } => active_edges::fill(polygon, size, sink, scratch),
+            ExactPath::EdgeFlags { polygon, bounds } => {
+                edge_flags::fill(polygon, bounds, size, sink);
+                Ok(())
+            }
         }
     }
 }
@@ -242,16 +278,17 @@ fn drawable<S: SpanSink + ?Sized>(sink: &S) -> Option<Size> {
 /// Fills `polygon` exactly (`docs/conventions.md`) by the cheapest path correct for
 /// its class ([`ExactPath::choose`]): degenerate polygons (and targets without
 /// pixels) draw nothing, triangles take the triangle path, monotone
-/// contours the two-side path, everything else the active edge table.
-/// Simple and complex polygons share that path, so telling them apart would
-/// cost without saving anything.
+/// contours the two-side path, everything else the edge flags (when it
+/// has many edges for its height) or the active edge table. Simple and
+/// complex polygons share those paths, so telling them apart would cost
+/// without saving anything.
 ///
 /// # Examples
 ///
 /// A square with a square hole, one contour each: the even-odd rule leaves
 /// the hole empty, and so does the non-zero rule, the hole going round the
 /// other way. Its class is [`Class::Complex`](crate::Class) (several
-/// contours), so it takes the active edge table:
+/// contours), and it has 8 edges for 6 rows, so it takes the edge flags:
 ///
 /// ```
 /// use raster::{classify, fill_auto, Class, ExactPath, FillRule, Framebuffer, Point, Polygon, Size};
@@ -264,7 +301,7 @@ fn drawable<S: SpanSink + ?Sized>(sink: &S) -> Option<Size> {
 /// let framed = Polygon { contours: vec![square(0, 6), hole], color: 1, rule: FillRule::NonZero };
 /// assert_eq!(classify(&framed), Class::Complex);
 /// let path = |polygon: &Polygon| ExactPath::choose(polygon).map(|path| path.name());
-/// assert_eq!(path(&framed), Some("active edges"));
+/// assert_eq!(path(&framed), Some("edge flags"));
 ///
 /// let mut target = Framebuffer::new(Size { width: 6, height: 6 });
 /// fill_auto(&framed, &mut target).unwrap();

@@ -1,0 +1,181 @@
+//! The exact method's edge-flag path: Ackland and Weste's edge flags, with
+//! the exact crossings of `edge.rs`. Every edge, on each row it meets,
+//! flags the column of its crossing in a grid of bits over the polygon's
+//! box (`scatter.rs`); a row's flags read left to right are then its
+//! crossings in order, with no sort, and the fill rule pairs them into
+//! runs (`scan.rs`). Under the even-odd rule a flag is toggled (only the
+//! parity of a column's crossings counts); under the non-zero rule it is
+//! set, and a counter per cell adds up the windings of its crossings.
+//!
+//! There is no edge table, no chain and no event: each edge is set up
+//! where the scatter reaches it, and a row costs its crossings and the
+//! words of its flags. So it suits polygons of many edges for their
+//! height (glyphs, icons), where the edge table's setup and events cost
+//! more than its rows. The grid is on the stack, cleared once a fill and
+//! by the scan as it reads: a polygon taller than it holds is walked in
+//! bands, each scattering the edges that meet it.
+//!
+//! The path takes polygons whose vertices lie within 512 px across (so a
+//! row is at most 513 columns, 9 words), and, under the
+//! non-zero rule, of under 256 edges, for its counters are bytes: they
+//! add up modulo 256, and a winding number is then below 256 in size, so
+//! it is zero exactly when its byte is.
+
+mod scan;
+mod scatter;
+
+use core::ops::Range;
+
+use crate::geometry::{FillRule, Point, Polygon};
+use crate::target::{Size, SpanSink};
+
+use super::clip::{columns_fit, visible_column};
+use super::edge::{first_sample_at_or_after, Crossing, EdgeStepper, ShortEdge};
+use super::spans::Target;
+
+/// The widest a polygon the path takes may be, in subpixels (512 px, a
+/// [`ShortEdge`]'s width).
+pub(super) const WIDEST: i64 = 1 << 17;
+
+/// The box of a polygon's vertices, in subpixels.
+#[derive(Clone, Copy, Debug)]
+pub struct Bounds {
+    min: Point,
+    max: Point,
+}
+
+impl Bounds {
+    /// The box of `polygon`'s vertices (an empty one at the origin for a
+    /// polygon without any, which meets no row).
+    #[inline(always)]
+    pub(super) fn of(polygon: &Polygon) -> Self {
+        let mut vertices = polygon.contours.iter().flatten();
+        let Some(&first) = vertices.next() else { return Self { min: Point::new(0, 0), max: Point::new(0, 0) } };
+        let (mut min, mut max) = (first, first);
+        for p in vertices {
+            (min.x, min.y, max.x, max.y) = (min.x.min(p.x), min.y.min(p.y), max.x.max(p.x), max.y.max(p.y));
+        }
+        Self { min, max }
+    }
+
+    /// Whether the path takes a polygon of this box, with `edges` edges,
+    /// under `rule`.
+    #[inline(always)]
+    pub(super) fn takes(&self, edges: usize, rule: FillRule) -> bool {
+        i64::from(self.max.x) - i64::from(self.min.x) < WIDEST && (rule == FillRule::EvenOdd || edges < 256)
+    }
+
+    /// The box's height, in whole pixels.
+    #[inline(always)]
+    pub(super) fn rows(&self) -> i64 {
+        (i64::from(self.max.y) - i64::from(self.min.y)) >> 8
+    }
+}
+
+/// Where a row's flags lie on the target: bit 0 of a row is column
+/// `left`; each row has `words` words of flags, and `columns` counters
+/// (one per column from `left` to the box's last).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Grid {
+    pub left: i32,
+    pub words: usize,
+    pub columns: usize,
+}
+
+/// Flags on the stack, in two sizes, and their counters: the small for
+/// polygons whose box fits them, the large (2 KiB each, as a larger
+/// block is cleared by a slower way) for the rest.
+const SMALL: (usize, usize) = (32, 512);
+const LARGE: (usize, usize) = (256, 2048);
+
+/// Fills `polygon`, whose box is `bounds` and which the path takes
+/// ([`Bounds::takes`]), by its fill rule.
+pub(super) fn fill<S: SpanSink + ?Sized>(polygon: &Polygon, bounds: Bounds, size: Size, sink: &mut S) {
+    let Bounds { min, max } = bounds;
+    let rows =
+        first_sample_at_or_after(min.y.into()).max(0)..first_sample_at_or_after(max.y.into()).min(size.height.into());
+    let left = visible_column(first_sample_at_or_after(min.x.into()), size.width);
+    let right = visible_column(first_sample_at_or_after(max.x.into()), size.width);
+    if rows.is_empty() || left >= size.width {
+        return;
+    }
+    let columns = (right - left) as usize + 1;
+    let grid = Grid { left, words: columns.div_ceil(64), columns };
+    let fill = Fill { polygon, rows, grid, size, target: Target { color: polygon.color, width: size.width } };
+    let short = ShortEdge::fits((min.x, max.x), (min.y, max.y));
+    let clip = !columns_fit(min.x, max.x, size.width);
+    match (short, clip) {
+        (true, false) => fill.sized::<false, ShortEdge, S>(sink),
+        (true, true) => fill.sized::<true, ShortEdge, S>(sink),
+        (false, false) => fill.sized::<false, EdgeStepper, S>(sink),
+        (false, true) => fill.sized::<true, EdgeStepper, S>(sink),
+    }
+}
+
+/// One fill of the path.
+#[derive(Clone)]
+struct Fill<'a> {
+    polygon: &'a Polygon,
+    rows: Range<i64>,
+    grid: Grid,
+    size: Size,
+    target: Target,
+}
+
+impl Fill<'_> {
+    /// Fills on the smaller flags that hold the whole box, if any do.
+    #[inline(always)]
+    fn sized<const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(self, sink: &mut S) {
+        let rows = (self.rows.end - self.rows.start) as usize;
+        let fits = rows * self.grid.words <= SMALL.0 && rows * self.grid.columns <= SMALL.1;
+        match (self.polygon.rule, fits) {
+            (FillRule::EvenOdd, true) => self.bands::<false, 0, { SMALL.0 }, { SMALL.1 }, CLIP, E, S>(sink),
+            (FillRule::EvenOdd, false) => self.bands::<false, 0, { LARGE.0 }, { LARGE.1 }, CLIP, E, S>(sink),
+            (FillRule::NonZero, true) => self.bands::<true, 1, { SMALL.0 }, { SMALL.1 }, CLIP, E, S>(sink),
+            (FillRule::NonZero, false) => self.bands::<true, 1, { LARGE.0 }, { LARGE.1 }, CLIP, E, S>(sink),
+        }
+    }
+
+    /// Walks the rows in bands of as many rows as the flags (and, under
+    /// the non-zero rule, the counters: `COUNTED` blocks of them) hold.
+    /// Never inlined, so that the caller's frame holds only the flags of
+    /// its size.
+    #[inline(never)]
+    fn bands<
+        const NON_ZERO: bool,
+        const COUNTED: usize,
+        const WORDS: usize,
+        const CELLS: usize,
+        const CLIP: bool,
+        E: Crossing,
+        S: SpanSink + ?Sized,
+    >(
+        self,
+        sink: &mut S,
+    ) {
+        let mut flags = [0u64; WORDS];
+        let mut counters = [[0u8; CELLS]; COUNTED];
+        let band =
+            if NON_ZERO { (WORDS / self.grid.words).min(CELLS / self.grid.columns) } else { WORDS / self.grid.words };
+        let mut start = self.rows.start;
+        while start < self.rows.end {
+            let rows = start..(start + band as i64).min(self.rows.end);
+            scatter::scatter::<NON_ZERO, CLIP, E, WORDS, CELLS>(
+                self.polygon,
+                rows.clone(),
+                (self.grid, self.size),
+                &mut flags,
+                &mut counters,
+            );
+            scan::scan::<NON_ZERO, WORDS, CELLS, S>(
+                rows.clone(),
+                self.grid,
+                &mut flags,
+                &mut counters,
+                self.target,
+                sink,
+            );
+            start = rows.end;
+        }
+    }
+}
