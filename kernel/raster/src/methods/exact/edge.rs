@@ -182,6 +182,15 @@ pub(super) trait Crossing: Copy + Default + core::fmt::Debug {
     fn column(&self) -> i64;
     /// Moves to the next scan line.
     fn step(&mut self);
+    /// Where the crossing is `rows` scan lines below the current (a row the
+    /// edge meets), as a number that orders crossings: of two edges, the
+    /// one with the smaller number there has the column never right of
+    /// the other's, and the number moves linearly with the row. `None`
+    /// where the stepper cannot tell without stepping there.
+    #[inline(always)]
+    fn position_in(&self, _rows: i64) -> Option<i64> {
+        None
+    }
 }
 
 impl Crossing for EdgeStepper {
@@ -279,6 +288,13 @@ impl Crossing for ShortEdge {
     #[inline(always)]
     fn step(&mut self) {
         self.position += self.step;
+    }
+
+    /// The position itself: linear in the row, the column its floor. Within
+    /// the rows the edge meets it keeps the bounds above.
+    #[inline(always)]
+    fn position_in(&self, rows: i64) -> Option<i64> {
+        Some(self.position + rows * self.step)
     }
 }
 
@@ -434,6 +450,26 @@ mod tests {
         let at_zero = EdgeStepper::at_row(top, bottom, 0);
         assert_eq!(at_zero.error, at_zero.denominator - 1);
         assert_eq!(ShortEdge::at_row(top, bottom, 0).column(), at_zero.column);
+    }
+
+    /// A short edge's position some rows ahead is where stepping takes it,
+    /// and its floor is the column there; the general stepper cannot tell.
+    #[test]
+    fn short_edges_know_their_position_rows_ahead() {
+        let (top, bottom) = (Point::new(1000, 300), Point::new(-20_000, 60_000));
+        let rows = first_sample_at_or_after(top.y.into())..first_sample_at_or_after(bottom.y.into());
+        let start = ShortEdge::at_row(top, bottom, rows.start);
+        let mut stepped = start;
+        for ahead in 0..rows.end - rows.start {
+            let position = start.position_in(ahead).expect("a short edge knows");
+            assert_eq!(
+                (position, position >> FRACTION_BITS),
+                (stepped.position, stepped.column()),
+                "{ahead} rows ahead"
+            );
+            stepped.step();
+        }
+        assert_eq!(EdgeStepper::at_row(top, bottom, rows.start).position_in(1), None);
     }
 
     #[test]

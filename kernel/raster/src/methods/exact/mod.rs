@@ -26,9 +26,10 @@
 //! - Speed: triangles and monotone polygons cost two edge steps and one
 //!   span per row; polygons of many edges for their height flag their
 //!   crossings in a grid of bits, read in order with no sort; the rest
-//!   walk monotone chains a row at a time (two chains alone by the
-//!   two-edge loop), sorting only where edges cross (or, where there is a
-//!   crossing for every four columns, summing them per column instead).
+//!   walk monotone chains, each inside run as two edges between vertices
+//!   where no crossings swap, else one row at a time, sorting only where
+//!   edges cross (or, where there is a crossing for every four columns,
+//!   summing them per column instead).
 //! - Memory: nothing is allocated for a polygon of up to 256 edges (64
 //!   when they may be 512 px or longer); a larger one takes its tables from
 //!   a [`Scratch`], which the caller may keep ([`fill_auto_with`]).

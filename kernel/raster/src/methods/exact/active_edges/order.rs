@@ -36,17 +36,20 @@ pub(super) fn sort<E: Crossing>(
     }
 }
 
-/// Sorts `active` by `columns` (moving both), by insertion, unless that
-/// takes moving edges past each other more often than four times per edge
-/// (quadratic is near when many cross): then it stops, with both in some
-/// order, and returns `false`. Crossings in one column may go in any
-/// order: the states between them cover no pixel (`runs.rs`).
+/// Sorts `active` by `columns` (moving both), then by position
+/// ([`Crossing::position_in`]), by insertion, unless that takes moving
+/// edges past each other more often than four times per edge (quadratic
+/// is near when many cross): then it stops, with both in some order, and
+/// returns `false`.
 #[inline(always)]
 pub(super) fn insertion_sort<E: Crossing>(active: &mut [Active<E>], columns: &mut [i32]) -> bool {
+    // Crossings in one column go by position where the stepper has one, so
+    // that the order is the positions' (`walk.rs`, `rows_in_pairs`).
+    let key = |chain: &Active<E>, column: i32| (column, chain.stepper.position_in(0));
     let mut budget = 4 * active.len().max(SHORT);
     for i in 1..active.len().min(columns.len()) {
         let mut j = i;
-        while j > 0 && columns[j - 1] > columns[j] {
+        while j > 0 && key(&active[j - 1], columns[j - 1]) > key(&active[j], columns[j]) {
             if budget == 0 {
                 return false;
             }

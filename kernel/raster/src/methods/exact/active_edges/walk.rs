@@ -11,9 +11,10 @@
 //! spans and one pass over the active chains that steps them and checks
 //! their order; only a row where the order changed sorts again and works
 //! the runs out again. Where a chain's edge ends, its next edge takes its
-//! place in the same pass and the runs stay, if the order holds. Two
-//! chains with the inside between them take the monotone path's two-edge
-//! loop.
+//! place and the runs stay, if the order holds. Two chains with the inside
+//! between them take the monotone path's two-edge loop; so do the runs of
+//! any stretch up to a vertex where each crossing opens or closes a run
+//! and no two of them swap.
 
 use core::ops::Range;
 
@@ -93,18 +94,85 @@ pub(super) fn walk<const NON_ZERO: bool, const CLIP: bool, E: Crossing, S: SpanS
                 settled = columns[0] <= columns[1];
                 continue;
             }
-            let sorted;
-            (row, sorted) = rows_in_order::<NON_ZERO, CLIP, _, _>(
-                row..end,
-                (&mut active[..k], &mut columns[..=k], runs),
-                edges,
-                &mut planned,
-                target,
-                sink,
-            );
-            settled = sorted;
+            // Up to the next vertex every edge stays the same straight line.
+            let segment = row..next_vertex_row(&active[..k]).min(end);
+            let (active, columns) = (&mut active[..k], &mut columns[..=k]);
+            // Fewer rows than this walk faster by rows.
+            const FEW: i64 = 3;
+            let paired = rows_in_pairs(segment.clone(), active, &runs[..planned]);
+            if paired > FEW {
+                let rows = row..row + paired;
+                for run in &runs[..planned] {
+                    let (left, right) = active.split_at_mut(run.close as usize);
+                    let (a, b) = (&mut left[run.open as usize].stepper, &mut right[0].stepper);
+                    span_rows::<true, CLIP, _, _>(rows.clone(), a, b, target, sink);
+                }
+                row = rows.end;
+            } else {
+                let sorted;
+                (row, sorted) = rows_in_order::<NON_ZERO, CLIP, _, _>(
+                    segment.clone(),
+                    (active, columns, runs),
+                    &mut planned,
+                    target,
+                    sink,
+                );
+                if !sorted {
+                    settled = false;
+                    continue;
+                }
+            }
+            // At the vertex, chains whose edge ended go on with their next.
+            let (mut in_order, mut previous) = (true, 0);
+            for (chain, column) in active.iter_mut().zip(columns.iter_mut()) {
+                chain.resume(row, edges);
+                *column = visible::<CLIP>(chain.stepper.column(), target.width);
+                in_order &= previous <= *column;
+                previous = *column;
+            }
+            settled = in_order;
         }
     }
+}
+
+/// For how many of `rows` (the rows up to the next vertex, so every edge
+/// is one straight line over them) the runs of `active` can be walked one
+/// after the other, each as two edges: none where some crossing opens or
+/// closes no run (or one reaches the right border), or where the
+/// crossings' positions ([`Crossing::position_in`]) are not in order on
+/// the first row; else up to the first row where two neighbours' positions
+/// swap, if they do. Positions are linear in the row, so they stay in
+/// order until then, and so do the columns: each run's opening crossing is
+/// never right of its closing one. (Finding where two neighbours swap is
+/// one division, for those that do.)
+#[inline(always)]
+fn rows_in_pairs<E: Crossing>(rows: Range<i64>, active: &[Active<E>], runs: &[Run]) -> i64 {
+    if 2 * runs.len() != active.len() || runs.iter().any(|run| run.close as usize == active.len()) {
+        return 0;
+    }
+    let (count, last) = (rows.end - rows.start, rows.end - rows.start - 1);
+    let mut hold = count;
+    // The previous crossing's position on the first row and its step.
+    let mut previous: Option<(i64, i64)> = None;
+    for chain in active {
+        let (Some(first), Some(next)) = (chain.stepper.position_in(0), chain.stepper.position_in(1)) else {
+            return 0;
+        };
+        let step = next - first;
+        if let Some((previous_first, previous_step)) = previous {
+            let (gap, closing) = (first - previous_first, previous_step - step);
+            if gap < 0 {
+                return 0;
+            }
+            // The gap closes by `closing` a row: it is below zero first on
+            // row `gap / closing + 1`, if that is not past the last.
+            if closing > 0 && gap / closing < last {
+                hold = hold.min(gap / closing + 1);
+            }
+        }
+        previous = Some((first, step));
+    }
+    hold
 }
 
 /// Two chains with the inside between them, outside right of both, over
@@ -129,20 +197,17 @@ fn two_chains<const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(
     }
 }
 
-/// Emits the runs of `active` on each of `rows` (rows where no chain
-/// starts or ends) and moves the chains to the row after, each taking its
-/// next edge where one ends, keeping them in order (and `planned`, the
-/// count of runs, with it) where a few of them cross; returns that row,
-/// or an earlier one where the order needs a full sort, and whether the
-/// edges are sorted there (never after the last row, where chains join
-/// and leave).
+/// Emits the runs of `active` on each of `rows` (rows up to a vertex, so
+/// every edge goes on over them) and steps the edges to the row after,
+/// keeping them in order (and `planned`, the count of runs, with it) where
+/// a few of them cross; returns that row, or an earlier one where the
+/// order needs a full sort, and whether the edges are sorted there.
 /// `columns` are the edges' visible columns on the first row, and the
 /// right border; `runs` has room for every run.
 #[inline(always)]
 fn rows_in_order<const NON_ZERO: bool, const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(
     rows: Range<i64>,
     (active, columns, runs): (&mut [Active<E>], &mut [i32], &mut [Run]),
-    edges: &[Edge<E>],
     planned: &mut usize,
     target: Target,
     sink: &mut S,
@@ -154,16 +219,16 @@ fn rows_in_order<const NON_ZERO: bool, const CLIP: bool, E: Crossing, S: SpanSin
         }
         row += 1;
         if row == rows.end {
-            // Chains end or join here: the caller sorts again.
+            // The caller takes each chain past the vertex, then its column.
             for chain in active.iter_mut() {
-                chain.advance(row, edges);
+                chain.stepper.step();
             }
-            return (row, false);
+            return (row, true);
         }
         // Visible columns are never negative.
         let (mut in_order, mut previous) = (true, 0);
         for (chain, column) in active.iter_mut().zip(columns.iter_mut()) {
-            chain.advance(row, edges);
+            chain.stepper.step();
             *column = visible::<CLIP>(chain.stepper.column(), target.width);
             in_order &= previous <= *column;
             previous = *column;
@@ -180,4 +245,10 @@ fn rows_in_order<const NON_ZERO: bool, const CLIP: bool, E: Crossing, S: SpanSin
             }
         }
     }
+}
+
+/// The first row below the current where one of `active`'s edges ends.
+#[inline(always)]
+fn next_vertex_row<E: Crossing>(active: &[Active<E>]) -> i64 {
+    active.iter().map(Active::edge_end_row).min().unwrap_or(i64::MAX)
 }
