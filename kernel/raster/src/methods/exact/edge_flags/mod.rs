@@ -21,6 +21,7 @@
 //! add up modulo 256, and a winding number is then below 256 in size, so
 //! it is zero exactly when its byte is.
 
+mod grid;
 mod scan;
 mod scatter;
 
@@ -32,6 +33,7 @@ use crate::target::{Size, SpanSink};
 use super::clip::{columns_fit, visible_column};
 use super::edge::{first_sample_at_or_after, Crossing, EdgeStepper, ShortEdge};
 use super::spans::Target;
+use grid::Grid;
 
 /// The widest a polygon the path takes may be, in subpixels (512 px, a
 /// [`ShortEdge`]'s width).
@@ -70,16 +72,6 @@ impl Bounds {
     pub(super) fn rows(&self) -> i64 {
         (i64::from(self.max.y) - i64::from(self.min.y)) >> 8
     }
-}
-
-/// Where a row's flags lie on the target: bit 0 of a row is column
-/// `left`; each row has `words` words of flags, and `columns` counters
-/// (one per column from `left` to the box's last).
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Grid {
-    pub left: i32,
-    pub words: usize,
-    pub columns: usize,
 }
 
 /// Flags on the stack, in two sizes, and their counters: the small for

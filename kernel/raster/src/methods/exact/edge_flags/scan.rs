@@ -6,7 +6,7 @@ use core::ops::Range;
 use crate::target::SpanSink;
 
 use super::super::spans::{emit, Target};
-use super::Grid;
+use super::grid::Grid;
 
 /// Emits the inside runs of every row of `band` from its flags (and
 /// counters), clearing them for the next band.

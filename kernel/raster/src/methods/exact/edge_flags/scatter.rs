@@ -8,7 +8,7 @@ use crate::target::Size;
 
 use super::super::clip::{right_of_target, visible, visible_rows};
 use super::super::edge::Crossing;
-use super::Grid;
+use super::grid::Grid;
 
 /// Flags every crossing of `polygon`'s edges on the rows of `band`, in
 /// `flags` (the band's rows, `grid.words` words each) and, under the
