@@ -11,7 +11,7 @@ use std::path::Path;
 
 use anyhow::{ensure, Context, Result};
 use boot_image::patched_copy::{fingerprint, PatchedBootloader, COPY_BUILD_FOLDER};
-use boot_image::{stage_builds, stage_builds_with};
+use boot_image::{image_build_turn, stage_builds, stage_builds_with};
 use install::process::command_line;
 
 /// Runs every stage build, failing on a failed one; returns what cargo
@@ -30,6 +30,7 @@ fn build_once() -> Result<Vec<String>> {
 
 #[test]
 fn a_second_image_build_compiles_nothing() -> Result<()> {
+    let _turn = image_build_turn()?;
     build_once()?;
     for stderr in build_once()? {
         let compiled: Vec<&str> = stderr.lines().filter(|line| line.trim_start().starts_with("Compiling ")).collect();
@@ -67,6 +68,7 @@ fn copy_tree(from: &Path, to: &Path, skip: &str) -> Result<()> {
 /// saying it is current, as the build's own is after a build.
 #[test]
 fn the_image_build_refuses_a_hand_edited_patched_bootloader_naming_the_file() -> Result<()> {
+    let _turn = image_build_turn()?;
     stage_builds()?;
     let made = PatchedBootloader::in_target_dir();
     let target = tempfile::tempdir()?;

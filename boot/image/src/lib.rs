@@ -61,6 +61,7 @@ pub fn build_image() -> Result<PathBuf> {
 /// says, shim and MokManager from `debian`.
 pub fn build_image_with(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Result<PathBuf> {
     key::warn_of_old_key();
+    let _turn = image_build_turn()?;
     let sources = provenance::sources_digest(workspace::root())?;
     for mut build in stage_builds()? {
         run_streaming(&mut build).context("failed to build the kernel or the image writer")?;
@@ -70,6 +71,15 @@ pub fn build_image_with(enrollment: &Enrollment, debian: &Unpacked, image: &Path
     provenance::record(image, &sources)?;
     eprintln!("image: built {}", image.display());
     Ok(image.to_path_buf())
+}
+
+/// Waits until no other process of the workspace is building an image
+/// (test binaries run side by side, and each build writes the patched
+/// bootloader and its lock file in the one target folder), then holds the
+/// turn until the file returned is dropped. [`build_image_with`] takes
+/// it; a caller of [`stage_builds`] takes it itself.
+pub fn image_build_turn() -> Result<std::fs::File> {
+    install::once::turn("image-build")
 }
 
 /// The builds of the kernel and of the image writer (against the patched

@@ -19,13 +19,22 @@ pub fn once_per_process<T: Clone>(cell: &OnceLock<Result<T, String>>, work: impl
 /// Waits for this workspace's other commands and test binaries to finish
 /// their installs (apt-get's `update` does not wait for another apt: it
 /// fails on the lock of the lists another holds; two pips would write one
-/// virtual environment), then holds the turn
-/// until the file returned is dropped. The lock file lies in the target
-/// folder, the running user's own.
+/// virtual environment), then holds the turn until the file returned is
+/// dropped.
 pub(crate) fn install_turn() -> Result<File> {
+    turn("install")
+}
+
+/// Waits until no other process of this workspace holds the turn `name`,
+/// then holds it until the file returned is dropped: work that writes
+/// shared files in the target folder (installs, the image build) takes
+/// turns, now that test binaries run side by side. The lock file,
+/// `NAME.lock`, lies in the target folder, the running user's own. A
+/// thread must not ask for a turn it holds: it would wait for itself.
+pub fn turn(name: &str) -> Result<File> {
     let dir = target_dir();
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let path = dir.join("install.lock");
+    let path = dir.join(format!("{name}.lock"));
     let file = File::options()
         .create(true)
         .truncate(false)
