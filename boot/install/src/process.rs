@@ -3,7 +3,8 @@
 //! turned into an error that says which command failed.
 
 use std::ffi::OsStr;
-use std::process::Command;
+use std::io::Write;
+use std::process::{Command, Stdio};
 
 use anyhow::{bail, Context, Result};
 
@@ -45,6 +46,28 @@ pub fn output_of(command: &mut Command) -> Result<String> {
         bail!("`{line}` failed with {}: {}", output.status, String::from_utf8_lossy(&output.stderr).trim());
     }
     String::from_utf8(output.stdout).with_context(|| format!("`{line}` printed something that is not UTF-8"))
+}
+
+/// Runs `command` quietly with `input` written to its standard input (a
+/// secret that must not reach its arguments or environment) and returns
+/// its standard output, failing (with its standard error) unless it exits
+/// successfully having read all of `input`.
+pub fn output_with_input(command: &mut Command, input: &[u8]) -> Result<Vec<u8>> {
+    let line = command_line(command);
+    let mut child = command
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .with_context(|| format!("failed to start `{line}`"))?;
+    let mut stdin = child.stdin.take().with_context(|| format!("the standard input of `{line}`"))?;
+    let written = stdin.write_all(input);
+    drop(stdin);
+    let output = child.wait_with_output().with_context(|| format!("failed to wait for `{line}`"))?;
+    if !output.status.success() || written.is_err() {
+        bail!("`{line}` failed with {}: {}", output.status, String::from_utf8_lossy(&output.stderr).trim());
+    }
+    Ok(output.stdout)
 }
 
 /// Whether this process runs as root (`id -u` says 0).

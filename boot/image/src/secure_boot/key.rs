@@ -27,12 +27,12 @@
 use std::io::{Read, Write};
 use std::os::unix::fs::{DirBuilderExt, OpenOptionsExt, PermissionsExt};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Command;
 
 use anyhow::{bail, ensure, Context, Result};
 use sha2::{Digest, Sha256};
 
-use install::process::{command_line, find_in_path, output_of};
+use install::process::{command_line, find_in_path, output_of, output_with_input};
 
 /// A private key (PEM, encrypted) to sign with instead of the generated one; needs [`CERT_ENV`].
 pub const KEY_ENV: &str = "POLYLAB_SECURE_BOOT_KEY";
@@ -211,24 +211,7 @@ impl SigningKey {
     /// `stdin`) with the passphrase written to its standard input, and
     /// returns its standard output; fails unless it succeeds.
     fn run_with_passphrase(&self, command: &mut Command) -> Result<Vec<u8>> {
-        let line = command_line(command);
-        let mut child = command
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .with_context(|| format!("failed to start `{line}`"))?;
-        let mut stdin = child.stdin.take().context("openssl's standard input")?;
-        let written = stdin.write_all(format!("{}\n", self.passphrase).as_bytes());
-        drop(stdin);
-        let output = child.wait_with_output().with_context(|| format!("failed to wait for `{line}`"))?;
-        ensure!(
-            output.status.success() && written.is_ok(),
-            "`{line}` failed with {}: {}",
-            output.status,
-            String::from_utf8_lossy(&output.stderr).trim()
-        );
-        Ok(output.stdout)
+        output_with_input(command, format!("{}\n", self.passphrase).as_bytes())
     }
 
     /// The private key decrypted (PEM), in memory only.

@@ -5,9 +5,8 @@
 //! MokManager compute) to be enrolled, or signed with the user's key by
 //! `sbsign`; the digest and the signature both cover the kernel's digests.
 
-use std::io::Write;
 use std::path::Path;
-use std::process::{Command, Stdio};
+use std::process::Command;
 
 use anyhow::{ensure, Context, Result};
 use object::pe::{ImageDataDirectory, ImageFileHeader, ImageOptionalHeader64, IMAGE_DIRECTORY_ENTRY_SECURITY};
@@ -16,7 +15,7 @@ use object::{LittleEndian as LE, Object, ObjectSection};
 use sha2::{Digest, Sha256};
 
 use super::key::SigningKey;
-use install::process::command_line;
+use install::process::output_with_input;
 
 /// The bytes that start the digest placeholder in the loader (its
 /// `MARKER`); the kernel's SHA-256 follows, then `boot.json`'s.
@@ -150,23 +149,7 @@ pub fn sign(sbsign: &Path, key: &SigningKey, unsigned: &Path, signed: &Path) -> 
     let decrypted = key.decrypted()?;
     let mut command = Command::new(sbsign);
     command.args(["--key", "/dev/stdin", "--cert"]).arg(&key.cert).arg("--output").arg(signed).arg(unsigned);
-    let line = command_line(&command);
-    let mut child = command
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .with_context(|| format!("failed to start `{line}`"))?;
-    let mut stdin = child.stdin.take().context("sbsign's standard input")?;
-    let written = stdin.write_all(&decrypted);
-    drop(stdin);
-    let output = child.wait_with_output().with_context(|| format!("failed to wait for `{line}`"))?;
-    ensure!(
-        output.status.success() && written.is_ok(),
-        "failed to sign the UEFI loader: `{line}` failed with {}: {}",
-        output.status,
-        String::from_utf8_lossy(&output.stderr).trim()
-    );
+    output_with_input(&mut command, &decrypted).context("failed to sign the UEFI loader")?;
     Ok(())
 }
 
