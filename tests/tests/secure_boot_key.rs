@@ -21,7 +21,7 @@ use harness::secure_boot::{
     boot, first_boot, ready_and_page_1_exact, refused, scratch, FatImage, MokEntry, Screen, SHIM_REFUSES,
 };
 use harness::Adapter;
-use install::once::once_per_process;
+use install::once::{once_per_process, Failure};
 use install::process::output_of;
 
 /// The passphrase of the tests' key (it signs nothing but these images).
@@ -30,7 +30,7 @@ const PASSPHRASE: &str = "polylab Secure Boot tests";
 /// The image signed with the tests' key, built once per process in
 /// target/secure-boot-key-test (its key made anew each time).
 fn key_signed_image() -> Result<PathBuf> {
-    static IMAGE: OnceLock<Result<PathBuf, String>> = OnceLock::new();
+    static IMAGE: OnceLock<Result<PathBuf, Failure>> = OnceLock::new();
     once_per_process(&IMAGE, || {
         let dir = harness::workspace::target_dir().join("secure-boot-key-test");
         if dir.exists() {

@@ -25,7 +25,7 @@ use boot_image::secure_boot::key::SigningKey;
 use boot_image::secure_boot::{shim, Enrollment, SHIM_PATH};
 use harness::secure_boot::{boot, loader_hash, ready_and_page_1_exact, scratch, FatImage, MokEntry};
 use harness::Adapter;
-use install::once::once_per_process;
+use install::once::{once_per_process, Failure};
 use install::process::output_of;
 
 /// Debian's pool, where every package version lives until it is dropped.
@@ -57,7 +57,7 @@ fn shim_15_dir() -> PathBuf {
 /// ([`Unpacked::get`]): a folder unpacked by an earlier run is never
 /// trusted as found.
 fn shim_15_packages() -> Result<Unpacked> {
-    static DEBS: OnceLock<Result<Vec<PinnedDeb>, String>> = OnceLock::new();
+    static DEBS: OnceLock<Result<Vec<PinnedDeb>, Failure>> = OnceLock::new();
     let debs = once_per_process(&DEBS, fetch)?;
     Ok(Unpacked::pinned(shim_15_dir().join("unpacked"), debs))
 }
@@ -98,7 +98,7 @@ fn download(url: &str, to: &Path) -> Result<()> {
 
 /// The image with shim 15.8, its loader to be enrolled by its hash.
 fn shim_15_image() -> Result<PathBuf> {
-    static IMAGE: OnceLock<Result<PathBuf, String>> = OnceLock::new();
+    static IMAGE: OnceLock<Result<PathBuf, Failure>> = OnceLock::new();
     once_per_process(&IMAGE, || {
         let image = shim_15_dir().join("polylab-shim-15.8.img");
         boot_image::build_image_with(&Enrollment::Hash, &shim_15_packages()?, &image)

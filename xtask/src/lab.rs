@@ -14,7 +14,7 @@
 use std::path::absolute;
 
 use anyhow::{Context, Result};
-use install::libraries::{ensure_cairo, ensure_peer_libraries};
+use install::libraries::ensure_lab_libraries;
 use install::process::run_streaming;
 
 use crate::opt::LabOpt;
@@ -27,8 +27,7 @@ const NATIVE_TARGET_DIR: &str = "target/native";
 pub fn lab(opt: &LabOpt) -> Result<()> {
     // The Cairo peer builds against the system libcairo; the Allegro,
     // SDL2_gfx and GD peers against theirs.
-    ensure_cairo()?;
-    ensure_peer_libraries()?;
+    ensure_lab_libraries()?;
     let out = absolute(&opt.out).with_context(|| format!("bad output directory {}", opt.out.display()))?;
     let mut command = install::toolchain::host();
     command.env("RUSTFLAGS", NATIVE_RUSTFLAGS);

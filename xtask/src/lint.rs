@@ -14,7 +14,8 @@ use std::process::Command;
 
 use anyhow::{Context, Result};
 use boot_image::cargo::{NightlyBuild, NIGHTLY_ONLY};
-use install::libraries::{ensure_cairo, ensure_peer_libraries};
+use install::libraries::ensure_lab_libraries;
+use install::missing::ensure_all;
 use install::process::run_streaming;
 use install::toolchain::ensure_cxx;
 use install::toolchain::ensure_toolchain;
@@ -31,11 +32,9 @@ pub fn lint() -> Result<()> {
     run_streaming(pinned("rustup").args(["component", "add", "clippy"]))
         .context("failed to install clippy for the pinned nightly")?;
     // Clippy builds the lab, whose peers link the system libcairo, Allegro
-    // 4, SDL2 with SDL2_gfx, and GD.
-    ensure_cairo()?;
-    ensure_peer_libraries()?;
-    // The fuzz targets build libFuzzer, which is C++.
-    ensure_cxx()?;
+    // 4, SDL2 with SDL2_gfx, and GD; the fuzz targets build libFuzzer,
+    // which is C++.
+    ensure_all(&[ensure_lab_libraries, ensure_cxx])?;
     for mut command in [host_clippy(), kernel_clippy(), fuzz_targets_clippy()] {
         run_streaming(&mut command)?;
     }

@@ -10,7 +10,7 @@ use harness::checks::{screen_matches_dump, show_matches_host_render, source_matc
 use harness::render::{entry_names, SceneFile, SceneSource};
 use harness::workspace::target_dir;
 use harness::{Clock, Display, Medium, Qemu, QemuOptions};
-use install::emulators::ensure_qemu_window;
+use install::missing::ensure_all;
 use protocol::{Command, Firmware};
 use raster::MethodId;
 use scenes::show::{self, Entry, ENTRIES_IN_ORDER};
@@ -60,10 +60,14 @@ pub fn run(opt: &RunOpt) -> Result<()> {
             opt.firmware.name()
         );
     }
-    let options = QemuOptions { firmware: opt.firmware, adapter: opt.vga, medium, ..QemuOptions::default() };
     let has_display =
         ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|var| std::env::var_os(var).is_some_and(|v| !v.is_empty()));
-    if has_display && !opt.headless {
+    let display = if has_display && !opt.headless { Display::Window } else { Display::Headless };
+    let options = QemuOptions { firmware: opt.firmware, adapter: opt.vga, medium, display, ..QemuOptions::default() };
+    // What QEMU needs, installed before the image builds: a user who is
+    // not root is told every missing package at once.
+    ensure_all(&options.needs())?;
+    if display == Display::Window {
         in_a_window(&shown, opt.method, options)
     } else {
         let out = opt.out.clone().unwrap_or_else(|| target_dir().join("run"));
@@ -77,8 +81,6 @@ pub fn run(opt: &RunOpt) -> Result<()> {
 /// plays the demo from that entry and stays on it; a scene file is drawn
 /// with `CLEAR` and `POLY` and stays on the screen.
 fn in_a_window(shown: &OnScreen, method: Option<MethodId>, options: QemuOptions) -> Result<()> {
-    ensure_qemu_window()?;
-    let options = QemuOptions { display: Display::Window, ..options };
     let mut qemu = match (shown, method) {
         (OnScreen::Show(None), None) => Qemu::spawn(&build_image()?, options)?,
         (OnScreen::Show(entry), method) => {

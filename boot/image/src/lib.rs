@@ -35,7 +35,7 @@ use crate::secure_boot::key::{self, SigningKey};
 use crate::secure_boot::{
     loader, shim, Enrollment, CERTIFICATE_PATH, HASH_ENROLL_PATH, LOADER_PATH, MOK_MANAGER_PATH, SHIM_PATH,
 };
-use install::once::once_per_process;
+use install::once::{once_per_process, Failure};
 use install::process::run_streaming;
 use install::toolchain::ensure_toolchain;
 use install::workspace;
@@ -47,7 +47,7 @@ pub use provenance::IMAGE_ENV;
 /// meant), its loader to be enrolled by its hash ([`Enrollment::Hash`]).
 /// Installs the pinned nightly first when it is missing.
 pub fn build_image() -> Result<PathBuf> {
-    static IMAGE: OnceLock<Result<PathBuf, String>> = OnceLock::new();
+    static IMAGE: OnceLock<Result<PathBuf, Failure>> = OnceLock::new();
     once_per_process(&IMAGE, || {
         let given = provenance::image_given(std::env::var_os(IMAGE_ENV), std::env::var_os(provenance::MEANT_ENV))?;
         if let Some(image) = given {

@@ -9,7 +9,8 @@ use std::sync::OnceLock;
 use anyhow::{anyhow, ensure, Result};
 
 use crate::files::program;
-use crate::once::once_per_process;
+use crate::missing::MissingPackages;
+use crate::once::{once_per_process, Failure};
 use crate::packages::ensure_debian_packages;
 
 pub const CHROMIUM: &str = "chromium";
@@ -34,7 +35,7 @@ pub fn chromedriver() -> Option<PathBuf> {
 /// be done here (Ubuntu has Chromium only as a snap), the error says how
 /// to name a browser of one's own.
 pub fn ensure_chromium() -> Result<()> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    static DONE: OnceLock<Result<(), Failure>> = OnceLock::new();
     once_per_process(&DONE, || {
         for (env, found) in [(CHROMIUM_ENV, chromium()), (CHROMEDRIVER_ENV, chromedriver())] {
             if let Some(named) = std::env::var_os(env).filter(|named| !named.is_empty()) {
@@ -44,7 +45,10 @@ pub fn ensure_chromium() -> Result<()> {
         ensure_debian_packages("Chromium (chromium and chromedriver)", &CHROMIUM_PACKAGES, || {
             chromium().is_some() && chromedriver().is_some()
         })
-        .map_err(|error| anyhow!("{error:#}\n{}", own_browser()))
+        .map_err(|error| match error.downcast::<MissingPackages>() {
+            Ok(missing) => missing.or_instead(own_browser()).into(),
+            Err(error) => anyhow!("{error:#}\n{}", own_browser()),
+        })
     })
 }
 

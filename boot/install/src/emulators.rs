@@ -13,7 +13,8 @@ use std::sync::OnceLock;
 use anyhow::Result;
 
 use crate::files::{ensure_system_files, on_path, system_file};
-use crate::once::once_per_process;
+use crate::missing::ensure_all;
+use crate::once::{once_per_process, Failure};
 use crate::packages::ensure_debian_packages;
 use crate::process::output_of;
 
@@ -59,7 +60,7 @@ const BOCHS_PACKAGES: [&str; 4] = ["bochs", "bochs-term", "bochsbios", "vgabios"
 /// `qemu-system-x86` ([`ensure_debian_packages`]: with apt-get as root,
 /// else failing with the exact commands to run).
 pub fn ensure_qemu() -> Result<()> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    static DONE: OnceLock<Result<(), Failure>> = OnceLock::new();
     once_per_process(&DONE, || ensure_debian_packages(QEMU, &[QEMU_PACKAGE], || on_path(&[QEMU])))
 }
 
@@ -71,9 +72,12 @@ const QXL_PACKAGE: &str = "qemu-system-modules-spice";
 
 /// Makes sure QEMU has its QXL card (`-device help` lists it), installing
 /// `qemu-system-modules-spice` as [`ensure_qemu`] installs QEMU (from the
-/// same suite as QEMU, where that is backports).
+/// same suite as QEMU, where that is backports). Where QEMU is missing,
+/// the error names QEMU alone: whether the card needs a package of its
+/// own depends on the QEMU installed (Debian 12's QEMU 7.2 has it built
+/// in, and Debian 12 has no such package).
 pub fn ensure_qemu_qxl() -> Result<()> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    static DONE: OnceLock<Result<(), Failure>> = OnceLock::new();
     once_per_process(&DONE, || {
         ensure_qemu()?;
         let listed = || {
@@ -86,22 +90,26 @@ pub fn ensure_qemu_qxl() -> Result<()> {
 
 /// Makes sure QEMU can open a window (its GTK display module is there, as
 /// `-display help` lists it), installing `qemu-system-gui` as
-/// [`ensure_qemu`] installs QEMU.
+/// [`ensure_qemu`] installs QEMU. Where QEMU is missing too, a user who
+/// is not root is told both at once ([`ensure_all`]): a QEMU installed
+/// without its recommendations has no window.
 pub fn ensure_qemu_window() -> Result<()> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
-    once_per_process(&DONE, || {
-        ensure_qemu()?;
-        let has_window = || {
-            output_of(Command::new(QEMU).args(["-display", "help"])).is_ok_and(|help| help.lines().any(|l| l == "gtk"))
-        };
-        ensure_debian_packages("QEMU's window (its GTK display)", &[QEMU_WINDOW_PACKAGE], has_window)
-    })
+    static DONE: OnceLock<Result<(), Failure>> = OnceLock::new();
+    once_per_process(&DONE, || ensure_all(&[ensure_qemu, ensure_gtk_display]))
+}
+
+/// Installs QEMU's GTK display module unless `-display help` lists it:
+/// also where QEMU is missing, which lists nothing.
+fn ensure_gtk_display() -> Result<()> {
+    let has_window =
+        || output_of(Command::new(QEMU).args(["-display", "help"])).is_ok_and(|help| help.lines().any(|l| l == "gtk"));
+    ensure_debian_packages("QEMU's window (its GTK display)", &[QEMU_WINDOW_PACKAGE], has_window)
 }
 
 /// Makes sure Bochs, its BIOS and its Cirrus VGA BIOS are there,
 /// installing them as [`ensure_qemu`] installs QEMU.
 pub fn ensure_bochs() -> Result<()> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    static DONE: OnceLock<Result<(), Failure>> = OnceLock::new();
     once_per_process(&DONE, || {
         let files = [(BOCHS_BIOS_ENV, BOCHS_BIOS), (BOCHS_CIRRUS_VGA_BIOS_ENV, BOCHS_CIRRUS_VGA_BIOS)];
         ensure_system_files("Bochs (with its BIOS and VGA BIOS)", &BOCHS_PACKAGES, &[BOCHS], &files)
@@ -111,7 +119,7 @@ pub fn ensure_bochs() -> Result<()> {
 /// Makes sure OVMF's code and variable store are there, installing
 /// Debian's `ovmf` as [`ensure_qemu`] installs QEMU.
 pub fn ensure_ovmf() -> Result<()> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    static DONE: OnceLock<Result<(), Failure>> = OnceLock::new();
     once_per_process(&DONE, || {
         let files = [(OVMF_CODE_ENV, OVMF_CODE), (OVMF_VARS_ENV, OVMF_VARS)];
         ensure_system_files("OVMF (the UEFI firmware for QEMU)", &[OVMF_PACKAGE], &[], &files)
@@ -132,7 +140,7 @@ pub fn ovmf_vars() -> PathBuf {
 /// Microsoft's keys are there, installing Debian's `ovmf` as
 /// [`ensure_qemu`] installs QEMU.
 pub fn ensure_secure_boot_ovmf() -> Result<()> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    static DONE: OnceLock<Result<(), Failure>> = OnceLock::new();
     once_per_process(&DONE, || {
         let files =
             [(OVMF_SECURE_BOOT_CODE_ENV, OVMF_SECURE_BOOT_CODE), (OVMF_MICROSOFT_VARS_ENV, OVMF_MICROSOFT_VARS)];

@@ -20,13 +20,16 @@
 //! Machines here set `RUSTUP_AUTO_INSTALL=0`, so nothing installs
 //! itself: each `ensure_*` looks first, installs what is missing saying
 //! so, and where it cannot (not root, no apt) fails with the commands to
-//! run. Debian packages come with their dependencies but without their
-//! recommendations: exactly the packages named here, each for the reason
-//! its constant says.
+//! run. A command runs its `ensure_*` together ([`missing::ensure_all`]):
+//! a user who is not root then stops once, with the commands for every
+//! package the command misses. Debian packages come with their
+//! dependencies but without their recommendations: exactly the packages
+//! named here, each for the reason its constant says.
 //!
 //! ```no_run
 //! # fn main() -> anyhow::Result<()> {
-//! install::emulators::ensure_qemu()?;
+//! use install::emulators::{ensure_ovmf, ensure_qemu};
+//! install::missing::ensure_all(&[ensure_qemu, ensure_ovmf])?;
 //! install::toolchain::ensure_toolchain()?;
 //! # Ok(())
 //! # }
@@ -38,6 +41,7 @@ pub mod distribution;
 pub mod emulators;
 pub mod files;
 pub mod libraries;
+pub mod missing;
 pub mod once;
 pub mod packages;
 pub mod process;

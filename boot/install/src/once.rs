@@ -7,13 +7,40 @@ use std::sync::OnceLock;
 
 use anyhow::{anyhow, Context, Result};
 
+use crate::missing::MissingPackages;
 use crate::workspace::target_dir;
 
 /// Runs `work` the first time, and hands every caller its result. Callers
 /// arriving while it runs wait for it, so parallel tests never start two
-/// builds. A failure is kept as its full message (`{:#}`).
-pub fn once_per_process<T: Clone>(cell: &OnceLock<Result<T, String>>, work: impl FnOnce() -> Result<T>) -> Result<T> {
-    cell.get_or_init(|| work().map_err(|error| format!("{error:#}"))).clone().map_err(|message| anyhow!(message))
+/// builds. A failure is kept as a [`Failure`].
+pub fn once_per_process<T: Clone>(cell: &OnceLock<Result<T, Failure>>, work: impl FnOnce() -> Result<T>) -> Result<T> {
+    cell.get_or_init(|| work().map_err(Failure::kept)).clone().map_err(Failure::error)
+}
+
+/// A failure of work done once, as every later caller gets it: packages
+/// missing as themselves, so that `missing::ensure_all` still gathers
+/// them when a second step misses what a first did; anything else as
+/// its full message (`{:#}`).
+#[derive(Clone, Debug)]
+pub enum Failure {
+    Missing(MissingPackages),
+    Message(String),
+}
+
+impl Failure {
+    fn kept(error: anyhow::Error) -> Self {
+        match error.downcast::<MissingPackages>() {
+            Ok(missing) => Failure::Missing(missing),
+            Err(error) => Failure::Message(format!("{error:#}")),
+        }
+    }
+
+    fn error(self) -> anyhow::Error {
+        match self {
+            Failure::Missing(missing) => missing.into(),
+            Failure::Message(message) => anyhow!(message),
+        }
+    }
 }
 
 /// Waits for this workspace's other commands and test binaries to finish
@@ -52,6 +79,23 @@ mod tests {
     use std::time::Duration;
 
     use super::*;
+
+    #[test]
+    fn missing_packages_stay_missing_packages_for_every_caller() {
+        static DONE: OnceLock<Result<(), Failure>> = OnceLock::new();
+        let packages = ["ovmf".to_string()];
+        let missing = || Err(MissingPackages::new("OVMF", &packages, None).into());
+        for _ in 0..2 {
+            let error = once_per_process(&DONE, missing).unwrap_err();
+            assert_eq!(error.downcast_ref(), Some(&MissingPackages::new("OVMF", &packages, None)));
+        }
+        static FAILED: OnceLock<Result<(), Failure>> = OnceLock::new();
+        let failed = || Err(anyhow!("the disk is full").context("failed to install OVMF"));
+        for _ in 0..2 {
+            let error = once_per_process(&FAILED, failed).unwrap_err();
+            assert_eq!(format!("{error:#}"), "failed to install OVMF: the disk is full");
+        }
+    }
 
     #[test]
     fn an_install_waits_while_another_holds_the_turn() {

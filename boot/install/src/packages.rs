@@ -2,16 +2,21 @@
 //! that it waits for another apt instead of failing and never removes a
 //! package the user has. Where it cannot install (not root, another
 //! distribution, a package Ubuntu has only as a snap) it fails with what
-//! to do instead, the exact commands where there are some.
+//! to do instead, the exact commands where there are some: for a user
+//! who is not root, [`MissingPackages`], which `missing::ensure_all`
+//! gathers over a whole command.
 
 use std::process::Command;
+use std::sync::{Mutex, PoisonError};
 
 use anyhow::{bail, Context, Result};
 
-use crate::apt::{suite_source_line, PrivateApt};
+use crate::apt::PrivateApt;
 use crate::distribution::Distribution;
+use crate::missing::{by_hand, MissingPackages};
 use crate::once::install_turn;
 use crate::process::{command_line, find_in_path, is_root, output_of, run_streaming};
+use crate::workspace::target_dir;
 
 /// How long apt-get waits for another apt or dpkg (an unattended upgrade,
 /// a second test run) to release its lock before it gives up.
@@ -24,9 +29,10 @@ const APT_LOCK_TIMEOUT_SECONDS: u32 = 600;
 /// backports, the packages come from that suite, for this install only
 /// ([`InstallFrom::Suite`]), if that removes nothing and upgrades nothing
 /// installed; failing that, it fails naming the packages and commands
-/// that would work. Without root fails with the commands to run (none of
-/// which reads a file the user can write); without apt-get, or on
-/// another distribution, with what to install.
+/// that would work. Without root fails with [`MissingPackages`], whose
+/// message gives the commands to run (none of which reads a file the
+/// user can write); without apt-get, or on another distribution, with
+/// what to install.
 pub fn ensure_debian_packages(what: &str, packages: &[&str], present: impl Fn() -> bool) -> Result<()> {
     if present() {
         return Ok(());
@@ -50,7 +56,7 @@ pub fn ensure_debian_packages(what: &str, packages: &[&str], present: impl Fn() 
     let hint = distribution.install_hint(&packages);
     let plan = plan(what, &packages, &distribution, as_root).with_context(|| format!("cannot install {what}{hint}"))?;
     if !as_root {
-        bail!("{what} is not installed; install it with:\n{}", indented(&by_hand(&plan.from, &packages, false)));
+        return Err(MissingPackages::new(what, &packages, plan.suite()).into());
     }
     run_streaming(&mut apt_install(&plan.from, &packages, Some("--no-remove")))
         .with_context(|| format!("failed to install {what}{hint}"))?;
@@ -84,6 +90,16 @@ struct Plan {
     _lists: Option<tempfile::TempDir>,
 }
 
+impl Plan {
+    /// The backports suite it installs from, if any.
+    fn suite(&self) -> Option<&str> {
+        match &self.from {
+            InstallFrom::Suite { suite, .. } => Some(suite),
+            InstallFrom::Machine | InstallFrom::MachinesSources(_) => None,
+        }
+    }
+}
+
 /// What apt-get's simulated install would do to the installed packages:
 /// remove some (`NAME VERSION` each), or install a newer version of some
 /// (`NAME OLD -> NEW` each).
@@ -105,11 +121,7 @@ fn plan(what: &str, packages: &[String], distribution: &Distribution, as_root: b
     // cannot, so asks apt over lists of the machine's sources fetched
     // into a folder of its own (on a machine whose lists were never
     // fetched, as in a container, the machine's would know no package).
-    let machine_lists = if as_root { None } else { Some(fresh_lists("the machine's sources", None)?) };
-    let machine_view = match &machine_lists {
-        None => InstallFrom::Machine,
-        Some((_, apt)) => InstallFrom::MachinesSources(apt.clone()),
-    };
+    let machine_view = if as_root { InstallFrom::Machine } else { InstallFrom::MachinesSources(users_lists(None)?) };
     let first = match simulate(&machine_view, packages) {
         Ok(simulation) if simulation.removed.is_empty() => {
             return Ok(Plan { from: InstallFrom::Machine, _lists: None })
@@ -127,11 +139,16 @@ fn plan(what: &str, packages: &[String], distribution: &Distribution, as_root: b
                  whether {} fits from there (the machine's sources and lists stay as they are)",
                 packages.join(" ")
             );
-            let (lists, apt) = fresh_lists(&suite, Some(&suite))?;
+            let (lists, apt) = if as_root {
+                let (lists, apt) = fresh_lists(&suite)?;
+                (Some(lists), apt)
+            } else {
+                (None, users_lists(Some(&suite))?)
+            };
             let from = InstallFrom::Suite { apt, suite };
             match simulate(&from, packages) {
                 Ok(simulation) if simulation.leaves_the_installed_as_they_are() => {
-                    return Ok(Plan { from, _lists: Some(lists) })
+                    return Ok(Plan { from, _lists: lists })
                 }
                 outcome => Some((from, outcome)),
             }
@@ -141,23 +158,48 @@ fn plan(what: &str, packages: &[String], distribution: &Distribution, as_root: b
     bail!(refusal(what, packages, &first, tried.as_ref(), as_root))
 }
 
-/// apt over the machine's sources (and Debian's `suite`, if any) with
-/// lists fetched now into a fresh folder (mode 0700, the running
-/// user's), which lives as long as the returned guard; `what` names them
-/// for the user.
-fn fresh_lists(what: &str, suite: Option<&str>) -> Result<(tempfile::TempDir, PrivateApt)> {
+/// apt over the machine's sources and Debian's `suite`, for root to
+/// install from, with lists fetched now into a fresh folder (mode 0700,
+/// root's), which lives as long as the returned guard: nothing another
+/// user can write is read by root's apt.
+fn fresh_lists(suite: &str) -> Result<(tempfile::TempDir, PrivateApt)> {
     let lists = tempfile::Builder::new()
         .prefix("polylab-apt-")
         .tempdir()
         .context("failed to create a folder for apt's lists")?;
-    let dir = lists.path().to_path_buf();
-    let apt = match suite {
-        Some(suite) => PrivateApt::with_suite(dir, suite),
-        None => PrivateApt::machines_sources(dir),
-    };
-    eprintln!("install: fetching apt's lists of {what} into {}", lists.path().display());
-    apt.update()?;
+    let apt = PrivateApt::with_suite(lists.path().to_path_buf(), suite);
+    fetch(&apt, suite, lists.path())?;
     Ok((lists, apt))
+}
+
+/// apt over the machine's sources (and Debian's `suite`, if any) for a
+/// user who is not root to ask what an install would do, never to
+/// install from: lists of the user's own in the target folder
+/// (`apt-lists/machine`, `apt-lists/SUITE`), fetched once per process, so
+/// that a command asking about each of its needs fetches them once.
+fn users_lists(suite: Option<&str>) -> Result<PrivateApt> {
+    static FETCHED: Mutex<Vec<Option<String>>> = Mutex::new(Vec::new());
+    let dir = target_dir().join("apt-lists").join(suite.unwrap_or("machine"));
+    let apt = match suite {
+        Some(suite) => PrivateApt::with_suite(dir.clone(), suite),
+        None => PrivateApt::machines_sources(dir.clone()),
+    };
+    let mut fetched = FETCHED.lock().unwrap_or_else(PoisonError::into_inner);
+    let key = suite.map(str::to_string);
+    if !fetched.contains(&key) {
+        // Another process of this workspace (a test binary) may be
+        // fetching into the same folder.
+        let _turn = install_turn()?;
+        fetch(&apt, suite.unwrap_or("the machine's sources"), &dir)?;
+        fetched.push(key);
+    }
+    Ok(apt)
+}
+
+/// Fetches `apt`'s lists (of `what`) into `dir` now, saying so.
+fn fetch(apt: &PrivateApt, what: &str, dir: &std::path::Path) -> Result<()> {
+    eprintln!("install: fetching apt's lists of {what} into {}", dir.display());
+    apt.update()
 }
 
 /// What apt-get's simulated install of `packages` from `from` would do to
@@ -241,28 +283,6 @@ impl Simulation {
     }
 }
 
-/// The commands a person runs to install `packages` from `from`, one a
-/// line, each with `sudo` unless root: the machine's lists refreshed,
-/// then the install; for a suite, its one-line source added to the
-/// machine's sources first (so that `apt upgrade` keeps what comes from
-/// it up to date), never the lists the harness fetched, which the user
-/// can write.
-fn by_hand(from: &InstallFrom, packages: &[String], as_root: bool) -> Vec<String> {
-    let sudo = if as_root { "" } else { "sudo " };
-    let mut install = Command::new("apt-get");
-    install.args(["install", "--no-install-recommends"]);
-    let mut lines = Vec::new();
-    if let InstallFrom::Suite { suite, .. } = from {
-        install.args(["-t", suite]);
-        let line = suite_source_line(suite);
-        lines.push(format!("echo '{line}' | {sudo}tee /etc/apt/sources.list.d/{suite}.list"));
-    }
-    install.args(packages);
-    lines.push(format!("{sudo}apt-get update"));
-    lines.push(format!("{sudo}{}", command_line(&install)));
-    lines
-}
-
 /// `lines`, each indented by four spaces, one a line.
 fn indented(lines: &[String]) -> String {
     lines.iter().map(|line| format!("    {line}")).collect::<Vec<_>>().join("\n")
@@ -310,17 +330,17 @@ fn refusal(
         if as_root { "" } else { "sudo " },
         command_line(&release)
     ));
-    if let Some((from @ InstallFrom::Suite { suite, .. }, _)) = tried {
+    if let Some((InstallFrom::Suite { suite, .. }, _)) = tried {
         message.push_str(&format!(
             "\nor add {suite} to the machine's apt sources and install from it, knowingly (apt asks first):\n{}",
-            indented(&by_hand(from, packages, as_root))
+            indented(&by_hand([(Some(suite.as_str()), packages)], as_root))
         ));
     }
     if !removed.is_empty() {
         message.push_str(&format!(
             "\nor let apt remove {}, knowingly (it asks first):\n{}",
             removed.join(" and "),
-            indented(&by_hand(&InstallFrom::Machine, packages, as_root))
+            indented(&by_hand([(None, packages)], as_root))
         ));
     }
     message
@@ -366,35 +386,6 @@ mod tests {
         let own_lists = InstallFrom::MachinesSources(PrivateApt::machines_sources("/t/apt".into()));
         let asked = command_line(&apt_install(&own_lists, &names(&["qemu-system-x86"]), Some("--simulate")));
         assert!(asked.contains(" -o Dir::State::Lists=/t/apt/lists ") && !asked.contains(" -t "), "{asked}");
-    }
-
-    #[test]
-    fn the_commands_by_hand_have_sudo_only_for_a_user_other_than_root() {
-        let packages = names(&["bochs", "bochsbios"]);
-        assert_eq!(
-            by_hand(&InstallFrom::Machine, &packages, false),
-            ["sudo apt-get update", "sudo apt-get install --no-install-recommends bochs bochsbios"]
-        );
-        assert_eq!(
-            by_hand(&InstallFrom::Machine, &packages, true),
-            ["apt-get update", "apt-get install --no-install-recommends bochs bochsbios"]
-        );
-    }
-
-    #[test]
-    fn a_suite_by_hand_is_added_to_the_machines_sources_and_no_file_of_the_user_is_read() {
-        let lines = by_hand(&backports(), &names(&["qemu-system-x86"]), false);
-        let source = suite_source_line("bookworm-backports");
-        assert_eq!(
-            lines,
-            [
-                format!("echo '{source}' | sudo tee /etc/apt/sources.list.d/bookworm-backports.list"),
-                "sudo apt-get update".to_string(),
-                "sudo apt-get install --no-install-recommends -t bookworm-backports qemu-system-x86".to_string(),
-            ]
-        );
-        assert!(source.ends_with(" bookworm-backports main") && source.starts_with("deb "), "{source}");
-        assert!(!lines.concat().contains("/t/apt") && !lines.concat().contains("Dir::"), "{lines:?}");
     }
 
     /// What `apt-get install --simulate qemu-system-x86` printed on this

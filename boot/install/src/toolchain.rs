@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 
 use anyhow::{Context, Result};
 
-use crate::once::once_per_process;
+use crate::once::{once_per_process, Failure};
 use crate::packages::ensure_debian_packages;
 use crate::process::{find_in_path, output_of, run_streaming};
 use crate::workspace;
@@ -71,7 +71,7 @@ pub fn host() -> Command {
 /// installed, installing what is missing (and saying so). Costs two quick
 /// rustup look-ups when everything is there.
 pub fn ensure_toolchain() -> Result<()> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    static DONE: OnceLock<Result<(), Failure>> = OnceLock::new();
     once_per_process(&DONE, || {
         let toolchains = output_of(Command::new("rustup").args(["toolchain", "list"]))
             .context("rustup is needed to install the pinned nightly (see https://rustup.rs)")?;
@@ -135,7 +135,7 @@ pub const WASM_TARGET: &str = "wasm32-unknown-unknown";
 /// test` was started with, the one [`host`] builds with) has the
 /// `wasm32-unknown-unknown` target, adding it with rustup when missing.
 pub fn ensure_wasm_target() -> Result<()> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    static DONE: OnceLock<Result<(), Failure>> = OnceLock::new();
     once_per_process(&DONE, || {
         let toolchain = host_toolchain()?;
         let installed =
@@ -174,7 +174,7 @@ pub const CARGO_FUZZ_VERSION: &str = "0.13.2";
 /// targets' `libfuzzer-sys` compiles: installs Debian's `g++`
 /// ([`ensure_debian_packages`]).
 pub fn ensure_cxx() -> Result<()> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    static DONE: OnceLock<Result<(), Failure>> = OnceLock::new();
     once_per_process(&DONE, || {
         ensure_debian_packages("a C++ compiler (for libFuzzer)", &["g++"], || find_in_path("c++").is_some())
     })
@@ -184,7 +184,7 @@ pub fn ensure_cxx() -> Result<()> {
 /// libFuzzer) is installed, installing it from crates.io with `cargo
 /// install --locked` when missing, and a C++ compiler ([`ensure_cxx`]).
 pub fn ensure_cargo_fuzz() -> Result<()> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    static DONE: OnceLock<Result<(), Failure>> = OnceLock::new();
     once_per_process(&DONE, || {
         ensure_cxx()?;
         if find_in_path("cargo-fuzz").is_some() {

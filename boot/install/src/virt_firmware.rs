@@ -8,7 +8,7 @@ use std::sync::OnceLock;
 
 use anyhow::{Context, Result};
 
-use crate::once::{install_turn, once_per_process};
+use crate::once::{install_turn, once_per_process, Failure};
 use crate::packages::ensure_debian_packages;
 use crate::process::run_streaming;
 use crate::workspace;
@@ -41,7 +41,7 @@ pycparser==3.12 --hash=sha256:a076f3f489b39b43ed13563a1dafe42447445bec2e294154ec
 /// `target/` (Python's `venv` module, Debian's `python3-venv`, installed
 /// by [`ensure_debian_packages`]), again whenever the requirements change.
 pub fn ensure_virt_fw_vars() -> Result<PathBuf> {
-    static DONE: OnceLock<Result<PathBuf, String>> = OnceLock::new();
+    static DONE: OnceLock<Result<PathBuf, Failure>> = OnceLock::new();
     once_per_process(&DONE, || {
         let venv = workspace::target_dir().join("virt-firmware");
         let program = venv.join("bin").join("virt-fw-vars");

@@ -4,6 +4,8 @@
 //! QEMU's command line.
 
 use anyhow::{Context, Result};
+use install::emulators::{ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_qemu_window, ensure_secure_boot_ovmf};
+use install::missing::Step;
 use protocol::{Firmware, PciId};
 
 use super::board::{Board, DisplayAhead};
@@ -245,6 +247,29 @@ pub struct QemuOptions {
     /// table it would stand beside): how a firmware's wrong table is
     /// played.
     pub hpet_table_at: Option<u64>,
+}
+
+impl QemuOptions {
+    /// What a run with these options needs installed, in order, for
+    /// `install::missing::ensure_all` (a user who is not root is told
+    /// every missing package at once): QEMU; its window; its QXL card; OVMF
+    /// under UEFI; OVMF's Secure Boot build.
+    pub fn needs(&self) -> Vec<Step> {
+        let mut needs: Vec<Step> = vec![ensure_qemu];
+        if self.display == Display::Window {
+            needs.push(ensure_qemu_window);
+        }
+        if self.adapter == Adapter::QxlVga {
+            needs.push(ensure_qemu_qxl);
+        }
+        if self.firmware == Firmware::Uefi {
+            needs.push(ensure_ovmf);
+        }
+        if self.secure_boot {
+            needs.push(ensure_secure_boot_ovmf);
+        }
+        needs
+    }
 }
 
 #[cfg(test)]

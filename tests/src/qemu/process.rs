@@ -15,14 +15,13 @@ use protocol::{Firmware, Ready};
 
 use super::arguments::{qemu_arguments, qmp_socket, uefi_variables, CARD_BEHIND_ID};
 use super::board::{hpet_table_body, AHEAD_ID, HPET_TABLE_FILE};
-use super::options::{Adapter, QemuOptions, SerialLine};
+use super::options::{QemuOptions, SerialLine};
 use super::qmp::{Qmp, QMP_TIMEOUT};
 use crate::client::{forward_bytes, Console, FrameReader};
 use crate::picture::Image;
 use crate::supervisor::Supervised;
-use install::emulators::{
-    ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_secure_boot_ovmf, ovmf_microsoft_vars, ovmf_vars, QEMU,
-};
+use install::emulators::{ovmf_microsoft_vars, ovmf_vars, QEMU};
+use install::missing::ensure_all;
 
 /// Longest wait for QEMU to exit after QMP `quit`.
 const QUIT_TIMEOUT: Duration = Duration::from_secs(30);
@@ -77,34 +76,21 @@ impl Qemu {
     /// Starts QEMU on `image`, printing its command line. Does not wait for
     /// the kernel.
     pub fn spawn(image: &Path, options: QemuOptions) -> Result<Self> {
-        let variables = if options.secure_boot {
-            ensure_secure_boot_ovmf()?;
-            ovmf_microsoft_vars()
-        } else {
-            ovmf_vars()
-        };
+        let variables = if options.secure_boot { ovmf_microsoft_vars() } else { ovmf_vars() };
         Self::spawn_with_variables(image, options, &variables)
     }
 
     /// [`Qemu::spawn`] under UEFI with a copy of `variables` as the
-    /// firmware's variable store (the Secure Boot tests' MOK lists).
+    /// firmware's variable store (the Secure Boot tests' MOK lists), once
+    /// what the options need is installed ([`QemuOptions::needs`]).
     pub fn spawn_with_variables(image: &Path, options: QemuOptions, variables: &Path) -> Result<Self> {
-        ensure_qemu()?;
-        if options.adapter == Adapter::QxlVga {
-            ensure_qemu_qxl()?;
-        }
+        ensure_all(&options.needs())?;
         let options = match options.serial {
             SerialLine::Telnet { port: 0 } => {
                 QemuOptions { serial: SerialLine::Telnet { port: free_port()? }, ..options }
             }
             _ => options,
         };
-        if options.firmware == Firmware::Uefi {
-            ensure_ovmf()?;
-            if options.secure_boot {
-                ensure_secure_boot_ovmf()?;
-            }
-        }
         let mut process = Supervised::with_folder("qemu")?;
         let run_dir = process.folder().to_path_buf();
         if options.firmware == Firmware::Uefi {

@@ -12,7 +12,8 @@ use anyhow::Result;
 use boot_image::{build_image, IMAGE_ENV};
 use install::browser::ensure_chromium;
 use install::emulators::{ensure_bochs, ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_secure_boot_ovmf};
-use install::libraries::{ensure_cairo, ensure_peer_libraries};
+use install::libraries::ensure_lab_libraries;
+use install::missing::{ensure_all, Step};
 use install::process::run_streaming;
 use install::toolchain::ensure_toolchain;
 use install::toolchain::ensure_wasm_target;
@@ -32,18 +33,38 @@ use units::cargo_test;
 /// cores. Three per core keeps three of them running.
 const JOBS_PER_CORE: usize = 3;
 
+/// What a whole run installs before its tests start (so that nothing
+/// installs in the middle of their output; a chosen few install their
+/// own, when they start QEMU, Bochs or a browser: `install`), in order.
+const WHOLE_RUN: [Step; 8] = [
+    ensure_qemu,
+    // The adapter matrix runs QEMU's QXL card, a module of its own in
+    // Debian's QEMU 8 and later.
+    ensure_qemu_qxl,
+    // The adapter matrix boots OVMF too, and one test boots Bochs.
+    ensure_ovmf,
+    // The Secure Boot tests boot OVMF's Secure Boot build and write MOK
+    // lists into its variable store with virt-fw-vars.
+    ensure_secure_boot_ovmf,
+    || ensure_virt_fw_vars().map(drop),
+    ensure_bochs,
+    // The explorer page's tests: its engine is built for wasm32 and run
+    // in headless Chromium.
+    ensure_wasm_target,
+    ensure_chromium,
+];
+
 pub fn test(opt: &TestOpt) -> Result<()> {
     ensure_toolchain()?;
+    let run_needs: &[Step] = if is_whole_run(&opt.cargo_args) { &WHOLE_RUN } else { &[] };
     // The lab, a workspace member, builds its peers against libcairo,
     // Allegro 4, SDL2 with SDL2_gfx, and GD: needed before cargo compiles
     // it, which no test can do for itself.
     if builds_the_lab(&opt.cargo_args) {
-        ensure_cairo()?;
-        ensure_peer_libraries()?;
+        ensure_now_or_all_at_once(ensure_lab_libraries, run_needs)?;
     }
-    let whole = is_whole_run(&opt.cargo_args);
     let Some(selection) = Selection::parse(&opt.cargo_args) else {
-        let image = install_and_build_image(whole)?;
+        let image = install_and_build_image(run_needs)?;
         return run_streaming(cargo_test(&opt.cargo_args).env(IMAGE_ENV, image));
     };
     // The test binaries (stable, target/debug) build while the packages
@@ -52,7 +73,7 @@ pub fn test(opt: &TestOpt) -> Result<()> {
     // build has stretches that keep one core busy or none (linking; the
     // bootloader's stages, one after another), which the other fills.
     let build = units::Build::start(&selection)?;
-    let image = match install_and_build_image(whole) {
+    let image = match install_and_build_image(run_needs) {
         Ok(image) => image,
         Err(error) => {
             build.stop();
@@ -69,28 +90,25 @@ pub fn test(opt: &TestOpt) -> Result<()> {
     }
 }
 
-/// For a whole run, installs what its tests need (so that nothing
-/// installs in the middle of their output; a chosen few install their
-/// own, when they start QEMU, Bochs or a browser: `install`); then
-/// builds the image.
-fn install_and_build_image(whole: bool) -> Result<std::path::PathBuf> {
-    if whole {
-        ensure_qemu()?;
-        // The adapter matrix runs QEMU's QXL card, a module of its own in
-        // Debian's QEMU 8 and later.
-        ensure_qemu_qxl()?;
-        // The adapter matrix boots OVMF too, and one test boots Bochs.
-        ensure_ovmf()?;
-        // The Secure Boot tests boot OVMF's Secure Boot build and write MOK
-        // lists into its variable store with virt-fw-vars.
-        ensure_secure_boot_ovmf()?;
-        ensure_virt_fw_vars()?;
-        ensure_bochs()?;
-        // The explorer page's tests: its engine is built for wasm32 and
-        // run in headless Chromium.
-        ensure_wasm_target()?;
-        ensure_chromium()?;
+/// Installs what cargo needs before it compiles (`now`), leaving `later`
+/// to install once the build has started, while it runs. Where `now`
+/// fails, `later` is looked at too, and its missing packages join `now`'s
+/// (a user who is not root): the one stop names every package the
+/// command misses. `now` keeps its outcome (once per process), so the
+/// second look at it fails as the first did.
+fn ensure_now_or_all_at_once(now: Step, later: &[Step]) -> Result<()> {
+    if let Err(error) = now() {
+        ensure_all(&[&[now], later].concat())?;
+        return Err(error);
     }
+    Ok(())
+}
+
+/// Installs what the run's tests need (`needs`: [`WHOLE_RUN`] for a whole
+/// run), a user who is not root told every missing package at once;
+/// then builds the image.
+fn install_and_build_image(needs: &[Step]) -> Result<std::path::PathBuf> {
+    ensure_all(needs)?;
     build_image()
 }
 
@@ -124,7 +142,10 @@ fn values_of<'a>(args: &'a [String], flags: &'a [&str]) -> impl Iterator<Item = 
 
 #[cfg(test)]
 mod tests {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
     use super::*;
+    use install::missing::MissingPackages;
     use install::process::command_line;
 
     fn args(line: &str) -> Vec<String> {
@@ -166,6 +187,39 @@ mod tests {
         assert!(is_whole_run(&args("-- --nocapture")));
         assert!(!is_whole_run(&args("--test pages")));
         assert!(!is_whole_run(&args("every_page -- --nocapture")));
+    }
+
+    fn missing(what: &str, package: &str) -> Result<()> {
+        Err(MissingPackages::new(what, &[package.to_string()], None).into())
+    }
+
+    static LEFT_FOR_LATER: AtomicUsize = AtomicUsize::new(0);
+
+    #[test]
+    fn missing_lab_libraries_stop_once_naming_the_whole_runs_missing_packages_too() {
+        let lab: Step = || missing("libcairo", "libcairo2-dev");
+        let run: [Step; 3] = [|| missing("QEMU", "qemu-system-x86"), || Ok(()), || missing("Bochs", "bochs")];
+        let message = format!("{:#}", ensure_now_or_all_at_once(lab, &run).unwrap_err());
+        assert!(
+            message.contains(
+                "\n    sudo apt-get update\n    \
+                 sudo apt-get install --no-install-recommends libcairo2-dev qemu-system-x86 bochs"
+            ),
+            "{message}"
+        );
+        assert_eq!(message.matches("apt-get install").count(), 1, "{message}");
+        // With the lab's libraries there, the run's needs are left to
+        // install while the build runs.
+        let later: Step = || {
+            LEFT_FOR_LATER.fetch_add(1, Ordering::SeqCst);
+            missing("QEMU", "qemu-system-x86")
+        };
+        ensure_now_or_all_at_once(|| Ok(()), &[later]).unwrap();
+        assert_eq!(LEFT_FOR_LATER.load(Ordering::SeqCst), 0);
+        // Any other failure stops with its own error.
+        let broken: Step = || anyhow::bail!("pkg-config crashed");
+        let error = ensure_now_or_all_at_once(broken, &run).unwrap_err();
+        assert_eq!(format!("{error:#}"), "pkg-config crashed");
     }
 
     #[test]
