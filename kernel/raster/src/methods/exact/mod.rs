@@ -24,7 +24,7 @@
 //!   its edges, never 2^24 rows; no pixel is emitted twice within a fill.
 //!
 //! - Speed: triangles and monotone polygons cost two edge steps and one
-//!   span per row; polygons of many edges for their height flag their
+//!   span per row; polygons of many edges for their box flag their
 //!   crossings in a grid of bits, read in order with no sort; the rest
 //!   walk monotone chains, each inside run as two edges between vertices
 //!   where no crossings swap, else one row at a time, sorting only where
@@ -66,9 +66,11 @@ use crate::target::{Size, SpanSink};
 /// The exact method.
 pub struct Exact;
 
-/// The edge flags fill a polygon of up to this many rows per edge faster
-/// than the active edge table.
-const FLAGS_ROWS_PER_EDGE: i64 = 2;
+/// The edge flags fill a polygon whose box holds up to this many words of
+/// flags per edge (a word: 64 columns of a row) faster than the active edge
+/// table, over the lab's general families timed whole (`docs/lab.md`,
+/// "Where `exact`'s time goes" gives the bounds tried and their times).
+const FLAGS_WORDS_PER_EDGE: i64 = 64;
 
 static INFO: MethodInfo = MethodInfo {
     name: "exact",
@@ -166,12 +168,13 @@ impl<'a> ExactPath<'a> {
     }
 
     /// The cheaper of the two paths that take any polygon (the second
-    /// only within its class): the edge flags where the polygon has many
-    /// edges for its height, the active edge table otherwise.
+    /// only within its class): the edge flags where the polygon's box
+    /// holds few words of flags for its edges, the active edge table
+    /// otherwise.
     #[inline(always)]
     fn general(polygon: &'a Polygon) -> Self {
         let (bounds, edges) = (Bounds::of(polygon), polygon.vertex_count());
-        if bounds.takes(edges, polygon.rule) && bounds.rows() <= FLAGS_ROWS_PER_EDGE * edges as i64 {
+        if bounds.takes(edges, polygon.rule) && bounds.words() <= FLAGS_WORDS_PER_EDGE * edges as i64 {
             ExactPath::EdgeFlags { polygon, bounds }
         } else {
             ExactPath::ActiveEdges { polygon }
