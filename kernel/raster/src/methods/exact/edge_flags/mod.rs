@@ -31,7 +31,7 @@ use core::ops::Range;
 use crate::geometry::{FillRule, Point, Polygon};
 use crate::target::{Size, SpanSink};
 
-use super::clip::{columns_fit, visible_column};
+use super::clip::{beside_target, columns_fit, visible_column};
 use super::edge::{first_sample_at_or_after, Crossing, EdgeStepper, ShortEdge};
 use super::spans::Target;
 use grid::Grid;
@@ -94,7 +94,7 @@ pub(super) fn fill<S: SpanSink + ?Sized>(polygon: &Polygon, bounds: Bounds, size
         first_sample_at_or_after(min.y.into()).max(0)..first_sample_at_or_after(max.y.into()).min(size.height.into());
     let left = visible_column(first_sample_at_or_after(min.x.into()), size.width);
     let right = visible_column(first_sample_at_or_after(max.x.into()), size.width);
-    if rows.is_empty() || left >= size.width {
+    if rows.is_empty() || beside_target(min.x, max.x, size.width) {
         return;
     }
     let columns = (right - left) as usize + 1;
