@@ -68,8 +68,18 @@ impl Bounds {
         i64::from(self.max.x) - i64::from(self.min.x) < WIDEST && (rule == FillRule::EvenOdd || edges < 256)
     }
 
+    /// The box's height, in whole pixels (what the kernel's choice of path
+    /// weighs).
+    #[cfg(target_os = "none")]
+    #[inline(always)]
+    pub(super) fn rows(&self) -> i64 {
+        (i64::from(self.max.y) - i64::from(self.min.y)) >> 8
+    }
+
     /// The box's words of flags: its height in whole pixels times the
-    /// words of a row (64 pixels each).
+    /// words of a row (64 pixels each), what the host's choice of path
+    /// weighs.
+    #[cfg(not(target_os = "none"))]
     #[inline(always)]
     pub(super) fn words(&self) -> i64 {
         let (width, height) =
