@@ -130,8 +130,9 @@ fn paths_take_their_classes() {
     let notched = Polygon::new(vec![px(0, 0), px(9, 0), px(9, 8), px(4, 3), px(0, 8)], 1);
     let mut two = triangle.clone();
     two.contours.push(vec![px(20, 0), px(29, 2), px(23, 8)]);
-    // The notch 60 px deep: 60 rows for 5 edges.
-    let tall = Polygon::new(vec![px(0, 0), px(9, 0), px(9, 80), px(4, 20), px(0, 80)], 1);
+    // The notch 180 px deep in a box 130 px wide: 199 rows of 3 words of
+    // flags, 597 words for 5 edges.
+    let tall = Polygon::new(vec![px(0, 0), px(130, 0), px(130, 199), px(65, 20), px(0, 199)], 1);
     // 513 px across: too wide for the edge flags.
     let wide = Polygon::new(vec![px(0, 0), px(513, 0), px(513, 8), px(4, 3), px(0, 8)], 1);
     let mut wound = notched.clone();

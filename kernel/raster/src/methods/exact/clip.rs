@@ -40,6 +40,17 @@ pub(super) fn right_of_target(x: i32, width: i32) -> bool {
     first_sample_at_or_after(x.into()) >= i64::from(width)
 }
 
+/// Whether a polygon whose vertices' x lie in `min_x..=max_x` draws
+/// nothing on a target `width` wide for lying beside it: every crossing's
+/// column at or left of the first pixel (then each row's crossings all
+/// count for every visible pixel, and a row's crossings of closed contours
+/// add up to nothing under either rule) or at or right of the last's
+/// right (none counts for any).
+#[inline(always)]
+pub(super) fn beside_target(min_x: i32, max_x: i32, width: i32) -> bool {
+    first_sample_at_or_after(max_x.into()) <= 0 || right_of_target(min_x, width)
+}
+
 /// Whether every crossing column of edges with x in `min_x..=max_x` lies in
 /// the target's `0..=width`, so that no column needs clamping: a crossing
 /// lies on its edge, and [`first_sample_at_or_after`] keeps order. Where
@@ -98,5 +109,15 @@ mod tests {
         assert!(!right_of_target(2432, 10) && right_of_target(2433, 10));
         // Columns 0 to 10 are those of x from -127 to 2688.
         assert!(columns_fit(-127, 2688, 10) && !columns_fit(-128, 2688, 10) && !columns_fit(-127, 2689, 10));
+    }
+
+    #[test]
+    fn a_polygon_beside_the_target_is_known_by_its_x_range() {
+        // Column 0's centre is at 128: up to it every crossing counts for
+        // every pixel; one subpixel past it, pixel 0 has one crossing left.
+        assert!(beside_target(-5000, 128, 10) && !beside_target(-5000, 129, 10));
+        // The last centre of a target 10 wide is at 2432.
+        assert!(beside_target(2433, 9000, 10) && !beside_target(2432, 9000, 10));
+        assert!(!beside_target(i32::MIN, i32::MAX, 10));
     }
 }

@@ -24,7 +24,7 @@
 //!   its edges, never 2^24 rows; no pixel is emitted twice within a fill.
 //!
 //! - Speed: triangles and monotone polygons cost two edge steps and one
-//!   span per row; polygons of many edges for their height flag their
+//!   span per row; polygons of many edges for their box flag their
 //!   crossings in a grid of bits, read in order with no sort; the rest
 //!   walk monotone chains, each inside run as two edges between vertices
 //!   where no crossings swap, else one row at a time, sorting only where
@@ -66,9 +66,30 @@ use crate::target::{Size, SpanSink};
 /// The exact method.
 pub struct Exact;
 
-/// The edge flags fill a polygon of up to this many rows per edge faster
-/// than the active edge table.
-const FLAGS_ROWS_PER_EDGE: i64 = 2;
+/// Whether the edge flags fill a polygon of this box and `edges` edges
+/// faster than the active edge table, on the machine it is built for.
+/// On the host, where a fill is timed: where the box holds at most 64
+/// words of flags (64 columns of a row each) per edge; they step and read
+/// more instructions than the edge table's walk does, but branch the
+/// same way from row to row and polygon to polygon, while the edge
+/// table's sorting and events do not (`docs/lab.md`, "Where `exact`'s
+/// time goes", gives the bounds tried and their times).
+#[cfg(not(target_os = "none"))]
+#[inline(always)]
+fn flags_pay(bounds: &Bounds, edges: i64) -> bool {
+    bounds.words() <= 64 * edges
+}
+
+/// [`flags_pay`] in the kernel, measured in instructions (`cargo xtask
+/// kbench`, QEMU counting them): where the box has at most 2 rows per
+/// edge. Past that the flags' extra instructions cost more than the edge
+/// table's: the Black Book page of 40 V shapes (40 rows, 6 edges each)
+/// took 8% more instructions with the host's bound.
+#[cfg(target_os = "none")]
+#[inline(always)]
+fn flags_pay(bounds: &Bounds, edges: i64) -> bool {
+    bounds.rows() <= 2 * edges
+}
 
 static INFO: MethodInfo = MethodInfo {
     name: "exact",
@@ -166,12 +187,13 @@ impl<'a> ExactPath<'a> {
     }
 
     /// The cheaper of the two paths that take any polygon (the second
-    /// only within its class): the edge flags where the polygon has many
-    /// edges for its height, the active edge table otherwise.
+    /// only within its class): the edge flags where the polygon's box
+    /// holds few words of flags for its edges, the active edge table
+    /// otherwise.
     #[inline(always)]
     fn general(polygon: &'a Polygon) -> Self {
         let (bounds, edges) = (Bounds::of(polygon), polygon.vertex_count());
-        if bounds.takes(edges, polygon.rule) && bounds.rows() <= FLAGS_ROWS_PER_EDGE * edges as i64 {
+        if bounds.takes(edges, polygon.rule) && flags_pay(&bounds, edges as i64) {
             ExactPath::EdgeFlags { polygon, bounds }
         } else {
             ExactPath::ActiveEdges { polygon }

@@ -22,7 +22,7 @@ use core::ops::Range;
 use crate::geometry::Point;
 use crate::target::{Size, SpanSink};
 
-use super::clip::{columns_fit, split_rows, visible_rows};
+use super::clip::{beside_target, columns_fit, split_rows, visible_rows};
 use super::edge::{first_sample_at_or_after, Crossing, EdgeStepper, ShortEdge};
 use super::spans::{span_rows, Target};
 
@@ -41,10 +41,10 @@ pub(crate) fn fill_triangle<S: SpanSink + ?Sized>([a, b, c]: [Point; 3], color: 
     // rest (`middle` is clamped into the visible rows, so each part is
     // visible and empty when it has no rows).
     let rows = visible_rows(top.y, bottom.y, size.height);
-    if rows.is_empty() {
+    let (min_x, max_x) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+    if rows.is_empty() || beside_target(min_x, max_x, size.width) {
         return;
     }
-    let (min_x, max_x) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
     let short = ShortEdge::fits((min_x, max_x), (top.y, bottom.y));
     // Which side of the long edge the middle vertex is on: the sign of the
     // cross product, exact in `i64` for a triangle of short edges (18-bit
@@ -115,6 +115,9 @@ pub(crate) fn fill_monotone<S: SpanSink + ?Sized>(contour: &[Point], color: u8, 
             (top, top_y) = (i, p.y);
         }
         (bottom_y, min_x, max_x) = (bottom_y.max(p.y), min_x.min(p.x), max_x.max(p.x));
+    }
+    if beside_target(min_x, max_x, size.width) {
+        return;
     }
     let clip = !columns_fit(min_x, max_x, size.width);
     let rows = visible_rows(top_y, bottom_y, size.height);

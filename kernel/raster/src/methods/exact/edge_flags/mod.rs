@@ -9,11 +9,12 @@
 //!
 //! There is no edge table, no chain and no event: each edge is set up
 //! where the scatter reaches it, and a row costs its crossings and the
-//! words of its flags. So it suits polygons of many edges for their
-//! height (glyphs, icons), where the edge table's setup and events cost
-//! more than its rows. The grid is on the stack, cleared once a fill and
-//! by the scan as it reads: a polygon taller than it holds is walked in
-//! bands, each scattering the edges that meet it.
+//! words of its flags. So it suits polygons of many edges for their box
+//! (glyphs, icons, stars, holed polygons), where the edge table's setup,
+//! events and sorting cost more than its rows. The grid is on the stack,
+//! in the smallest of three sizes that holds the box, cleared once a fill
+//! and by the scan as it reads: a box larger than the largest is walked
+//! in bands, each scattering the edges that meet it.
 //!
 //! The path takes polygons whose vertices lie within 512 px across (so a
 //! row is at most 513 columns, 9 words), and, under the
@@ -30,7 +31,7 @@ use core::ops::Range;
 use crate::geometry::{FillRule, Point, Polygon};
 use crate::target::{Size, SpanSink};
 
-use super::clip::{columns_fit, visible_column};
+use super::clip::{beside_target, columns_fit, visible_column};
 use super::edge::{first_sample_at_or_after, Crossing, EdgeStepper, ShortEdge};
 use super::spans::Target;
 use grid::Grid;
@@ -67,18 +68,33 @@ impl Bounds {
         i64::from(self.max.x) - i64::from(self.min.x) < WIDEST && (rule == FillRule::EvenOdd || edges < 256)
     }
 
-    /// The box's height, in whole pixels.
+    /// The box's height, in whole pixels (what the kernel's choice of path
+    /// weighs).
+    #[cfg(target_os = "none")]
     #[inline(always)]
     pub(super) fn rows(&self) -> i64 {
         (i64::from(self.max.y) - i64::from(self.min.y)) >> 8
     }
+
+    /// The box's words of flags: its height in whole pixels times the
+    /// words of a row (64 pixels each), what the host's choice of path
+    /// weighs.
+    #[cfg(not(target_os = "none"))]
+    #[inline(always)]
+    pub(super) fn words(&self) -> i64 {
+        let (width, height) =
+            (i64::from(self.max.x) - i64::from(self.min.x), i64::from(self.max.y) - i64::from(self.min.y));
+        (height >> 8) * ((width >> 14) + 1)
+    }
 }
 
-/// Flags on the stack, in two sizes, and their counters: the small for
-/// polygons whose box fits them, the large (2 KiB each, as a larger
-/// block is cleared by a slower way) for the rest.
+/// Flags on the stack, and their counters, in three sizes: the smallest
+/// that holds the whole box is cleared for a fill, so that clearing costs
+/// at most a few times the box's own bits and bytes, and a box the largest
+/// does not hold is walked in bands of it.
 const SMALL: (usize, usize) = (32, 512);
-const LARGE: (usize, usize) = (256, 2048);
+const MEDIUM: (usize, usize) = (128, 4096);
+const LARGE: (usize, usize) = (512, 16384);
 
 /// Fills `polygon`, whose box is `bounds` and which the path takes
 /// ([`Bounds::takes`]), by its fill rule.
@@ -88,7 +104,7 @@ pub(super) fn fill<S: SpanSink + ?Sized>(polygon: &Polygon, bounds: Bounds, size
         first_sample_at_or_after(min.y.into()).max(0)..first_sample_at_or_after(max.y.into()).min(size.height.into());
     let left = visible_column(first_sample_at_or_after(min.x.into()), size.width);
     let right = visible_column(first_sample_at_or_after(max.x.into()), size.width);
-    if rows.is_empty() || left >= size.width {
+    if rows.is_empty() || beside_target(min.x, max.x, size.width) {
         return;
     }
     let columns = (right - left) as usize + 1;
@@ -115,16 +131,20 @@ struct Fill<'a> {
 }
 
 impl Fill<'_> {
-    /// Fills on the smaller flags that hold the whole box, if any do.
+    /// Fills on the smallest flags (and, under the non-zero rule,
+    /// counters) that hold the whole box, or in bands of the largest.
     #[inline(always)]
     fn sized<const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(self, sink: &mut S) {
         let rows = (self.rows.end - self.rows.start) as usize;
-        let fits = rows * self.grid.words <= SMALL.0 && rows * self.grid.columns <= SMALL.1;
-        match (self.polygon.rule, fits) {
-            (FillRule::EvenOdd, true) => self.bands::<false, 0, { SMALL.0 }, { SMALL.1 }, CLIP, E, S>(sink),
-            (FillRule::EvenOdd, false) => self.bands::<false, 0, { LARGE.0 }, { LARGE.1 }, CLIP, E, S>(sink),
-            (FillRule::NonZero, true) => self.bands::<true, 1, { SMALL.0 }, { SMALL.1 }, CLIP, E, S>(sink),
-            (FillRule::NonZero, false) => self.bands::<true, 1, { LARGE.0 }, { LARGE.1 }, CLIP, E, S>(sink),
+        let counted = |cells: usize| self.polygon.rule == FillRule::EvenOdd || rows * self.grid.columns <= cells;
+        let fits = |(words, cells): (usize, usize)| rows * self.grid.words <= words && counted(cells);
+        match (self.polygon.rule, fits(SMALL), fits(MEDIUM)) {
+            (FillRule::EvenOdd, true, _) => self.bands::<false, 0, { SMALL.0 }, { SMALL.1 }, CLIP, E, S>(sink),
+            (FillRule::EvenOdd, false, true) => self.bands::<false, 0, { MEDIUM.0 }, { MEDIUM.1 }, CLIP, E, S>(sink),
+            (FillRule::EvenOdd, false, false) => self.bands::<false, 0, { LARGE.0 }, { LARGE.1 }, CLIP, E, S>(sink),
+            (FillRule::NonZero, true, _) => self.bands::<true, 1, { SMALL.0 }, { SMALL.1 }, CLIP, E, S>(sink),
+            (FillRule::NonZero, false, true) => self.bands::<true, 1, { MEDIUM.0 }, { MEDIUM.1 }, CLIP, E, S>(sink),
+            (FillRule::NonZero, false, false) => self.bands::<true, 1, { LARGE.0 }, { LARGE.1 }, CLIP, E, S>(sink),
         }
     }
 
