@@ -30,7 +30,7 @@ use crate::geometry::{FillRule, Polygon};
 use crate::methods::info::Refusal;
 use crate::target::{Size, SpanSink};
 
-use super::clip::{beside_target, columns_fit};
+use super::clip::columns_fit;
 use super::edge::{Crossing, EdgeStepper, ShortEdge};
 use super::spans::Target;
 use build::build;
@@ -54,9 +54,6 @@ pub(super) fn fill<S: SpanSink + ?Sized>(
     let (mut min_x, mut max_x, mut min_y, mut max_y) = (first.x, first.x, first.y, first.y);
     for p in vertices {
         (min_x, max_x, min_y, max_y) = (min_x.min(p.x), max_x.max(p.x), min_y.min(p.y), max_y.max(p.y));
-    }
-    if beside_target(min_x, max_x, size.width) {
-        return Ok(());
     }
     let fill = Fill { polygon, clip: !columns_fit(min_x, max_x, size.width), size };
     if ShortEdge::fits((min_x, max_x), (min_y, max_y)) {
