@@ -72,8 +72,9 @@ pub struct Exact;
 /// words of flags (64 columns of a row each) per edge; they step and read
 /// more instructions than the edge table's walk does, but branch the
 /// same way from row to row and polygon to polygon, while the edge
-/// table's sorting and events do not (`docs/lab.md`, "Where `exact`'s
-/// time goes", gives the bounds tried and their times).
+/// table's sorting and events do not (the lab's "What modelling costs"
+/// times each path alone, family by family; `docs/lab.md`, "Where
+/// `exact`'s time goes", says how the bound was chosen).
 #[cfg(not(target_os = "none"))]
 #[inline(always)]
 fn flags_pay(bounds: &Bounds, edges: i64) -> bool {
