@@ -117,10 +117,11 @@ impl Distribution {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn names(packages: &[&str]) -> Vec<String> {
+    /// Package names as the installer holds them.
+    pub(crate) fn names(packages: &[&str]) -> Vec<String> {
         packages.iter().map(|p| p.to_string()).collect()
     }
 

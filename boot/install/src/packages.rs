@@ -349,10 +349,7 @@ fn refusal(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn names(packages: &[&str]) -> Vec<String> {
-        packages.iter().map(|p| p.to_string()).collect()
-    }
+    use crate::distribution::tests::names;
 
     #[test]
     fn apt_waits_for_another_apt_and_installs_without_recommendations_or_removals() {
