@@ -194,7 +194,7 @@ impl<'a> ExactPath<'a> {
     #[inline(always)]
     fn general(polygon: &'a Polygon) -> Self {
         let (bounds, edges) = (Bounds::of(polygon), polygon.vertex_count());
-        if bounds.takes(edges, polygon.rule) && flags_pay(&bounds, edges as i64) {
+        if flags_pay(&bounds, edges as i64) && bounds.takes(edges, polygon.rule) {
             ExactPath::EdgeFlags { polygon, bounds }
         } else {
             ExactPath::ActiveEdges { polygon }

@@ -116,10 +116,10 @@ pub(crate) fn fill_monotone<S: SpanSink + ?Sized>(contour: &[Point], color: u8, 
         }
         (bottom_y, min_x, max_x) = (bottom_y.max(p.y), min_x.min(p.x), max_x.max(p.x));
     }
-    if beside_target(min_x, max_x, size.width) {
+    let clip = !columns_fit(min_x, max_x, size.width);
+    if clip && beside_target(min_x, max_x, size.width) {
         return;
     }
-    let clip = !columns_fit(min_x, max_x, size.width);
     let rows = visible_rows(top_y, bottom_y, size.height);
     let target = Target { color, width: size.width };
     if ShortEdge::fits((min_x, max_x), (top_y, bottom_y)) {
