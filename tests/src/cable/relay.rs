@@ -17,6 +17,7 @@ use rand_pcg::Pcg64Mcg;
 use serialport::{SerialPort, TTYPort};
 
 use super::tty::{open_port, READ_POLL};
+use crate::client::gather_after;
 
 /// How long the relay holds the line still when it pauses.
 pub const PAUSE: Duration = Duration::from_secs(1);
@@ -188,6 +189,7 @@ fn carry(
         }
         counters.carried.fetch_add(n as u64, Ordering::Relaxed);
         send(&mut to, &out, stop);
+        gather_after(n);
     }
 }
 

@@ -12,7 +12,7 @@ use std::time::Duration;
 use anyhow::{bail, Context, Result};
 use serialport::{DataBits, FlowControl, Parity, SerialPort, StopBits, TTYPort};
 
-use crate::client::{Console, FrameReader, BAUD};
+use crate::client::{gather_after, Console, FrameReader, BAUD};
 
 /// How long one read waits before the reader thread looks whether anyone
 /// still listens.
@@ -91,9 +91,11 @@ fn forward_tty(mut port: TTYPort) -> Receiver<Vec<u8>> {
                 Err(error) if matches!(error.kind(), ErrorKind::TimedOut | ErrorKind::Interrupted) => Vec::new(),
                 Err(_) => break,
             };
+            let n = received.len();
             if sender.send(received).is_err() {
                 break;
             }
+            gather_after(n);
         }
     });
     receiver

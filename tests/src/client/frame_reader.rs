@@ -80,9 +80,28 @@ pub fn forward_bytes(mut source: impl Read + Send + 'static) -> Receiver<Vec<u8>
             if sender.send(chunk[..n].to_vec()).is_err() {
                 break;
             }
+            gather_after(n);
         }
     });
     receiver
+}
+
+/// A read of fewer bytes than this is followed by a nap of [`GATHER`].
+const SHORT_READ: usize = 4096;
+/// How long a forwarding thread lets bytes gather after a short read.
+/// QEMU writes every byte the guest's UART sends with a write of its own,
+/// so a reader always waiting takes them one read (and one wake-up of
+/// each side) per byte: for the adapter matrix's 64,768-byte dumps that
+/// cost more CPU time than the checks themselves. A millisecond's nap lets
+/// a pipe or terminal buffer gather what arrives meanwhile; a reply line
+/// waits at most that much longer.
+pub(crate) const GATHER: Duration = Duration::from_millis(1);
+
+/// Naps [`GATHER`] after a read of `n` bytes if it was short.
+pub(crate) fn gather_after(n: usize) {
+    if n < SHORT_READ {
+        std::thread::sleep(GATHER);
+    }
 }
 
 /// Finds frames in the bytes coming over a channel.

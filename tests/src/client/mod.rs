@@ -13,6 +13,7 @@ mod reply;
 mod sealing;
 
 pub use console::{Console, READY_TIMEOUT};
+pub(crate) use frame_reader::gather_after;
 pub use frame_reader::{forward_bytes, Frame, FrameReader, ReadError, ReadErrorKind};
 pub use reply::{Dump, Reply, REPLY_TIMEOUT};
 pub use sealing::{transfer_time, LineStats, Sealing, Trouble, TroubleKind, BAUD};
