@@ -95,7 +95,11 @@ fn read_mismatch(prose: &mut Prose<'_>) -> Result<Mismatch, Malformed> {
                 .iter()
                 .position(|component| prose.next_is(component))
                 .ok_or(prose.malformed(Expected::Value("DAC component")))?;
-            entry * 3 + component
+            // An entry no register index can name is refused, not wrapped.
+            entry
+                .checked_mul(3)
+                .and_then(|first| first.checked_add(component))
+                .ok_or(prose.malformed(Expected::Value("DAC entry")))?
         }
         _ => {
             prose.expect("[", "`[`")?;
@@ -436,6 +440,9 @@ mod tests {
             "misc[0x00]: expected 0x41, read 0x01",
             "dac[1].alpha: expected 0x41, read 0x01",
             "crtc[0x1]: expected 0x41, read 0x01",
+            // Found by the `command` fuzz target: entry * 3 overflowed.
+            "dac[10248191152060862009].green: expected 0x00, read 0x00",
+            "dac[6148914691236517205].green: expected 0x00, read 0x00",
         ] {
             assert!(Mismatch::parse(garbage).is_err(), "{garbage}");
         }
