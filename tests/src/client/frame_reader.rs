@@ -96,7 +96,7 @@ const SHORT_READ: usize = 4096;
 /// much longer: the adapter matrix took 106 CPU-seconds instead of 140,
 /// `serial_check` (a pseudo-terminal and the line-noise relay) 58
 /// instead of 101.
-pub(crate) const GATHER: Duration = Duration::from_millis(1);
+const GATHER: Duration = Duration::from_millis(1);
 
 /// Naps [`GATHER`] after a read of `n` bytes if it was short.
 pub(crate) fn gather_after(n: usize) {
