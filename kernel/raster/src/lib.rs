@@ -29,7 +29,7 @@
 //! # What `exact` guarantees
 //!
 //! - **Exact**: a pixel is in when its centre (x + 0.5, y + 0.5) is inside
-//!   the polygon by its fill rule, computed with integers only: the very
+//!   the polygon by its fill rule, decided in integers: the very
 //!   pixels of [`reference::fill`], which tests every centre against every
 //!   edge (`docs/conventions.md` says it in full).
 //! - **Top-left rule**: a centre exactly on an edge belongs to the polygon

@@ -6,13 +6,18 @@
 //!   crossings at or left of `x_centre` decide, by their count (even-odd) or
 //!   their signed sum (non-zero). Ties go to left and top edges, so polygons
 //!   sharing an edge draw every pixel once and only once.
-//! - Arithmetic: integers only. Vertices in 1/256 px (`i32`); each edge's
-//!   setup is two `i64` divisions (one `i128` division for an edge longer
-//!   than 2^23 px), then every row is a branch-free `i64` step with an
-//!   error term; a polygon whose drawn edges lie in a box under 512 px
-//!   both ways sets up each edge with one division instead and steps it
-//!   with one addition to a fixed-point crossing, exact for edges that
-//!   short (`edge.rs` gives the bounds).
+//! - Arithmetic: integers decide every pixel. Vertices in 1/256 px
+//!   (`i32`); each edge's setup is two `i64` divisions (one `i128`
+//!   division for an edge longer than 2^23 px), then every row is a
+//!   branch-free `i64` step with an error term; a polygon whose drawn
+//!   edges lie in a box under 512 px both ways sets up each edge with one
+//!   division instead and steps it with one addition to a fixed-point
+//!   crossing, exact for edges that short (`edge.rs` gives the bounds).
+//!   That one division is the only place a float enters, and only on a
+//!   machine with a floating-point unit: an `f64` quotient, several times
+//!   quicker than an `i64` one, estimates it, and the integer remainder
+//!   corrects the estimate to the exact ceiling (the kernel divides in
+//!   `i64`).
 //! - Range: exact for every `i32` vertex coordinate and every target
 //!   [`Size`], so nothing is refused as out of range; the only
 //!   refusal is [`Refusal::OutOfMemory`] when the edge tables of a polygon
@@ -69,16 +74,22 @@ pub struct Exact;
 /// Whether the edge flags fill a polygon of this box and `edges` edges
 /// faster than the active edge table, on the machine it is built for.
 /// On the host, where a fill is timed: where the box holds at most 64
-/// words of flags (64 columns of a row each) per edge; they step and read
-/// more instructions than the edge table's walk does, but branch the
-/// same way from row to row and polygon to polygon, while the edge
-/// table's sorting and events do not (the lab's "What modelling costs"
-/// times each path alone, family by family; `docs/lab.md`, "Where
-/// `exact`'s time goes", says how the bound was chosen).
+/// words of flags (64 columns of a row each) per edge under the even-odd
+/// rule, 8 under the non-zero rule, whose byte counters make every
+/// crossing dearer to flag and to read; the flags step and read more
+/// instructions than the edge table's walk does, but branch the same way
+/// from row to row and polygon to polygon, while the edge table's sorting
+/// and events do not (the lab's "What modelling costs" times each path
+/// alone, family by family; `docs/lab.md`, "Where `exact`'s time goes",
+/// says how the bounds were chosen).
 #[cfg(not(target_os = "none"))]
 #[inline(always)]
-fn flags_pay(bounds: &Bounds, edges: i64) -> bool {
-    bounds.words() <= 64 * edges
+fn flags_pay(bounds: &Bounds, edges: i64, rule: FillRule) -> bool {
+    let per_edge = match rule {
+        FillRule::EvenOdd => 64,
+        FillRule::NonZero => 8,
+    };
+    bounds.words() <= per_edge * edges
 }
 
 /// [`flags_pay`] in the kernel, measured in instructions (`cargo xtask
@@ -88,7 +99,7 @@ fn flags_pay(bounds: &Bounds, edges: i64) -> bool {
 /// took 8% more instructions with the host's bound.
 #[cfg(target_os = "none")]
 #[inline(always)]
-fn flags_pay(bounds: &Bounds, edges: i64) -> bool {
+fn flags_pay(bounds: &Bounds, edges: i64, _rule: FillRule) -> bool {
     bounds.rows() <= 2 * edges
 }
 
@@ -101,7 +112,7 @@ static INFO: MethodInfo = MethodInfo {
         summary: "pixel centres, exact; left edges and flat tops in, right edges and flat bottoms out",
     },
     numeric:
-        "i32 vertices in 1/256 px; i64 edge setup (i128 for edges over 2^23 px), i64 error-term stepping (exact fixed point for polygons under 512 px); no floats",
+        "i32 vertices in 1/256 px; i64 edge setup (i128 for edges over 2^23 px), i64 error-term stepping (exact fixed point for polygons under 512 px, its step's quotient estimated in f64 where there is an FPU and corrected in i64)",
     handles: Class::Complex,
     rules: &[FillRule::EvenOdd, FillRule::NonZero],
     heap: Heap::ManyEdges,
@@ -194,7 +205,7 @@ impl<'a> ExactPath<'a> {
     #[inline(always)]
     fn general(polygon: &'a Polygon) -> Self {
         let (bounds, edges) = (Bounds::of(polygon), polygon.vertex_count());
-        if flags_pay(&bounds, edges as i64) && bounds.takes(edges, polygon.rule) {
+        if flags_pay(&bounds, edges as i64, polygon.rule) && bounds.takes(edges, polygon.rule) {
             ExactPath::EdgeFlags { polygon, bounds }
         } else {
             ExactPath::ActiveEdges { polygon }
