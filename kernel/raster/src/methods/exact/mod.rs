@@ -44,12 +44,14 @@
 //! enum of the paths, carrying what each takes of the polygon) and
 //! [`ExactPath::fill`] dispatches it (the one dispatcher): to `monotone.rs`
 //! (the triangle fill and the two-side walk), `edge_flags/` (the flag
-//! grid) or `active_edges/` (the edge table). Each cuts the polygon to
-//! the target in `clip.rs`,
-//! step its edges with `edge.rs` and hand their spans to the sink in
+//! grid) or `active_edges/` (the edge table), the last two with the box
+//! of the polygon's vertices that the choice between them found
+//! (`bounds.rs`). Each cuts the polygon to the target in `clip.rs`, steps
+//! its edges with `edge.rs` and hands their spans to the sink in
 //! `spans.rs`.
 
 mod active_edges;
+mod bounds;
 mod clip;
 mod edge;
 mod edge_flags;
@@ -57,7 +59,7 @@ mod monotone;
 mod spans;
 
 pub use active_edges::Scratch;
-pub use edge_flags::Bounds;
+pub use bounds::Bounds;
 use monotone::{fill_monotone, fill_triangle};
 
 use crate::classify::Class;
@@ -156,9 +158,10 @@ pub enum ExactPath<'a> {
     /// two sides from the top vertex down, one span per row, no allocation.
     #[non_exhaustive]
     Monotone { contour: &'a [Point], polygon: &'a Polygon },
-    /// Any polygon: the active edge table, on the stack or in a [`Scratch`].
+    /// Any polygon, with the box of its vertices: the active edge table,
+    /// on the stack or in a [`Scratch`].
     #[non_exhaustive]
-    ActiveEdges { polygon: &'a Polygon },
+    ActiveEdges { polygon: &'a Polygon, bounds: Bounds },
     /// A polygon within 512 px across (of under 256 edges under the
     /// non-zero rule), with the box of its vertices: the edge flags, on
     /// the stack.
@@ -208,7 +211,7 @@ impl<'a> ExactPath<'a> {
         if flags_pay(&bounds, edges as i64, polygon.rule) && bounds.takes(edges, polygon.rule) {
             ExactPath::EdgeFlags { polygon, bounds }
         } else {
-            ExactPath::ActiveEdges { polygon }
+            ExactPath::ActiveEdges { polygon, bounds }
         }
     }
 
@@ -223,7 +226,7 @@ impl<'a> ExactPath<'a> {
             (1, [contour]) if contour.len() == 3 || is_monotone(contour) => {
                 Ok(ExactPath::Monotone { contour, polygon })
             }
-            (2, _) => Ok(ExactPath::ActiveEdges { polygon }),
+            (2, _) => Ok(ExactPath::ActiveEdges { polygon, bounds: Bounds::of(polygon) }),
             (3, _) => {
                 let bounds = Bounds::of(polygon);
                 let takes = bounds.takes(polygon.vertex_count(), polygon.rule);
@@ -293,7 +296,7 @@ impl<'a> ExactPath<'a> {
                 fill_monotone(contour, polygon.color, size, sink);
                 Ok(())
             }
-            ExactPath::ActiveEdges { polygon } => active_edges::fill(polygon, size, sink, scratch),
+            ExactPath::ActiveEdges { polygon, bounds } => active_edges::fill(polygon, bounds, size, sink, scratch),
             ExactPath::EdgeFlags { polygon, bounds } => {
                 edge_flags::fill(polygon, bounds, size, sink);
                 Ok(())

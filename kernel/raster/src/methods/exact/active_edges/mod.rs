@@ -30,6 +30,7 @@ use crate::geometry::{FillRule, Polygon};
 use crate::methods::info::Refusal;
 use crate::target::{Size, SpanSink};
 
+use super::bounds::Bounds;
 use super::clip::columns_fit;
 use super::edge::{Crossing, EdgeStepper, ShortEdge};
 use super::spans::Target;
@@ -38,25 +39,22 @@ use scratch::Stepper;
 use tables::{Active, Chain, Crossings, Edge, EdgeRoom, Run};
 use walk::walk;
 
-/// Fills `polygon` by its fill rule, with tables on the stack or in
-/// `scratch` (a new one when there is none). Refuses only when the
-/// scratch must grow and memory cannot be had.
+/// Fills `polygon`, whose vertices lie in `bounds`, by its fill rule,
+/// with tables on the stack or in `scratch` (a new one when there is
+/// none). Refuses only when the scratch must grow and memory cannot be
+/// had.
 pub(super) fn fill<S: SpanSink + ?Sized>(
     polygon: &Polygon,
+    bounds: Bounds,
     size: Size,
     sink: &mut S,
     scratch: Option<&mut Scratch>,
 ) -> Result<(), Refusal> {
-    // The box of every vertex: whether columns may leave the target, and
-    // whether every edge may be a `ShortEdge`.
-    let mut vertices = polygon.contours.iter().flatten();
-    let Some(&first) = vertices.next() else { return Ok(()) };
-    let (mut min_x, mut max_x, mut min_y, mut max_y) = (first.x, first.x, first.y, first.y);
-    for p in vertices {
-        (min_x, max_x, min_y, max_y) = (min_x.min(p.x), max_x.max(p.x), min_y.min(p.y), max_y.max(p.y));
-    }
-    let fill = Fill { polygon, clip: !columns_fit(min_x, max_x, size.width), size };
-    if ShortEdge::fits((min_x, max_x), (min_y, max_y)) {
+    // The box says whether columns may leave the target, and whether
+    // every edge may be a `ShortEdge`.
+    let Bounds { min, max } = bounds;
+    let fill = Fill { polygon, clip: !columns_fit(min.x, max.x, size.width), size };
+    if ShortEdge::fits((min.x, max.x), (min.y, max.y)) {
         fill.with_tables::<ShortEdge, _>(sink, scratch)
     } else {
         fill.with_tables::<EdgeStepper, _>(sink, scratch)

@@ -28,65 +28,14 @@ mod scatter;
 
 use core::ops::Range;
 
-use crate::geometry::{FillRule, Point, Polygon};
+use crate::geometry::{FillRule, Polygon};
 use crate::target::{Size, SpanSink};
 
+use super::bounds::Bounds;
 use super::clip::{beside_target, columns_fit, visible_column};
 use super::edge::{first_sample_at_or_after, Crossing, EdgeStepper, ShortEdge};
 use super::spans::Target;
 use grid::Grid;
-
-/// The widest a polygon the path takes may be, in subpixels (512 px, a
-/// [`ShortEdge`]'s width).
-pub(super) const WIDEST: i64 = 1 << 17;
-
-/// The box of a polygon's vertices, in subpixels.
-#[derive(Clone, Copy, Debug)]
-pub struct Bounds {
-    min: Point,
-    max: Point,
-}
-
-impl Bounds {
-    /// The box of `polygon`'s vertices (an empty one at the origin for a
-    /// polygon without any, which meets no row).
-    #[inline(always)]
-    pub(super) fn of(polygon: &Polygon) -> Self {
-        let mut vertices = polygon.contours.iter().flatten();
-        let Some(&first) = vertices.next() else { return Self { min: Point::new(0, 0), max: Point::new(0, 0) } };
-        let (mut min, mut max) = (first, first);
-        for p in vertices {
-            (min.x, min.y, max.x, max.y) = (min.x.min(p.x), min.y.min(p.y), max.x.max(p.x), max.y.max(p.y));
-        }
-        Self { min, max }
-    }
-
-    /// Whether the path takes a polygon of this box, with `edges` edges,
-    /// under `rule`.
-    #[inline(always)]
-    pub(super) fn takes(&self, edges: usize, rule: FillRule) -> bool {
-        i64::from(self.max.x) - i64::from(self.min.x) < WIDEST && (rule == FillRule::EvenOdd || edges < 256)
-    }
-
-    /// The box's height, in whole pixels (what the kernel's choice of path
-    /// weighs).
-    #[cfg(target_os = "none")]
-    #[inline(always)]
-    pub(super) fn rows(&self) -> i64 {
-        (i64::from(self.max.y) - i64::from(self.min.y)) >> 8
-    }
-
-    /// The box's words of flags: its height in whole pixels times the
-    /// words of a row (64 pixels each), what the host's choice of path
-    /// weighs.
-    #[cfg(not(target_os = "none"))]
-    #[inline(always)]
-    pub(super) fn words(&self) -> i64 {
-        let (width, height) =
-            (i64::from(self.max.x) - i64::from(self.min.x), i64::from(self.max.y) - i64::from(self.min.y));
-        (height >> 8) * ((width >> 14) + 1)
-    }
-}
 
 /// Flags on the stack, and their counters, in three sizes: the smallest
 /// that holds the whole box is cleared for a fill, so that clearing costs
