@@ -378,7 +378,6 @@ mod tests {
         assert_eq!(stepper.column, 3);
     }
 
-    /// A seeded xorshift generator.
     /// The quotient [`ShortEdge`]s are set up with is the exact ceiling,
     /// throughout its range: against `div_euclid`, on random operands and
     /// on those nearest the bounds and nearest whole quotients.
@@ -404,6 +403,7 @@ mod tests {
         }
     }
 
+    /// A seeded xorshift generator.
     fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
         move || {
             seed ^= seed << 13;
