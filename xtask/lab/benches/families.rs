@@ -3,7 +3,8 @@
 //! every peer and the bounds, on the same passes the lab times.
 //! `cargo bench -p lab`; one benchmark is `FAMILY/CONTENDER`. The lab itself
 //! is built for the machine's CPU; for figures comparable with it, build
-//! the same way: `RUSTFLAGS='-C target-cpu=native' cargo bench -p lab
+//! the same way (on x86-64): `RUSTFLAGS='-C target-cpu=native -C
+//! llvm-args=-x86-branches-within-32B-boundaries' cargo bench -p lab
 //! --target-dir target/native`. Criterion draws no plots here: they need a
 //! system font the machine may not have.
 

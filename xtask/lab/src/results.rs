@@ -82,7 +82,8 @@ pub struct TimingInfo {
 }
 
 /// The CPU features the lab was compiled to use (`cargo xtask lab` builds
-/// it with `-C target-cpu=native`).
+/// it with `-C target-cpu=native`, and on x86-64 with its jumps kept
+/// within 32-byte blocks).
 #[derive(Clone, Debug, Serialize)]
 pub struct Build {
     pub avx2: bool,
