@@ -239,6 +239,36 @@ mod tests {
         assert_eq!(classify(&polygon(&[(0, 0), (3, 0), (6, 0), (6, 3), (3, 3), (0, 3)])), Class::Convex);
     }
 
+    /// The walk against a plain count: the contour's
+    /// directions in y with the level ones dropped, read round as a
+    /// circle, change exactly twice. Small coordinates make level edges,
+    /// repeated vertices and zigzags common; contours of 0 to 9 vertices.
+    #[test]
+    fn the_monotone_walk_counts_reversals_round_the_contour() {
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = |modulus: u64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % modulus) as i32
+        };
+        let mut seen = [0; 2];
+        for _ in 0..20_000 {
+            let len = next(10) as usize;
+            let contour: Vec<Point> = (0..len).map(|_| Point::new(next(4), next(4))).collect();
+            let directions: Vec<i32> =
+                (0..len).map(|i| (contour[(i + 1) % len].y - contour[i].y).signum()).filter(|&d| d != 0).collect();
+            let changes = (0..directions.len())
+                .filter(|&i| directions[i] != directions[(i + directions.len() - 1) % directions.len()])
+                .count();
+            let expected = changes == 2;
+            assert_eq!(is_monotone(&contour), expected, "{contour:?}");
+            seen[usize::from(expected)] += 1;
+        }
+        // Both answers are common in the sample.
+        assert!(seen[0] > 1000 && seen[1] > 1000, "{seen:?}");
+    }
+
     #[test]
     fn a_notch_from_below_makes_it_simple() {
         assert_eq!(classify(&polygon(&[(0, 0), (9, 0), (9, 8), (4, 3), (0, 8)])), Class::Simple);

@@ -73,23 +73,26 @@ use crate::target::{Size, SpanSink};
 /// The exact method.
 pub struct Exact;
 
-/// Whether the edge flags fill a polygon of this box and `edges` edges
+/// Whether the edge flags fill `polygon`, of this box and `edges` edges,
 /// faster than the active edge table, on the machine it is built for.
 /// On the host, where a fill is timed: where the box holds at most 64
-/// words of flags (64 columns of a row each) per edge under the even-odd
-/// rule, 8 under the non-zero rule, whose byte counters make every
-/// crossing dearer to flag and to read; the flags step and read more
-/// instructions than the edge table's walk does, but branch the same way
-/// from row to row and polygon to polygon, while the edge table's sorting
-/// and events do not (the lab's "What modelling costs" times each path
-/// alone, family by family; `docs/lab.md`, "Where `exact`'s time goes",
-/// says how the bounds were chosen).
+/// words of flags (64 columns of a row each) per edge, but only 8 for a
+/// polygon of one contour under the non-zero rule, whose byte counters
+/// make every crossing dearer to flag and to read. The flags step and
+/// read more instructions than the edge table's walk does, but branch the
+/// same way from row to row and polygon to polygon, while the edge
+/// table's sorting and events do not, and a polygon of several contours
+/// (a shape with holes, a glyph) gives the edge table more chains to start
+/// and merge: with 64 for it too, the holes took 6-7% less time (the
+/// lab's "What modelling costs" times each path alone, family by family;
+/// `docs/lab.md`, "Where `exact`'s time goes", says how the bounds were
+/// chosen).
 #[cfg(not(target_os = "none"))]
 #[inline(always)]
-fn flags_pay(bounds: &Bounds, edges: i64, rule: FillRule) -> bool {
-    let per_edge = match rule {
-        FillRule::EvenOdd => 64,
-        FillRule::NonZero => 8,
+fn flags_pay(bounds: &Bounds, edges: i64, polygon: &Polygon) -> bool {
+    let per_edge = match (polygon.rule, polygon.contours.len()) {
+        (FillRule::NonZero, 1) => 8,
+        _ => 64,
     };
     bounds.words() <= per_edge * edges
 }
@@ -101,7 +104,7 @@ fn flags_pay(bounds: &Bounds, edges: i64, rule: FillRule) -> bool {
 /// took 8% more instructions with the host's bound.
 #[cfg(target_os = "none")]
 #[inline(always)]
-fn flags_pay(bounds: &Bounds, edges: i64, _rule: FillRule) -> bool {
+fn flags_pay(bounds: &Bounds, edges: i64, _polygon: &Polygon) -> bool {
     bounds.rows() <= 2 * edges
 }
 
@@ -208,7 +211,7 @@ impl<'a> ExactPath<'a> {
     #[inline(always)]
     fn general(polygon: &'a Polygon) -> Self {
         let (bounds, edges) = (Bounds::of(polygon), polygon.vertex_count());
-        if flags_pay(&bounds, edges as i64, polygon.rule) && bounds.takes(edges, polygon.rule) {
+        if flags_pay(&bounds, edges as i64, polygon) && bounds.takes(edges, polygon.rule) {
             ExactPath::EdgeFlags { polygon, bounds }
         } else {
             ExactPath::ActiveEdges { polygon, bounds }
