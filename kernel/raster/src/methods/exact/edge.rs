@@ -333,8 +333,6 @@ fn ceil_div(n: i128, d: i128) -> i128 {
 mod tests {
     use core::ops::Range;
 
-    use crate::methods::test_support::xorshift;
-
     use super::*;
 
     #[test]
@@ -402,6 +400,16 @@ mod tests {
             for a in [a, -a] {
                 assert_eq!(ceil_quotient(a, b), exact(a, b), "{a} / {b}");
             }
+        }
+    }
+
+    /// A seeded xorshift generator.
+    fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
         }
     }
 
