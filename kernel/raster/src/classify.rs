@@ -210,6 +210,7 @@ fn orientation(a: Point, b: Point, c: Point) -> Ordering {
 mod tests {
     use super::*;
     use crate::geometry::FillRule;
+    use crate::test_rng::xorshift;
 
     fn polygon(points: &[(i32, i32)]) -> Polygon {
         Polygon::from_pixels(points, (0, 0), 1)
@@ -245,13 +246,8 @@ mod tests {
     /// repeated vertices and zigzags common; contours of 0 to 9 vertices.
     #[test]
     fn the_monotone_walk_counts_reversals_round_the_contour() {
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = |modulus: u64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % modulus) as i32
-        };
+        let mut draw = xorshift(0x9e37_79b9_7f4a_7c15);
+        let mut next = |modulus: u64| (draw() % modulus) as i32;
         let mut seen = [0; 2];
         for _ in 0..20_000 {
             let len = next(10) as usize;

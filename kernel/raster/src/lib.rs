@@ -89,6 +89,8 @@ pub mod methods;
 pub mod reference;
 pub mod sink;
 mod target;
+#[cfg(test)]
+mod test_rng;
 
 pub use classify::{classify, Class};
 pub use coverage::{CoverageReport, CoverageSink};

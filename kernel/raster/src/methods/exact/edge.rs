@@ -333,6 +333,8 @@ fn ceil_div(n: i128, d: i128) -> i128 {
 mod tests {
     use core::ops::Range;
 
+    use crate::test_rng::xorshift;
+
     use super::*;
 
     #[test]
@@ -400,16 +402,6 @@ mod tests {
             for a in [a, -a] {
                 assert_eq!(ceil_quotient(a, b), exact(a, b), "{a} / {b}");
             }
-        }
-    }
-
-    /// A seeded xorshift generator.
-    fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
-        move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
         }
     }
 

@@ -83,7 +83,7 @@ pub struct Exact;
 /// same way from row to row and polygon to polygon, while the edge
 /// table's sorting and events do not, and a polygon of several contours
 /// (a shape with holes, a glyph) gives the edge table more chains to start
-/// and merge: with 64 for it too, the holes took 6-7% less time (the
+/// and merge: with 64 for it too, the holes took 0.91 of their time (the
 /// lab's "What modelling costs" times each path alone, family by family;
 /// `docs/lab.md`, "Where `exact`'s time goes", says how the bounds were
 /// chosen).
