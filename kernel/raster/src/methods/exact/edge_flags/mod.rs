@@ -4,8 +4,17 @@
 //! box (`scatter.rs`); a row's flags read left to right are then its
 //! crossings in order, with no sort, and the fill rule pairs them into
 //! runs (`scan.rs`). Under the even-odd rule a flag is toggled (only the
-//! parity of a column's crossings counts); under the non-zero rule it is
-//! set, and a counter per cell adds up the windings of its crossings.
+//! parity of a column's crossings counts). Under the non-zero rule two
+//! planes of flags are set, one for the edges going down and one for
+//! those going up: a cell flagged in one moves the winding by one, in
+//! both not at all. One bit cannot count two crossings of one direction in
+//! a cell (where such edges cross each other, as in a self-intersecting
+//! star, or lie within a pixel of each other), so the scatter stops at the
+//! first, nothing is emitted, and the polygon is flagged again in one
+//! plane whose counters, one per cell, add up the windings of its
+//! crossings. The planes need no counters to clear, set or read, which
+//! makes the glyphs, icons and holes quicker (`docs/lab.md`, "Before and
+//! after").
 //!
 //! There is no edge table, no chain and no event: each edge is set up
 //! where the scatter reaches it, and a row costs its crossings and the
@@ -48,17 +57,8 @@ const LARGE: (usize, usize) = (512, 16384);
 /// Fills `polygon`, whose box is `bounds` and which the path takes
 /// ([`Bounds::takes`]), by its fill rule.
 pub(super) fn fill<S: SpanSink + ?Sized>(polygon: &Polygon, bounds: Bounds, size: Size, sink: &mut S) {
+    let Some(fill) = Fill::new(polygon, bounds, size) else { return };
     let Bounds { min, max } = bounds;
-    let rows =
-        first_sample_at_or_after(min.y.into()).max(0)..first_sample_at_or_after(max.y.into()).min(size.height.into());
-    let left = visible_column(first_sample_at_or_after(min.x.into()), size.width);
-    let right = visible_column(first_sample_at_or_after(max.x.into()), size.width);
-    if rows.is_empty() || beside_target(min.x, max.x, size.width) {
-        return;
-    }
-    let columns = (right - left) as usize + 1;
-    let grid = Grid { left, words: columns.div_ceil(64), columns };
-    let fill = Fill { polygon, rows, grid, size, target: Target { color: polygon.color, width: size.width } };
     let short = ShortEdge::fits((min.x, max.x), (min.y, max.y));
     let clip = !columns_fit(min.x, max.x, size.width);
     match (short, clip) {
@@ -79,14 +79,44 @@ struct Fill<'a> {
     target: Target,
 }
 
-impl Fill<'_> {
+impl<'a> Fill<'a> {
+    /// The fill of `polygon`, whose box is `bounds`, on a target of
+    /// `size`, or `None` when the box has no visible pixel.
+    fn new(polygon: &'a Polygon, bounds: Bounds, size: Size) -> Option<Self> {
+        let Bounds { min, max } = bounds;
+        let rows = first_sample_at_or_after(min.y.into()).max(0)
+            ..first_sample_at_or_after(max.y.into()).min(size.height.into());
+        let left = visible_column(first_sample_at_or_after(min.x.into()), size.width);
+        let right = visible_column(first_sample_at_or_after(max.x.into()), size.width);
+        if rows.is_empty() || beside_target(min.x, max.x, size.width) {
+            return None;
+        }
+        let columns = (right - left) as usize + 1;
+        let grid = Grid { left, words: columns.div_ceil(64), columns };
+        Some(Fill { polygon, rows, grid, size, target: Target { color: polygon.color, width: size.width } })
+    }
+
     /// Fills on the smallest flags (and, under the non-zero rule,
     /// counters) that hold the whole box, or in bands of the largest.
+    /// Under the non-zero rule, a box that one band of flags holds is
+    /// first tried on two planes of flags, which need no counters.
     #[inline(always)]
     fn sized<const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(self, sink: &mut S) {
         let rows = (self.rows.end - self.rows.start) as usize;
         let counted = |cells: usize| self.polygon.rule == FillRule::EvenOdd || rows * self.grid.columns <= cells;
         let fits = |(words, cells): (usize, usize)| rows * self.grid.words <= words && counted(cells);
+        if self.polygon.rule == FillRule::NonZero {
+            let whole = |words: usize| rows * self.grid.words <= words;
+            let planted = match (whole(SMALL.0), whole(MEDIUM.0), whole(LARGE.0)) {
+                (true, _, _) => self.clone().planes::<{ SMALL.0 }, CLIP, E, S>(sink),
+                (false, true, _) => self.clone().planes::<{ MEDIUM.0 }, CLIP, E, S>(sink),
+                (false, false, true) => self.clone().planes::<{ LARGE.0 }, CLIP, E, S>(sink),
+                _ => false,
+            };
+            if planted {
+                return;
+            }
+        }
         match (self.polygon.rule, fits(SMALL), fits(MEDIUM)) {
             (FillRule::EvenOdd, true, _) => self.bands::<false, 0, { SMALL.0 }, { SMALL.1 }, CLIP, E, S>(sink),
             (FillRule::EvenOdd, false, true) => self.bands::<false, 0, { MEDIUM.0 }, { MEDIUM.1 }, CLIP, E, S>(sink),
@@ -95,6 +125,27 @@ impl Fill<'_> {
             (FillRule::NonZero, false, true) => self.bands::<true, 1, { MEDIUM.0 }, { MEDIUM.1 }, CLIP, E, S>(sink),
             (FillRule::NonZero, false, false) => self.bands::<true, 1, { LARGE.0 }, { LARGE.1 }, CLIP, E, S>(sink),
         }
+    }
+
+    /// Fills the whole box as one band under the non-zero rule on two
+    /// planes of flags, one for each direction of edge, and returns
+    /// `true`; unless two crossings of one direction meet in one cell,
+    /// which one bit cannot count: then it has emitted nothing and
+    /// returns `false`, for the counters to count them.
+    #[inline(never)]
+    fn planes<const WORDS: usize, const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(self, sink: &mut S) -> bool {
+        let (mut down, mut up) = ([0u64; WORDS], [0u64; WORDS]);
+        let ok = scatter::scatter_planes::<CLIP, E, WORDS>(
+            self.polygon,
+            self.rows.clone(),
+            (self.grid, self.size),
+            &mut down,
+            &mut up,
+        );
+        if ok {
+            scan::planes::<WORDS, S>(self.rows, self.grid, &mut down, &mut up, self.target, sink);
+        }
+        ok
     }
 
     /// Walks the rows in bands of as many rows as the flags (and, under
@@ -137,6 +188,54 @@ impl Fill<'_> {
                 sink,
             );
             start = rows.end;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use alloc::vec::Vec;
+
+    use super::*;
+    use crate::coverage::CoverageSink;
+    use crate::geometry::Point;
+    use crate::reference::{self, SampleOffset};
+
+    const SIZE: Size = Size { width: 24, height: 20 };
+
+    fn contour(points: &[(i32, i32)]) -> Vec<Point> {
+        points.iter().map(|&(x, y)| Point::from_pixels(x, y)).collect()
+    }
+
+    /// Where two crossings of one direction meet in a cell the two planes
+    /// give way, having emitted nothing, and the counters count them;
+    /// elsewhere the planes fill. Either way the pixels are the
+    /// reference's.
+    #[test]
+    fn the_planes_give_way_to_the_counters_where_crossings_of_one_direction_meet() {
+        let square = contour(&[(2, 2), (18, 2), (18, 16), (2, 16)]);
+        let mut hole = contour(&[(6, 5), (13, 5), (13, 12), (6, 12)]);
+        hole.reverse();
+        // The points of a regular five-pointed star, every second one in
+        // turn: its edges cross, some of one direction.
+        let star = contour(&[(12, 1), (19, 17), (2, 7), (22, 7), (5, 17)]);
+        let cases = [
+            (Vec::from([square.clone(), hole]), true),
+            (Vec::from([square.clone(), square]), false),
+            (Vec::from([star]), false),
+        ];
+        for (contours, planes) in cases {
+            let polygon = Polygon { contours, color: 1, rule: FillRule::NonZero };
+            let fill = Fill::new(&polygon, Bounds::of(&polygon), SIZE).unwrap();
+            let mut on_planes = CoverageSink::new(SIZE);
+            assert_eq!(fill.planes::<{ LARGE.0 }, false, EdgeStepper, _>(&mut on_planes), planes, "{polygon:?}");
+            let mut flags = CoverageSink::new(SIZE);
+            super::fill(&polygon, Bounds::of(&polygon), SIZE, &mut flags);
+            let mut judge = CoverageSink::new(SIZE);
+            reference::fill(&polygon, SampleOffset::CENTRE, &mut judge);
+            assert_eq!(flags.ascii(), judge.ascii(), "{polygon:?}");
+            let expected = if planes { judge.ascii() } else { CoverageSink::new(SIZE).ascii() };
+            assert_eq!(on_planes.ascii(), expected, "{polygon:?}");
         }
     }
 }

@@ -1,5 +1,7 @@
 //! Flags into spans: a row's flags read left to right are its crossings
-//! in order, and the fill rule pairs them into runs.
+//! in order, and the fill rule pairs them into runs: by parity under the
+//! even-odd rule, by the winding of the counters or of the two planes
+//! under the non-zero rule.
 
 use core::ops::Range;
 
@@ -98,5 +100,45 @@ fn non_zero<const WORDS: usize, const CELLS: usize, S: SpanSink + ?Sized>(
             emit(row, start, target.width, target, sink);
         }
         (first, cells) = (first + grid.words, cells + grid.columns);
+    }
+}
+
+/// Under the non-zero rule with two planes of flags, `down` for edges
+/// going down and `up` for those going up, neither with two crossings in
+/// one cell: a cell flagged in one plane moves the winding by one, in both
+/// not at all; a run opens where the winding leaves zero and closes where
+/// it comes back.
+pub(super) fn planes<const WORDS: usize, S: SpanSink + ?Sized>(
+    band: Range<i64>,
+    grid: Grid,
+    down: &mut [u64; WORDS],
+    up: &mut [u64; WORDS],
+    target: Target,
+    sink: &mut S,
+) {
+    let mut first = 0;
+    for row in band {
+        let (mut winding, mut start) = (0i32, 0);
+        for i in 0..grid.words {
+            let word = (first + i) % WORDS;
+            let (downs, ups) = (core::mem::take(&mut down[word]), core::mem::take(&mut up[word]));
+            let mut bits = downs ^ ups;
+            while bits != 0 {
+                let at = bits.trailing_zeros();
+                bits &= bits - 1;
+                let was = winding;
+                winding += 2 * ((downs >> at) & 1) as i32 - 1;
+                let column = grid.left + 64 * i as i32 + at as i32;
+                if was == 0 {
+                    start = column;
+                } else if winding == 0 {
+                    emit(row, start, column, target, sink);
+                }
+            }
+        }
+        if winding != 0 {
+            emit(row, start, target.width, target, sink);
+        }
+        first += grid.words;
     }
 }
