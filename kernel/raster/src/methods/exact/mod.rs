@@ -77,7 +77,9 @@ pub struct Exact;
 /// faster than the active edge table, on the machine it is built for.
 /// On the host, where a fill is timed: where the box holds at most 64
 /// words of flags (64 columns of a row each) per edge, but only 8 for a
-/// polygon of one contour under the non-zero rule, whose byte counters
+/// polygon of one contour under the non-zero rule: one that crosses
+/// itself, as a star does, nearly always has two crossings of one
+/// direction in a cell somewhere, so it needs the byte counters, which
 /// make every crossing dearer to flag and to read. The flags step and
 /// read more instructions than the edge table's walk does, but branch the
 /// same way from row to row and polygon to polygon, while the edge

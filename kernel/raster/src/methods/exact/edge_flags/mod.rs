@@ -13,8 +13,8 @@
 //! first, nothing is emitted, and the polygon is flagged again in one
 //! plane whose counters, one per cell, add up the windings of its
 //! crossings. The planes need no counters to clear, set or read, which
-//! makes the glyphs, icons and holes quicker (`docs/lab.md`, "Before and
-//! after").
+//! makes the glyphs and icons quicker (`docs/lab.md`, "This round's
+//! change").
 //!
 //! There is no edge table, no chain and no event: each edge is set up
 //! where the scatter reaches it, and a row costs its crossings and the
