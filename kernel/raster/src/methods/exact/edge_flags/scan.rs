@@ -80,25 +80,17 @@ fn non_zero<const WORDS: usize, const CELLS: usize, S: SpanSink + ?Sized>(
 ) {
     let (mut first, mut cells) = (0, 0);
     for row in band {
-        let (mut winding, mut start) = (0u8, 0);
+        let mut runs = Runs::default();
         for i in 0..grid.words {
             let mut bits = core::mem::take(&mut flags[(first + i) % WORDS]);
             while bits != 0 {
                 let at = 64 * i + bits.trailing_zeros() as usize;
                 bits &= bits - 1;
-                let was = winding;
-                winding = winding.wrapping_add(core::mem::take(&mut counters[(cells + at) % CELLS]));
-                let column = grid.left + at as i32;
-                if was == 0 {
-                    start = column;
-                } else if winding == 0 {
-                    emit(row, start, column, target, sink);
-                }
+                let by = core::mem::take(&mut counters[(cells + at) % CELLS]);
+                runs.cross(by, grid.left + at as i32, row, target, sink);
             }
         }
-        if winding != 0 {
-            emit(row, start, target.width, target, sink);
-        }
+        runs.end(row, target, sink);
         (first, cells) = (first + grid.words, cells + grid.columns);
     }
 }
@@ -118,7 +110,7 @@ pub(super) fn planes<const WORDS: usize, S: SpanSink + ?Sized>(
 ) {
     let mut first = 0;
     for row in band {
-        let (mut winding, mut start) = (0i32, 0);
+        let mut runs = Runs::default();
         for i in 0..grid.words {
             let word = (first + i) % WORDS;
             let (downs, ups) = (core::mem::take(&mut down[word]), core::mem::take(&mut up[word]));
@@ -126,19 +118,45 @@ pub(super) fn planes<const WORDS: usize, S: SpanSink + ?Sized>(
             while bits != 0 {
                 let at = bits.trailing_zeros();
                 bits &= bits - 1;
-                let was = winding;
-                winding += 2 * ((downs >> at) & 1) as i32 - 1;
-                let column = grid.left + 64 * i as i32 + at as i32;
-                if was == 0 {
-                    start = column;
-                } else if winding == 0 {
-                    emit(row, start, column, target, sink);
-                }
+                // One going down adds 1, one going up 255 (-1 modulo 256).
+                let by = 2 * ((downs >> at) & 1) as u8;
+                runs.cross(by.wrapping_sub(1), grid.left + 64 * i as i32 + at as i32, row, target, sink);
             }
         }
-        if winding != 0 {
-            emit(row, start, target.width, target, sink);
-        }
+        runs.end(row, target, sink);
         first += grid.words;
+    }
+}
+
+/// A row's winding under the non-zero rule so far, modulo 256 (exact for
+/// the path's polygons, of under 256 edges), and where its open run
+/// starts.
+#[derive(Default)]
+struct Runs {
+    winding: u8,
+    start: i32,
+}
+
+impl Runs {
+    /// A crossing at `column` that moves the winding by `by`: a run opens
+    /// where the winding leaves zero and closes where it comes back.
+    #[inline(always)]
+    fn cross<S: SpanSink + ?Sized>(&mut self, by: u8, column: i32, row: i64, target: Target, sink: &mut S) {
+        let was = self.winding;
+        self.winding = was.wrapping_add(by);
+        if was == 0 {
+            self.start = column;
+        } else if self.winding == 0 {
+            emit(row, self.start, column, target, sink);
+        }
+    }
+
+    /// The row's end: a run still open reaches the right border (edges
+    /// right of the target are not flagged).
+    #[inline(always)]
+    fn end<S: SpanSink + ?Sized>(self, row: i64, target: Target, sink: &mut S) {
+        if self.winding != 0 {
+            emit(row, self.start, target.width, target, sink);
+        }
     }
 }
