@@ -103,10 +103,10 @@ impl<'a> Fill<'a> {
     #[inline(always)]
     fn sized<const CLIP: bool, E: Crossing, S: SpanSink + ?Sized>(self, sink: &mut S) {
         let rows = (self.rows.end - self.rows.start) as usize;
+        let whole = |words: usize| rows * self.grid.words <= words;
         let counted = |cells: usize| self.polygon.rule == FillRule::EvenOdd || rows * self.grid.columns <= cells;
-        let fits = |(words, cells): (usize, usize)| rows * self.grid.words <= words && counted(cells);
+        let fits = |(words, cells): (usize, usize)| whole(words) && counted(cells);
         if self.polygon.rule == FillRule::NonZero {
-            let whole = |words: usize| rows * self.grid.words <= words;
             let planted = match (whole(SMALL.0), whole(MEDIUM.0), whole(LARGE.0)) {
                 (true, _, _) => self.clone().planes::<{ SMALL.0 }, CLIP, E, S>(sink),
                 (false, true, _) => self.clone().planes::<{ MEDIUM.0 }, CLIP, E, S>(sink),
