@@ -131,6 +131,7 @@ fn measure_corpus(families: &[corpus::Family], quick: bool, runs: usize, timing:
         min_repeat_ms: timing.min_repeat.as_secs_f64() * 1e3,
         confidence: stats::CONFIDENCE,
         load_average: (load_at_start, load_at_end),
+        cpu: fs::read_to_string("/proc/cpuinfo").ok().and_then(|text| cpu_model(&text)),
     };
     results.goals = goals::measure(&results);
     results
@@ -139,6 +140,23 @@ fn measure_corpus(families: &[corpus::Family], quick: bool, runs: usize, timing:
 /// The 1-minute load average, where the system tells it.
 fn load_average() -> Option<f64> {
     fs::read_to_string("/proc/loadavg").ok()?.split_whitespace().next()?.parse().ok()
+}
+
+/// The processor `/proc/cpuinfo`'s text names: its model name, and on
+/// x86 its family and model numbers, which tell apart the generations a
+/// model name such as "AMD EPYC" covers.
+fn cpu_model(cpuinfo: &str) -> Option<String> {
+    let field = |name: &str| {
+        cpuinfo.lines().find_map(|line| {
+            let (key, value) = line.split_once(':')?;
+            (key.trim() == name).then(|| value.trim().to_string())
+        })
+    };
+    let name = field("model name")?;
+    Some(match (field("cpu family"), field("model")) {
+        (Some(family), Some(model)) => format!("{name} (family {family}, model {model})"),
+        _ => name,
+    })
 }
 
 /// Writes the first polygons of every real-shape family as a scene file
@@ -282,6 +300,19 @@ mod tests {
             assert!(shown.len() > 10, "{}: {}", family.name, shown.len());
             assert!(shown.iter().zip(&family.polygons).all(|(a, b)| *a == b), "{}", family.name);
         }
+    }
+
+    /// The processor is named with its family and model where the text
+    /// gives them (x86), by its name alone where not, and not at all
+    /// where no model name is given.
+    #[test]
+    fn the_processor_is_read_from_cpuinfo() {
+        let x86 =
+            "processor\t: 0\nvendor_id\t: AuthenticAMD\ncpu family\t: 25\nmodel\t\t: 17\nmodel name\t: AMD EPYC\n";
+        assert_eq!(cpu_model(x86).as_deref(), Some("AMD EPYC (family 25, model 17)"));
+        let named = "processor\t: 0\nmodel name\t: Some Core\n";
+        assert_eq!(cpu_model(named).as_deref(), Some("Some Core"));
+        assert_eq!(cpu_model("processor\t: 0\nBogoMIPS\t: 50.00\n"), None);
     }
 
     #[test]

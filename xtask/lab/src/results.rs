@@ -79,6 +79,10 @@ pub struct TimingInfo {
     /// The 1-minute load average when the timing started and when it
     /// ended, where the system tells it (`/proc/loadavg`).
     pub load_average: (Option<f64>, Option<f64>),
+    /// The processor the times were taken on, where the system tells it
+    /// (`/proc/cpuinfo`): ratios between contenders differ from one
+    /// generation to another.
+    pub cpu: Option<String>,
 }
 
 /// The CPU features the lab was compiled to use (`cargo xtask lab` builds

@@ -33,7 +33,8 @@ pub fn markdown(results: &Results) -> String {
          every contender, bound and lane of a family timed in turn in each of {} repeats (each at least {} ms), in \
          each of {} run{} of the whole timing; a time is the median of those repeats, with the least and the most \
          of them, and a ratio of two times is the geometric mean of the repeats' ratios with its {:.0}% interval \
-         (Student's t on their logarithms). Load average {} when the timing started, {} when it ended. Accuracy \
+         (Student's t on their logarithms). Processor: {}. Load average {} when the timing started, {} when it ended. \
+         Accuracy \
          against `raster::reference`. Charts: {} (.svg and .png beside this file).\n",
         results.seed,
         timing.repeats,
@@ -41,6 +42,7 @@ pub fn markdown(results: &Results) -> String {
         timing.runs,
         if timing.runs == 1 { "" } else { "s" },
         timing.confidence * 100.0,
+        timing.cpu.as_deref().unwrap_or("unknown"),
         load(timing.load_average.0),
         load(timing.load_average.1),
         crate::charts::Chart::ALL.map(|c| c.name()).join(", "),
