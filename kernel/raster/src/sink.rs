@@ -17,15 +17,25 @@ pub fn clear<S: SpanSink + ?Sized>(sink: &mut S, color: u8) {
 /// the wide ones may be split into 16-byte stores on the baseline target),
 /// overlapping in the middle, with no loop and no call. A longer one is,
 /// where the build targets a CPU with AVX2 (`-C target-cpu=native` on a
-/// recent x86-64, as `cargo xtask lab` builds), a loop of 64-byte blocks
-/// and one last block ending where the span does, all inline; elsewhere
-/// one `memset`, whose library version picks the widest stores the
-/// machine has. A `memset` call costs more than the whole store on the
-/// short spans that most polygons are made of, and more than inline
-/// 32-byte stores on rows a few hundred bytes long (`docs/lab.md`); with
-/// 16-byte stores only, the call is the cheaper.
+/// recent x86-64, as `cargo xtask lab` builds), up to 512 bytes, two,
+/// four or six blocks of 64 or 128 bytes, from both ends, overlapping in
+/// the middle, with no loop and no call either; past 512 bytes, or on a
+/// CPU without AVX2, one `memset`, whose library version picks the widest
+/// stores the machine has. A `memset` call costs more than the whole store
+/// on the short spans that most polygons are made of, and more than the
+/// inline blocks on rows of up to a few hundred bytes (`docs/lab.md`);
+/// with 16-byte stores only, the call is the cheaper. The blocks are
+/// written out, not looped over: the compiler turns a loop of such
+/// stores into a `memset` call.
 #[inline(always)]
 pub fn set_bytes(bytes: &mut [u8], color: u8) {
+    store_span::<{ cfg!(target_feature = "avx2") }>(bytes, color);
+}
+
+/// [`set_bytes`], storing spans of 65 to 512 bytes in inline blocks
+/// where `BLOCKS`, else by a `memset`.
+#[inline(always)]
+fn store_span<const BLOCKS: bool>(bytes: &mut [u8], color: u8) {
     let n = bytes.len();
     if n <= 16 {
         if n >= 8 {
@@ -46,9 +56,20 @@ pub fn set_bytes(bytes: &mut [u8], color: u8) {
     } else if n <= 64 {
         bytes[..32].copy_from_slice(&[color; 32]);
         bytes[n - 32..].copy_from_slice(&[color; 32]);
-    } else if cfg!(target_feature = "avx2") {
-        for block in bytes.as_chunks_mut::<64>().0 {
-            *block = [color; 64];
+    } else if BLOCKS && n <= 512 {
+        // In the order of their addresses: the first 64 bytes, then as
+        // the span needs them the next 64 and the 128 after those; the
+        // same again, backwards from the last byte.
+        bytes[..64].copy_from_slice(&[color; 64]);
+        if n > 128 {
+            bytes[64..128].copy_from_slice(&[color; 64]);
+        }
+        if n > 256 {
+            bytes[128..256].copy_from_slice(&[color; 128]);
+            bytes[n - 256..n - 128].copy_from_slice(&[color; 128]);
+        }
+        if n > 128 {
+            bytes[n - 128..n - 64].copy_from_slice(&[color; 64]);
         }
         bytes[n - 64..].copy_from_slice(&[color; 64]);
     } else {
@@ -60,17 +81,22 @@ pub fn set_bytes(bytes: &mut [u8], color: u8) {
 mod tests {
     use super::*;
 
-    /// Every length up to 160 at every offset below 24, against
-    /// a plain slice fill: the overlapping stores set exactly the span.
+    /// Every length up to 600 at every offset below 24, with the inline
+    /// blocks and without them, against a plain slice fill: the
+    /// overlapping stores set exactly the span.
     #[test]
     fn set_bytes_sets_exactly_the_span() {
-        for start in 0..24 {
-            for len in 0..=160 {
-                let mut row = [0u8; 192];
-                set_bytes(&mut row[start..start + len], 9);
-                let mut expected = [0u8; 192];
-                expected[start..start + len].fill(9);
-                assert_eq!(row, expected, "start {start}, length {len}");
+        let ways: [(&str, fn(&mut [u8], u8)); 3] =
+            [("set_bytes", set_bytes), ("blocks", store_span::<true>), ("memset", store_span::<false>)];
+        for (way, store) in ways {
+            for start in 0..24 {
+                for len in 0..=600 {
+                    let mut row = [0u8; 640];
+                    store(&mut row[start..start + len], 9);
+                    let mut expected = [0u8; 640];
+                    expected[start..start + len].fill(9);
+                    assert_eq!(row, expected, "{way}: start {start}, length {len}");
+                }
             }
         }
     }
