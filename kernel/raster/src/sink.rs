@@ -86,7 +86,8 @@ mod tests {
     /// overlapping stores set exactly the span.
     #[test]
     fn set_bytes_sets_exactly_the_span() {
-        let ways: [(&str, fn(&mut [u8], u8)); 3] =
+        type Store = fn(&mut [u8], u8);
+        let ways: [(&str, Store); 3] =
             [("set_bytes", set_bytes), ("blocks", store_span::<true>), ("memset", store_span::<false>)];
         for (way, store) in ways {
             for start in 0..24 {
