@@ -34,8 +34,7 @@ pub fn markdown(results: &Results) -> String {
          each of {} run{} of the whole timing; a time is the median of those repeats, with the least and the most \
          of them, and a ratio of two times is the geometric mean of the repeats' ratios with its {:.0}% interval \
          (Student's t on their logarithms). Processor: {}. Load average {} when the timing started, {} when it ended. \
-         Accuracy \
-         against `raster::reference`. Charts: {} (.svg and .png beside this file).\n",
+         Accuracy against `raster::reference`. Charts: {} (.svg and .png beside this file).\n",
         results.seed,
         timing.repeats,
         timing.min_repeat_ms,
