@@ -3,7 +3,7 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::sink::set_bytes;
+use crate::sink::{set_bytes, set_prefix};
 use crate::target::{Size, SpanSink};
 
 /// A byte-per-pixel image in memory: the host's (and the tests') target.
@@ -77,6 +77,34 @@ impl SpanSink for Framebuffer {
             self.stray_span(y, x_start, x_end, color);
         }
     }
+
+    /// Where the build targets a CPU with AVX-512 (BW), a span of up to 64
+    /// pixels with 64 bytes of the image from its start is one masked
+    /// store ([`set_prefix`]), whatever its length; any other span is
+    /// [`SpanSink::span`]'s.
+    #[inline(always)]
+    fn irregular_span(&mut self, y: i32, x_start: i32, x_end: i32, color: u8) {
+        self.window_span::<{ cfg!(target_feature = "avx512bw") }>(y, x_start, x_end, color);
+    }
+}
+
+impl Framebuffer {
+    /// [`SpanSink::irregular_span`], storing spans of up to 64 pixels in a
+    /// masked window where `WINDOW`, else by [`SpanSink::span`].
+    #[inline(always)]
+    fn window_span<const WINDOW: bool>(&mut self, y: i32, x_start: i32, x_end: i32, color: u8) {
+        if WINDOW && self.size.holds_span(y, x_start, x_end) && x_end - x_start <= 64 {
+            // All three are non-negative and inside the target; the window
+            // may reach into the next rows, whose bytes it leaves as they
+            // are, but not past the image.
+            let start = y as usize * self.size.width as usize + x_start as usize;
+            if let Some(window) = self.pixels[start..].first_chunk_mut::<64>() {
+                set_prefix(window, (x_end - x_start) as usize, color);
+                return;
+            }
+        }
+        self.span(y, x_start, x_end, color);
+    }
 }
 
 impl Framebuffer {
@@ -111,6 +139,38 @@ mod tests {
         fb.span(1, 1, 3, 7);
         assert_eq!(fb.pixels(), &[0, 0, 0, 0, 0, 7, 7, 0]);
         assert_eq!(fb.stray_spans(), 0);
+    }
+
+    /// With the window and without it, on every row end and near the
+    /// image's end (where 64 bytes from the start do not fit): every
+    /// span of up to 70 pixels sets exactly its pixels, and strays are
+    /// clipped and counted as `span` does.
+    #[test]
+    fn irregular_spans_set_exactly_their_pixels() {
+        type Store = fn(&mut Framebuffer, i32, i32, i32, u8);
+        let ways: [(&str, Store); 2] =
+            [("window", Framebuffer::window_span::<true>), ("span", Framebuffer::window_span::<false>)];
+        let size = Size { width: 100, height: 3 };
+        for (way, store) in ways {
+            for y in 0..3 {
+                for x_start in 0..100 {
+                    for x_end in x_start..=(x_start + 70).min(100) {
+                        let mut image = Framebuffer::new(size);
+                        image.pixels.fill(3);
+                        store(&mut image, y, x_start, x_end, 9);
+                        let mut expected = alloc::vec![3u8; 300];
+                        let row = y as usize * 100;
+                        expected[row + x_start as usize..row + x_end as usize].fill(9);
+                        assert_eq!(image.pixels, expected, "{way}: row {y}, {x_start}..{x_end}");
+                        assert_eq!(image.stray_spans, usize::from(x_start == x_end), "{way}");
+                    }
+                }
+            }
+            let mut image = Framebuffer::new(size);
+            store(&mut image, 2, 90, 101, 1);
+            store(&mut image, 3, 0, 1, 1);
+            assert_eq!((image.stray_spans, image.get(99, 2), image.get(89, 2)), (2, Some(1), Some(0)), "{way}");
+        }
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! Stores any sink may use: the store of one span into bytes
-//! ([`set_bytes`]), and a whole target filled through a sink's spans
+//! ([`set_bytes`]), of the first bytes of a 64-byte window ([`set_prefix`]),
+//! and a whole target filled through a sink's spans
 //! ([`clear`]). The sink interface itself is [`SpanSink`].
 
 use crate::target::SpanSink;
@@ -78,9 +79,35 @@ fn store_span<const BLOCKS: bool>(bytes: &mut [u8], color: u8) {
     }
 }
 
+/// Sets the first `length` bytes of a 64-byte `window` to `color`, where
+/// `length` is at most 64, and leaves the rest as they were: on a CPU with
+/// AVX-512 (BW), one store of the 64 bytes under a mask of `length` ones,
+/// whatever the length, with no branch on it. Elsewhere the compiler
+/// stores byte by byte, so there a sink should use [`set_bytes`] instead.
+#[inline(always)]
+pub fn set_prefix(window: &mut [u8; 64], length: usize, color: u8) {
+    for (at, byte) in window.iter_mut().enumerate() {
+        if at < length {
+            *byte = color;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every length of a window sets that many bytes and no more.
+    #[test]
+    fn set_prefix_sets_exactly_the_first_bytes() {
+        for length in 0..=64 {
+            let mut window = [3u8; 64];
+            set_prefix(&mut window, length, 9);
+            let mut expected = [3u8; 64];
+            expected[..length].fill(9);
+            assert_eq!(window, expected, "length {length}");
+        }
+    }
 
     /// Every length up to 600 at every offset below 24, with the inline
     /// blocks and without them, against a plain slice fill: the

@@ -56,6 +56,16 @@ pub trait SpanSink {
     fn size(&self) -> Size;
     /// Sets pixels `x_start..x_end` of row `y` to `color`.
     fn span(&mut self, y: i32, x_start: i32, x_end: i32, color: u8);
+    /// [`SpanSink::span`], for a span from a stage whose spans' lengths
+    /// follow no pattern from one to the next (the edge flags' runs under
+    /// the even-odd rule, on self-intersecting and many-cornered
+    /// polygons): a sink may store it without branching on its length,
+    /// where such a branch would often be mispredicted. The contract is
+    /// `span`'s, and so, unless a sink says otherwise, is the store.
+    #[inline(always)]
+    fn irregular_span(&mut self, y: i32, x_start: i32, x_end: i32, color: u8) {
+        self.span(y, x_start, x_end, color);
+    }
 }
 
 #[cfg(test)]

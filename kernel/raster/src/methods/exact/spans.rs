@@ -25,6 +25,15 @@ pub(super) fn emit<S: SpanSink + ?Sized>(row: i64, start: i32, end: i32, target:
     }
 }
 
+/// [`emit`] as an irregular span ([`SpanSink::irregular_span`]): for a
+/// stage whose spans' lengths follow no pattern.
+#[inline(always)]
+pub(super) fn emit_irregular<S: SpanSink + ?Sized>(row: i64, start: i32, end: i32, target: Target, sink: &mut S) {
+    if start < end {
+        sink.irregular_span(row as i32, start, end, target.color);
+    }
+}
+
 /// Emits the span between two crossings on each of `rows`, stepping both
 /// edges after each row; the edges must meet every row of `rows`.
 /// `ORDERED`: `a` is never right of `b`, so no comparison is needed.

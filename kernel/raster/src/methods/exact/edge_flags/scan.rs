@@ -7,7 +7,7 @@ use core::ops::Range;
 
 use crate::target::SpanSink;
 
-use super::super::spans::{emit, Target};
+use super::super::spans::{emit, emit_irregular, Target};
 use super::grid::Grid;
 
 /// Emits the inside runs of every row of `band` from its flags (and
@@ -44,7 +44,7 @@ fn even_odd<const WORDS: usize, S: SpanSink + ?Sized>(
             let mut bits = core::mem::take(&mut flags[(first + i) % WORDS]);
             let offset = grid.left + 64 * i as i32;
             if open && bits != 0 {
-                emit(row, start, offset + bits.trailing_zeros() as i32, target, sink);
+                emit_irregular(row, start, offset + bits.trailing_zeros() as i32, target, sink);
                 bits &= bits - 1;
                 open = false;
             }
@@ -55,12 +55,12 @@ fn even_odd<const WORDS: usize, S: SpanSink + ?Sized>(
                     open = true;
                     break;
                 }
-                emit(row, start, offset + bits.trailing_zeros() as i32, target, sink);
+                emit_irregular(row, start, offset + bits.trailing_zeros() as i32, target, sink);
                 bits &= bits - 1;
             }
         }
         if open {
-            emit(row, start, target.width, target, sink);
+            emit_irregular(row, start, target.width, target, sink);
         }
         first += grid.words;
     }
