@@ -306,6 +306,27 @@ impl Crossing for ShortEdge {
         Self { position: start + offset + bias, step }
     }
 
+    /// [`Crossing::at_last_row`], with no division for an edge less than
+    /// a pixel wide. Its crossing `X = x_top + t * dx / dy` lies between
+    /// its ends, `L` the left one, and the first centre at or right of `L`,
+    /// column `c`, is under a pixel right of `L`: the next centre is right
+    /// of both ends, so the column is `c`, or `c + 1` where `c`'s centre
+    /// is left of `X`, that is where `(centre - x_top) * dy < t * dx`
+    /// (`dy > 0`; both sides under `2^25` in size). Stepping leaves it
+    /// where it is, and its position is the column's first.
+    #[inline(always)]
+    fn at_last_row(top: Point, bottom: Point, row: i64) -> Self {
+        let (dx, dy) = (i64::from(bottom.x) - i64::from(top.x), i64::from(bottom.y) - i64::from(top.y));
+        if dx.unsigned_abs() >= SUBPIXEL_ONE as u64 {
+            return Self::at_row(top, bottom, row);
+        }
+        let t = row * i64::from(SUBPIXEL_ONE) + i64::from(SAMPLE_OFFSET) - i64::from(top.y);
+        let first = first_sample_at_or_after(top.x.min(bottom.x).into());
+        let centre = first * i64::from(SUBPIXEL_ONE) + i64::from(SAMPLE_OFFSET);
+        let column = first + i64::from((centre - i64::from(top.x)) * dy < t * dx);
+        Self { position: column << FRACTION_BITS, step: 0 }
+    }
+
     #[inline(always)]
     fn column(&self) -> i64 {
         self.position >> FRACTION_BITS
@@ -437,7 +458,7 @@ mod tests {
         let limit = SHORT - 1;
         let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
         let special = [0, 1, 2, 127, 128, 129, 255, 256, 257, 1000, limit - 1, limit];
-        let (mut edges, mut walked) = (0, 0);
+        let (mut edges, mut walked, mut narrow) = (0, 0, 0);
         for i in 0..20_000 {
             let (dx, dy) = random_extent(&mut next, i, &special, limit);
             let r = next();
@@ -462,9 +483,24 @@ mod tests {
             let row = (rows.start + rows.end) / 2;
             let later = ShortEdge::at_row(top, bottom, row).column();
             assert_eq!(later, EdgeStepper::at_row(top, bottom, row).column, "{top:?}-{bottom:?} row {row}");
+            // Set up for one row only, as for an edge that meets one: with
+            // no division where it is under a pixel wide.
+            let under_a_pixel = dx.abs() < i64::from(SUBPIXEL_ONE);
+            narrow += usize::from(under_a_pixel);
+            for row in [rows.start, rows.start + (rows.end - rows.start) / 2, rows.end - 1] {
+                let last = ShortEdge::at_last_row(top, bottom, row);
+                assert_eq!(last.column(), EdgeStepper::at_row(top, bottom, row).column, "{top:?}-{bottom:?} row {row}");
+                let mut stepped = last;
+                stepped.step();
+                assert!(!under_a_pixel || stepped.column() == last.column(), "{top:?}-{bottom:?} row {row}");
+            }
         }
-        // Most of the 20,000 draws make an edge, and most edges many rows.
-        assert!(edges > 15_000 && walked > 2_000_000, "{edges} edges, {walked} rows");
+        // Most of the 20,000 draws make an edge, and most edges many rows;
+        // many edges are under a pixel wide.
+        assert!(
+            edges > 15_000 && walked > 2_000_000 && narrow > 2_000,
+            "{edges} edges, {walked} rows, {narrow} narrow"
+        );
     }
 
     /// The tightest case of [`ShortEdge`]'s bound: the longest edge
