@@ -12,7 +12,11 @@
 //!   branch-free `i64` step with an error term; a polygon whose drawn
 //!   edges lie in a box under 512 px both ways sets up each edge with one
 //!   division instead and steps it with one addition to a fixed-point
-//!   crossing, exact for edges that short (`edge.rs` gives the bounds).
+//!   crossing, exact for edges that short (`edge.rs` gives the bounds);
+//!   such an edge under a pixel wide that meets one row only, as the
+//!   many short pieces of a flattened curve do, is set up with one
+//!   comparison and no division (but in the kernel, where a division
+//!   counts as one instruction).
 //!   That one division is the only place a float enters, and only on a
 //!   machine with a floating-point unit: an `f64` quotient, several times
 //!   quicker than an `i64` one, estimates it, and the integer remainder
