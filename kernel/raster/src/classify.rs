@@ -77,8 +77,9 @@ pub fn classify(polygon: &Polygon) -> Class {
     }
 }
 
-/// What the fill needs to know of a polygon: the linear-time part of
-/// [`classify`].
+/// The linear-time part of [`classify`]: which of a polygon's contours
+/// enclose anything, and whether the one that does is monotone (what the
+/// kernel's `fill_auto` asks of a polygon of several contours).
 pub(crate) enum Shape<'a> {
     /// No contour encloses anything.
     Empty,

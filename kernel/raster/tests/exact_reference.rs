@@ -170,6 +170,18 @@ fn paths_take_their_classes() {
     let zigzag = Polygon::new(vec![px(0, 0), px(5, 5), px(2, 2), px(9, 9), px(1, 1)], 1);
     assert_eq!(chosen(&zigzag), Some("edge flags"));
     assert_eq!(chosen(&Polygon::default()), None);
+    // Several contours are not classified either: those that enclose
+    // nothing go to a general path with the rest, or alone.
+    let mut flanked = monotone.clone();
+    flanked.contours.push(zigzag.contours[0].clone());
+    let mut flat = zigzag.clone();
+    flat.contours.push(zigzag.contours[0].clone());
+    assert_eq!([&flanked, &flat].map(chosen), [Some("edge flags"), Some("edge flags")]);
+    for polygon in [&flanked, &flat] {
+        let (result, report, picture) = against_reference(|p, s| fill_auto(p, s), polygon, TARGET);
+        assert_eq!(result, Ok(()), "{polygon:?}");
+        assert_eq!(report, CoverageReport::default(), "{polygon:?}\n{picture}");
+    }
 }
 
 /// The generators feed the dispatch test every class.

@@ -66,8 +66,9 @@ pub use active_edges::Scratch;
 pub use bounds::Bounds;
 use monotone::{fill_monotone, fill_triangle};
 
-use crate::classify::Class;
-use crate::classify::{is_monotone, Shape};
+#[cfg(target_os = "none")]
+use crate::classify::Shape;
+use crate::classify::{is_monotone, Class};
 use crate::geometry::{FillRule, Point, Polygon};
 use crate::methods::info::{Heap, MethodInfo, Refusal};
 use crate::methods::interface::Builtin;
@@ -183,8 +184,8 @@ impl<'a> ExactPath<'a> {
     /// places [`ExactPath::alone`] asks for them by.
     pub const NAMES: [&'static str; 4] = ["triangle", "monotone", "active edges", "edge flags"];
 
-    /// The path [`fill_auto`] fills `polygon` by, or `None` when it draws
-    /// nothing at all: its classification, in linear time.
+    /// The path [`fill_auto`] fills `polygon` by, or `None` when it has
+    /// no contour: in linear time, with no classification.
     ///
     /// The common case, one contour, skips the collinearity test (which
     /// there only tells drawing nothing from filling): a contour of three
@@ -193,7 +194,12 @@ impl<'a> ExactPath<'a> {
     /// nothing for a collinear contour. All its crossings on a row are at
     /// one column, so no pixel lies between them (the edge table drops
     /// edges right of the target whole, so on a row it keeps all of them or
-    /// the column is past the target).
+    /// the column is past the target). Several contours go to a path that
+    /// takes any polygon, with no test either: one that encloses nothing
+    /// adds nothing there, as the rule says. Dropping such contours first,
+    /// so that one monotone contour among them took the monotone fill,
+    /// cost the glyphs 4% of their time, and the families of several
+    /// contours have none (`docs/lab.md`, "This round's fourth change").
     #[inline]
     pub fn choose(polygon: &'a Polygon) -> Option<Self> {
         if let [contour] = polygon.contours.as_slice() {
@@ -203,6 +209,26 @@ impl<'a> ExactPath<'a> {
                 _ => Self::general(polygon),
             });
         }
+        Self::several(polygon)
+    }
+
+    /// [`ExactPath::choose`] for a polygon of no contour or several, on
+    /// the host: a path that takes any polygon, with no test.
+    #[cfg(not(target_os = "none"))]
+    #[inline(always)]
+    fn several(polygon: &'a Polygon) -> Option<Self> {
+        (!polygon.contours.is_empty()).then(|| Self::general(polygon))
+    }
+
+    /// [`ExactPath::several`] in the kernel, where the contours that
+    /// enclose nothing are dropped first, as on the host before: none left
+    /// draws nothing, one monotone contour takes the monotone fill. Without
+    /// the test the compiler inlined the kernel's dispatch otherwise, and
+    /// `cargo xtask kbench` counted 9 to 2,214 more instructions a page,
+    /// though no demo page has a polygon of several contours.
+    #[cfg(target_os = "none")]
+    #[inline(always)]
+    fn several(polygon: &'a Polygon) -> Option<Self> {
         match Shape::of(polygon) {
             Shape::Empty => None,
             Shape::Monotone(contour) => Some(ExactPath::Monotone { contour, polygon }),
