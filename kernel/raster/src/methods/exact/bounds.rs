@@ -27,7 +27,7 @@ impl Bounds {
         // loop over a slice, which the compiler vectorizes, as it did not
         // one loop over all the vertices: the glyphs took 0.96 of their
         // time (`docs/lab.md`, "This round's fourth change"). The kernel
-        // has no vector unit to use, and `cargo xtask kbench` counted 2
+        // has no vector unit to use, and `cargo xtask kbench` counted 26
         // to 708 more instructions a page with the host's loops.
         #[cfg(not(target_os = "none"))]
         for contour in &polygon.contours {
