@@ -27,12 +27,11 @@ use alloc::vec::Vec;
 use bootloader_api::info::{FrameBuffer, PixelFormat};
 use protocol::{FramebufferCheck, MemoryType, PageMapping, Presentation};
 use raster::SCREEN;
-use scenes::palette::{c6_to_8, ENTRIES};
+use scenes::palette::{c6_to_8, Palette, ENTRIES};
 use volatile::{VolatilePtr, VolatileRef};
 use x86_64::{PhysAddr, VirtAddr};
 
 use crate::paging;
-use crate::vga::Palette;
 use crate::{pat, serial};
 
 /// Frame width and height in pixels.

@@ -7,12 +7,13 @@
 //! the show for good), and no byte sequence can make it panic or wait
 //! forever. `EXIT` and `FAULT` are answered only on QEMU (`machine.rs`).
 
+use alloc::borrow::Cow;
 use alloc::string::{String, ToString};
 use alloc::vec;
 use alloc::vec::Vec;
 use protocol::{
     Cleared, Command, CommandError, Damaged, DemoReply, DrawReply, ErrorReply, Firmware, FrameKind, Listing, LogEvent,
-    Machine, Pong, Ready,
+    Machine, Pong, Ready, Upload,
 };
 use raster::MethodId;
 use scenes::show::{Entry, Stage, ENTRIES_IN_ORDER};
@@ -76,7 +77,7 @@ fn ready(screen: &Screen) -> Ready {
 /// the demo), taking the lines that follow from `pending`. `SHOW` draws
 /// on `stage`.
 pub fn serve(screen: &mut Screen, stage: &mut Stage, mut pending: PendingLine, first: Complete) -> ! {
-    let mut server = Server { screen, stage, demo: None };
+    let mut server = Server { screen, stage, demo: None, upload: Upload::Nothing };
     let mut complete = first;
     loop {
         match complete {
@@ -106,6 +107,8 @@ struct Server<'a> {
     stage: &'a mut Stage,
     /// The demo `DEMO` asked for, to play once its answer is sent.
     demo: Option<demo::Start>,
+    /// The scene the host uploaded, or is uploading.
+    upload: Upload,
 }
 
 impl Server<'_> {
@@ -149,7 +152,7 @@ impl Server<'_> {
             }
             Command::List => Ok((FrameKind::List, listing().to_string().into_bytes())),
             Command::Draw { scene, method } => {
-                let scene = builtin_scene(scene)?;
+                let scene = find_scene(&self.upload, scene)?;
                 let method = method.unwrap_or(scene.method);
                 ok(draw_reply(self.screen.draw(&scene, method)))
             }
@@ -164,12 +167,14 @@ impl Server<'_> {
             }
             Command::Poly { method, spec } => {
                 let polygon = file::parse_poly(spec).map_err(ErrorReply::Polygon)?;
-                let scene = Scene { name: String::from("POLY"), ops: vec![Op::Fill(polygon)], method };
+                let scene = Scene::new(String::from("POLY"), vec![Op::Fill(polygon)], method);
                 ok(draw_reply(self.screen.draw(&scene, method)))
             }
+            Command::Upload { name, bytes, memory, crc } => ok(self.upload.start(name, bytes, memory, crc)?),
+            Command::Chunk { offset, data } => ok(self.upload.chunk(offset, data)?),
             Command::Dump => Ok((FrameKind::Dump, self.screen.dump())),
             Command::Bench { scene, repeats } => {
-                let scene = builtin_scene(scene)?;
+                let scene = find_scene(&self.upload, scene)?;
                 Ok((FrameKind::Bench, bench::run(self.screen, &scene, repeats).to_string().into_bytes()))
             }
             Command::Demo { entry, method } => {
@@ -200,6 +205,15 @@ impl Server<'_> {
     }
 }
 
+/// The built-in scene called `name`, built, or else the scene of that
+/// name in `upload`.
+fn find_scene<'s, 'a>(upload: &'s Upload, name: &'a str) -> Result<Cow<'s, Scene>, ErrorReply<'a>> {
+    match builtin::scene(name) {
+        Some(scene) => Ok(Cow::Owned(scene)),
+        None => upload.scene(name).map(Cow::Borrowed).ok_or(ErrorReply::UnknownScene(name)),
+    }
+}
+
 /// `Ok` on a machine identified as QEMU; else why `command` is refused.
 /// The test hooks touch nothing elsewhere: QEMU's exit port is a port
 /// nobody identified on a PC, and a fault on request has no place there.
@@ -212,11 +226,6 @@ fn on_qemu(command: &'static str) -> Result<(), ErrorReply<'static>> {
 
 fn ok(text: impl core::fmt::Display) -> Reply<'static> {
     Ok((FrameKind::Ok, text.to_string().into_bytes()))
-}
-
-/// The built-in scene called `name`, built.
-fn builtin_scene(name: &str) -> Result<Scene, ErrorReply<'_>> {
-    builtin::scene(name).ok_or(ErrorReply::UnknownScene(name))
 }
 
 /// The show entry called `name`, and its place in the show.

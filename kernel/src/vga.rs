@@ -19,7 +19,7 @@
 use alloc::vec::Vec;
 
 use protocol::{Mismatch, RegisterGroup};
-use scenes::palette::ENTRIES;
+use scenes::palette::{Palette, ENTRIES};
 use volatile::VolatilePtr;
 
 use crate::clock::Deadline;
@@ -28,9 +28,6 @@ use crate::serial;
 
 /// Bytes in the DAC: 256 entries of red, green, blue.
 pub const DAC_LEN: usize = ENTRIES * 3;
-
-/// A whole DAC load: 6-bit red, green, blue per entry, entry 0 first.
-pub type Palette = [[u8; 3]; ENTRIES];
 
 /// A display mode as register values, each group indexed from 0.
 struct Mode {

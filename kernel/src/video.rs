@@ -20,7 +20,7 @@ use core::ptr::{self, NonNull};
 use bootloader_api::BootInfo;
 use protocol::{Firmware, LogEvent, MemoryType, Mismatch, VgaCheck, Video, Window, DUMP_LEN, FRAMEBUFFER_LEN};
 use raster::{sink, MethodId};
-use scenes::palette::VGA_DEFAULT;
+use scenes::palette::{Palette, VGA_DEFAULT};
 use scenes::{DrawReport, Scene};
 use volatile::{VolatilePtr, VolatileRef};
 
@@ -32,7 +32,7 @@ pub use canvas::Canvas;
 
 use crate::pci::{DisplayController, Displays};
 use crate::presenter::Presenter;
-use crate::vga::{self, Palette};
+use crate::vga;
 use crate::{card, paging, pat};
 
 /// Where the frame is shown.
@@ -55,7 +55,7 @@ pub struct Screen {
     canvas: Canvas,
     /// The palette the frame is shown in, set by [`Screen::use_palette`]:
     /// in the DAC on the VGA path.
-    palette: &'static Palette,
+    palette: Palette,
     output: Output,
     /// See [`Screen::display`] and [`Screen::findings`].
     display: Option<DisplayController>,
@@ -139,7 +139,7 @@ impl Screen {
         if let Output::Vga { .. } = output {
             vga::load_dac(&VGA_DEFAULT);
         }
-        Self { canvas: Canvas::new(pixels), palette: &VGA_DEFAULT, output, display: None, findings: Vec::new() }
+        Self { canvas: Canvas::new(pixels), palette: VGA_DEFAULT, output, display: None, findings: Vec::new() }
     }
 
     /// The display controller the frame goes to: on the framebuffer path
@@ -169,7 +169,7 @@ impl Screen {
     /// registers and DAC entries that do not read back as written.
     pub fn video(&self) -> Video {
         match &self.output {
-            Output::Vga { .. } => Video::Vga13h { mismatches: vga::verify(self.palette).len() },
+            Output::Vga { .. } => Video::Vga13h { mismatches: vga::verify(&self.palette).len() },
             Output::Framebuffer(presenter) => Video::Framebuffer(presenter.presentation()),
             Output::Nothing => Video::None,
         }
@@ -183,7 +183,7 @@ impl Screen {
     pub fn check(&self) -> VgaCheck {
         match &self.output {
             Output::Vga { .. } => VgaCheck::Vga {
-                mismatches: vga::verify(self.palette),
+                mismatches: vga::verify(&self.palette),
                 window: paging::mapping(window_start(), WINDOW_LEN).map(|mapping| Window {
                     start: WINDOW_PHYSICAL,
                     end: WINDOW_PHYSICAL + WINDOW_LEN - 1,
@@ -200,19 +200,19 @@ impl Screen {
     /// or DAC entry of the VGA path that did not read back as written.
     pub fn mismatches(&self) -> Vec<Mismatch> {
         match self.output {
-            Output::Vga { .. } => vga::verify(self.palette),
+            Output::Vga { .. } => vga::verify(&self.palette),
             Output::Framebuffer(_) | Output::Nothing => Vec::new(),
         }
     }
 
     /// Uses `palette` from now on: loads it into the DAC on the VGA path,
     /// unless it is already there.
-    pub fn use_palette(&mut self, palette: &'static Palette) {
-        if self.palette != palette {
+    pub fn use_palette(&mut self, palette: &Palette) {
+        if self.palette != *palette {
             if let Output::Vga { .. } = self.output {
                 vga::load_dac(palette);
             }
-            self.palette = palette;
+            self.palette = *palette;
         }
     }
 
@@ -223,7 +223,7 @@ impl Screen {
     pub fn present(&mut self) {
         match &mut self.output {
             Output::Vga { cirrus: true } => vga::rewrite_through_latches(self.canvas.pixels()),
-            Output::Framebuffer(presenter) => presenter.show(self.canvas.pixels(), self.palette),
+            Output::Framebuffer(presenter) => presenter.show(self.canvas.pixels(), &self.palette),
             Output::Vga { cirrus: false } | Output::Nothing => {}
         }
     }
@@ -250,11 +250,12 @@ impl Screen {
         self.present();
     }
 
-    /// Draws `scene` with `method` in the VGA default palette and says how
-    /// it went. The canvas's type is known to the fill, so each span is
-    /// stored by [`Canvas`]'s `fill` inline, with no call.
+    /// Draws `scene` with `method` in the scene's palette (the VGA default
+    /// with the scene's own entries set over it) and says how it went. The
+    /// canvas's type is known to the fill, so each span is stored by
+    /// [`Canvas`]'s `fill` inline, with no call.
     pub fn draw(&mut self, scene: &Scene, method: MethodId) -> Drawn {
-        self.use_palette(&VGA_DEFAULT);
+        self.use_palette(&scene.dac());
         let strays = self.canvas.stray_spans();
         let report = scene.draw(method, &mut self.canvas);
         self.present();

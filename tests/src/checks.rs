@@ -5,7 +5,6 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, ensure, Context, Result};
 use protocol::{Presentation, ShowReply, Video};
 use raster::MethodId;
-use scenes::palette::VGA_DEFAULT;
 use scenes::{builtin, show};
 
 use crate::client::{Console, Dump};
@@ -27,22 +26,23 @@ pub fn dump_matches_host_render(console: &mut Console, scene: &str, method: Meth
 }
 
 /// Has the kernel draw `source` with `method` on a black screen (a
-/// built-in page with `DRAW`; a scene file operation by operation with
-/// `CLEAR` and `POLY`, each checked before any is sent) and checks its dump
-/// against the host render of the same scene byte for byte, and its DAC
-/// against the render's palette (the VGA default, which the drawing
-/// commands load). Returns the dump for further checks.
+/// built-in page with `DRAW`; a scene file uploaded whole, then drawn by
+/// name) and checks its dump against the host render of the same scene
+/// byte for byte, and its DAC against the scene's palette (the VGA
+/// default, with a scene file's own entries over it). Returns the dump for
+/// further checks.
 pub fn source_matches_host_render(console: &mut Console, source: &SceneSource, method: MethodId) -> Result<Dump> {
     let name = source.name();
-    let expected = render(&source.scene(), method);
+    let scene = source.scene();
+    let expected = render(&scene, method);
     match source {
         SceneSource::Builtin(page) => console.draw(page.name, Some(method)).map(|_| ()),
-        SceneSource::File(file) => console.draw_file(file, method),
+        SceneSource::File(_) => console.draw_scene(&scene, method).map(|_| ()),
     }
     .with_context(|| format!("kernel failed to draw {name} with {method}"))?;
     let dump = console.dump()?;
     compare_images(&format!("{name}.{method}.dump"), &expected, &dump.image())?;
-    compare_palettes(&format!("{name}.{method}.dump"), &VGA_DEFAULT, &dump.palette)?;
+    compare_palettes(&format!("{name}.{method}.dump"), &scene.dac(), &dump.palette)?;
     Ok(dump)
 }
 

@@ -2,8 +2,10 @@
 
 use anyhow::Result;
 use harness::checks::{screen_matches_dump, source_matches_host_render};
+use harness::client::{pack_for_upload, transfer_time, Uploaded, BAUD};
 use harness::render::SceneSource;
 use harness::{Qemu, QemuOptions};
+use scenes::{Op, Scene};
 
 use crate::opt::DumpOpt;
 
@@ -12,10 +14,13 @@ pub fn dump(opt: &DumpOpt) -> Result<()> {
     let source = SceneSource::find(&opt.scene)?;
     let method = opt.method.unwrap_or(source.scene().method);
     if let SceneSource::File(file) = &source {
-        file.commands(method)?;
+        pack_for_upload(&file.scene)?;
     }
     let mut qemu = Qemu::boot(QemuOptions::default())?;
     let dump = source_matches_host_render(&mut qemu.console, &source, method)?;
+    if let Some(uploaded) = qemu.console.last_upload() {
+        eprintln!("xtask: {}", upload_cost(uploaded, &source.scene()));
+    }
     eprintln!("xtask: the kernel's dump equals the host render of {} with {method}", source.name());
     let screen = qemu.screendump()?;
     let dump_path = opt.out.join(format!("{}.png", source.name()));
@@ -29,6 +34,23 @@ pub fn dump(opt: &DumpOpt) -> Result<()> {
     screen_matches_dump(source.name(), &dump, &screen, &video)?;
     eprintln!("xtask: QEMU's screendump agrees pixel for pixel (each pixel a 2x2 block on QEMU's screen)");
     Ok(())
+}
+
+/// What uploading `scene` cost on the line, in bytes and in seconds at
+/// the kernel's 115,200 baud (10 bits a byte), and per 1,000 vertices.
+fn upload_cost(uploaded: &Uploaded, scene: &Scene) -> String {
+    let vertices: usize =
+        scene.ops.iter().map(|op| if let Op::Fill(polygon) = op { polygon.vertex_count() } else { 0 }).sum();
+    let seconds = |bytes: f64| transfer_time(bytes as u64, BAUD).as_secs_f64();
+    let per_1000 = uploaded.sent as f64 * 1000.0 / vertices.max(1) as f64;
+    format!(
+        "uploaded {vertices} vertices as {} packed bytes in {} bytes of command lines ({:.1} s at {BAUD} baud); \
+         per 1,000 vertices {per_1000:.0} bytes, {:.2} s",
+        uploaded.packed,
+        uploaded.sent,
+        seconds(uploaded.sent as f64),
+        seconds(per_1000)
+    )
 }
 
 #[cfg(test)]
@@ -47,10 +69,13 @@ mod tests {
         std::fs::write(&path, "clear 0\npoly color=2 0,0 10,0 0,10\npoly color=2 0,0 10,0 nan,10\n").unwrap();
         let error = dump_of(path.to_str().unwrap());
         assert!(error.ends_with("bad.scene: bad scene file: line 3: bad vertex `nan` (expected x,y)"), "{error}");
-        let long: Vec<String> = (0..600).map(|i| format!("{}.25,{}.75", i % 300, i % 190)).collect();
+        // 130,000 vertices unpack to 1,040,000 bytes: with their packed
+        // bytes, past the kernel's budget of 1 MiB.
+        let long: Vec<String> = (0..130_000).map(|i| format!("{}.25,{}.75", i % 300, i % 190)).collect();
         std::fs::write(&path, format!("poly color=2 0,0 10,0 0,10\npoly color=9 {}\n", long.join(" "))).unwrap();
         let error = dump_of(path.to_str().unwrap());
-        assert!(error.contains("bad.scene:2: this polygon makes a POLY command of"), "{error}");
+        assert!(error.starts_with("bad is too large for the kernel: "), "{error}");
+        assert!(error.contains("where the kernel's budget for an uploaded scene is 1048576 bytes"), "{error}");
     }
 
     #[test]

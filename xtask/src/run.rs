@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Result};
 use boot_image::build_image;
 use harness::checks::{screen_matches_dump, show_matches_host_render, source_matches_host_render};
+use harness::client::pack_for_upload;
 use harness::render::{entry_names, SceneFile, SceneSource};
 use harness::workspace::target_dir;
 use harness::{Clock, Display, Medium, Qemu, QemuOptions};
@@ -49,8 +50,8 @@ impl OnScreen {
 pub fn run(opt: &RunOpt) -> Result<()> {
     // Everything that can be refused is refused before QEMU starts.
     let shown = OnScreen::find(opt.scene.as_deref())?;
-    if let (OnScreen::File(file), method) = (&shown, opt.method) {
-        file.commands(method.unwrap_or(file.scene.method))?;
+    if let OnScreen::File(file) = &shown {
+        pack_for_upload(&file.scene)?;
     }
     let medium = if opt.usb { Medium::UsbStick } else { Medium::Disk };
     if !opt.vga.proven_under(opt.firmware) {
@@ -78,8 +79,8 @@ pub fn run(opt: &RunOpt) -> Result<()> {
 /// QEMU in a window until it closes. With nothing asked for, the kernel
 /// plays its demo with nobody talking to it (pages change on a timer, or
 /// on a key press); an entry or a method is asked for with `DEMO`, which
-/// plays the demo from that entry and stays on it; a scene file is drawn
-/// with `CLEAR` and `POLY` and stays on the screen.
+/// plays the demo from that entry and stays on it; a scene file is
+/// uploaded, drawn and stays on the screen.
 fn in_a_window(shown: &OnScreen, method: Option<MethodId>, options: QemuOptions) -> Result<()> {
     let mut qemu = match (shown, method) {
         (OnScreen::Show(None), None) => Qemu::spawn(&build_image()?, options)?,
@@ -90,7 +91,7 @@ fn in_a_window(shown: &OnScreen, method: Option<MethodId>, options: QemuOptions)
         }
         (OnScreen::File(file), method) => {
             let mut qemu = Qemu::boot(options)?;
-            qemu.console.draw_file(file, method.unwrap_or(file.scene.method))?;
+            qemu.console.draw_scene(&file.scene, method.unwrap_or(file.scene.method))?;
             qemu
         }
     };

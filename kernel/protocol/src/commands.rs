@@ -92,6 +92,20 @@ pub enum Command<'a> {
     /// `POLY METHOD <poly line>`: fills one polygon written as a scene-file
     /// `poly` line without the keyword, e.g. `POLY exact color=4 0,0 9,0 0,9`.
     Poly { method: MethodId, spec: &'a str },
+    /// `UPLOAD NAME BYTES MEMORY CRC32`: starts the upload of a packed
+    /// scene (`scenes::packed`) of BYTES bytes, whose CRC-32 is CRC32 (8
+    /// lowercase hex digits) and which unpacks to at most MEMORY bytes,
+    /// to be drawn by `DRAW NAME` and timed by `BENCH NAME`; drops the
+    /// scene uploaded before. Answers `OK` with an
+    /// [`UploadReply`](crate::UploadReply), or `ERR` if BYTES and MEMORY
+    /// together pass [`UPLOAD_BUDGET`](crate::UPLOAD_BUDGET).
+    Upload { name: &'a str, bytes: usize, memory: usize, crc: u32 },
+    /// `CHUNK OFFSET DATA`: packed bytes of the upload under way, DATA in
+    /// base64 (at most [`CHUNK_BYTES`](crate::CHUNK_BYTES) bytes), at byte
+    /// OFFSET, which must not pass the bytes received so far: a chunk sent
+    /// again writes the same bytes again. Answers `OK` with a
+    /// [`ChunkReply`](crate::ChunkReply).
+    Chunk { offset: usize, data: &'a str },
     /// `DUMP`: answers a `DUMP` frame of [`DUMP_LEN`](crate::DUMP_LEN) bytes.
     Dump,
     /// `VGACHECK`: reads every mode-13h register and the DAC back; answers
@@ -230,6 +244,21 @@ impl<'a> Command<'a> {
                 }
                 return Ok(Command::Poly { method: parse_method(method)?, spec });
             }
+            "UPLOAD" => {
+                let name = words.next().ok_or(CommandError::MissingArgument("name"))?;
+                let bytes = parse_usize(words.next().ok_or(CommandError::MissingArgument("bytes"))?)?;
+                let memory = parse_usize(words.next().ok_or(CommandError::MissingArgument("memory"))?)?;
+                let crc = words.next().ok_or(CommandError::MissingArgument("CRC-32"))?;
+                let crc = Some(crc)
+                    .filter(|crc| crc.len() == 8 && crc.bytes().all(|b| matches!(b, b'0'..=b'9' | b'a'..=b'f')))
+                    .and_then(|crc| u32::from_str_radix(crc, 16).ok())
+                    .ok_or(CommandError::BadArgument(crc))?;
+                Command::Upload { name, bytes, memory, crc }
+            }
+            "CHUNK" => Command::Chunk {
+                offset: parse_usize(words.next().ok_or(CommandError::MissingArgument("offset"))?)?,
+                data: words.next().ok_or(CommandError::MissingArgument("data"))?,
+            },
             "DUMP" => Command::Dump,
             "BENCH" => {
                 let scene = words.next().ok_or(CommandError::MissingArgument("scene"))?;
@@ -296,6 +325,15 @@ fn parse_u8(word: &str) -> Result<u8, CommandError<'_>> {
     word.parse().map_err(|_| CommandError::BadArgument(word))
 }
 
+/// A count written in decimal digits alone (no sign), so that a line
+/// reads back as it was written.
+fn parse_usize(word: &str) -> Result<usize, CommandError<'_>> {
+    match word.bytes().all(|b| b.is_ascii_digit()) {
+        true => word.parse().map_err(|_| CommandError::BadArgument(word)),
+        false => Err(CommandError::BadArgument(word)),
+    }
+}
+
 fn parse_method(word: &str) -> Result<MethodId, CommandError<'_>> {
     word.parse().map_err(|_| CommandError::UnknownMethod(word))
 }
@@ -310,6 +348,8 @@ impl Command<'_> {
             Command::Show { .. } => "SHOW",
             Command::Clear(_) => "CLEAR",
             Command::Poly { .. } => "POLY",
+            Command::Upload { .. } => "UPLOAD",
+            Command::Chunk { .. } => "CHUNK",
             Command::Dump => "DUMP",
             Command::VgaCheck => "VGACHECK",
             Command::Demo { .. } => "DEMO",
@@ -334,6 +374,8 @@ impl fmt::Display for Command<'_> {
             Command::Show { entry, frame, method: None } => write!(f, "SHOW {entry} {frame}"),
             Command::Clear(color) => write!(f, "CLEAR {color}"),
             Command::Poly { method, spec } => write!(f, "POLY {method} {spec}"),
+            Command::Upload { name, bytes, memory, crc } => write!(f, "UPLOAD {name} {bytes} {memory} {crc:08x}"),
+            Command::Chunk { offset, data } => write!(f, "CHUNK {offset} {data}"),
             Command::Dump => write!(f, "DUMP"),
             Command::Bench { scene, repeats } => write!(f, "BENCH {scene} {repeats}"),
             Command::VgaCheck => write!(f, "VGACHECK"),
@@ -372,6 +414,9 @@ mod tests {
             Command::Show { entry: "race", frame: 31, method: None },
             Command::Show { entry: "lamothe-rotate", frame: 0, method: Some(MethodId::Exact) },
             Command::Poly { method: MethodId::Exact, spec: "color=4 0,0 9.5,0 0,9" },
+            Command::Upload { name: "map", bytes: 123_456, memory: 800_000, crc: 0x0012_abcd },
+            Command::Chunk { offset: 0, data: "UExTMQ==" },
+            Command::Chunk { offset: 6000, data: "AAEC" },
             Command::Dump,
             Command::Bench { scene: "abrash38-3", repeats: 1 },
             Command::Demo { entry: None, method: None },
@@ -437,6 +482,17 @@ mod tests {
         assert_eq!(Command::parse(b"DEMO race exact 1"), Err(CommandError::ExtraArgument("1")));
         assert_eq!(Command::parse(b"DRAW abrash38-1 abrash"), Err(CommandError::UnknownMethod("abrash")));
         assert_eq!(Command::parse(b"POLY fast color=1 0,0 1,0 0,1"), Err(CommandError::UnknownMethod("fast")));
+        assert_eq!(Command::parse(b"UPLOAD map"), Err(CommandError::MissingArgument("bytes")));
+        assert_eq!(Command::parse(b"UPLOAD map 10 20"), Err(CommandError::MissingArgument("CRC-32")));
+        assert_eq!(Command::parse(b"UPLOAD map +10 20 0000abcd"), Err(CommandError::BadArgument("+10")));
+        for crc in ["0000ABCD", "abcd", "0000abcd0", "xyzxyzxy"] {
+            let line = std::format!("UPLOAD map 10 20 {crc}");
+            assert_eq!(Command::parse(line.as_bytes()), Err(CommandError::BadArgument(crc)), "{line}");
+        }
+        assert_eq!(Command::parse(b"UPLOAD map 10 20 0000abcd x"), Err(CommandError::ExtraArgument("x")));
+        assert_eq!(Command::parse(b"CHUNK 10"), Err(CommandError::MissingArgument("data")));
+        assert_eq!(Command::parse(b"CHUNK -1 AAAA"), Err(CommandError::BadArgument("-1")));
+        assert_eq!(Command::parse(b"CHUNK 0 AAAA BBBB"), Err(CommandError::ExtraArgument("BBBB")));
         assert_eq!(Command::parse(b"PI\xffNG"), Err(CommandError::NotAscii));
         assert_eq!(Command::parse(&[b'A'; MAX_LINE + 1]), Err(CommandError::TooLong));
     }

@@ -26,6 +26,7 @@ mod events;
 mod frames;
 mod replies;
 mod sealed;
+mod upload;
 
 pub use commands::{Command, CommandError, FaultKind, FIRST_INTERRUPT_VECTOR, STORM_VECTOR, STRAY_VECTOR};
 pub use events::{
@@ -34,12 +35,13 @@ pub use events::{
 };
 pub use frames::{FrameHeader, FrameKind};
 pub use replies::{
-    BenchReply, BenchRow, Cleared, ClockReadings, ClockSource, DemoReply, DrawReply, Expected, Firmware,
+    BenchReply, BenchRow, ChunkReply, Cleared, ClockReadings, ClockSource, DemoReply, DrawReply, Expected, Firmware,
     FramebufferCheck, HeapState, InterruptCounts, LineErrors, LineLosses, Listing, Machine, Malformed, MemoryType,
     Mismatch, PageMapping, PciAddress, PciId, Pong, Presentation, Raised, Ready, RegisterGroup, ShowReply, StrayRaised,
-    TscRate, VgaCheck, Video, Window, BENCH_UNIT_LINE, OWN_METHOD, PONG,
+    TscRate, UploadReply, VgaCheck, Video, Window, BENCH_UNIT_LINE, OWN_METHOD, PONG,
 };
 pub use sealed::{unseal, Damaged, Sealed, SEAL_MARK};
+pub use upload::{Receiving, Upload};
 
 /// Longest command line the kernel accepts, terminator excluded.
 pub const MAX_LINE: usize = 4096;
@@ -49,6 +51,16 @@ pub const MAX_LINE: usize = 4096;
 /// of [`MAX_LINE`] bytes takes 0.36 s at 115200 baud), and long enough
 /// for a person typing at a terminal.
 pub const PARTIAL_LINE_IDLE_SECONDS: u64 = 10;
+/// Most kernel memory an uploaded scene may take: its packed bytes
+/// (`UPLOAD`'s BYTES) and the scene they unpack to (its MEMORY,
+/// `scenes::packed::memory`) together. 1 MiB of the kernel's 4 MiB heap:
+/// a real outline of 100,000 vertices fits (about 300 KB packed, 800 KB
+/// unpacked), and what is left holds the show's stage and what the
+/// methods allocate to fill.
+pub const UPLOAD_BUDGET: usize = 1 << 20;
+/// Most packed bytes one `CHUNK` carries: 4,000 characters of base64,
+/// which with the command, its offset and a seal fit in [`MAX_LINE`].
+pub const CHUNK_BYTES: usize = 3000;
 /// Bytes in a mode-13h framebuffer.
 pub const FRAMEBUFFER_LEN: usize = 320 * 200;
 /// Bytes in a dump: the 320x200 frame read back (from 0xA0000 on the VGA

@@ -43,7 +43,7 @@ impl Builtin {
             Page::LamotheTriangle => lamothe_triangle(),
             Page::WgtTriangle => wgt_triangle(),
         };
-        Scene { name: self.name.to_string(), ops, method: self.method }
+        Scene::new(self.name.to_string(), ops, self.method)
     }
 }
 

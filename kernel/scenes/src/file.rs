@@ -5,12 +5,15 @@
 //! clear 3
 //! poly color=6 10,10 100.5,10 60,80.25
 //! poly color=5 rule=nonzero 0,0 320,0 320,200 0,200 | 50,50 50,150 270,150 270,50
+//! palette 16 63,32,0 0,0,21
 //! ```
 //!
 //! `poly` takes `color=` (0-255, required), `rule=evenodd|nonzero`
 //! (default evenodd) and vertices `x,y` in pixels, decimals allowed; `|`
 //! starts another contour of the same polygon. Coordinates are snapped to
-//! 1/256 pixel, rounding to nearest (halves up).
+//! 1/256 pixel, rounding to nearest (halves up). `palette I r,g,b ...`
+//! sets DAC entries I, I+1, ... (6-bit levels, 0-63) over the VGA default
+//! palette, for the whole scene wherever the line stands.
 
 use alloc::string::String;
 use alloc::vec::Vec;
@@ -18,7 +21,8 @@ use core::fmt::{self, Write};
 
 use raster::{FillRule, MethodId, Point, Polygon, SUBPIXEL_BITS, SUBPIXEL_ONE};
 
-use crate::scene::{Op, Scene};
+use crate::palette::{ENTRIES, MAX_LEVEL};
+use crate::scene::{Op, PaletteEntry, Scene};
 
 /// What is wrong with one line.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -32,6 +36,12 @@ pub enum LineError {
     UnknownOption(String),
     EmptyContour,
     Extra(String),
+    BadPaletteIndex(String),
+    BadLevels(String),
+    /// `palette` with no index or no colour after it.
+    MissingLevels,
+    /// A `palette` line's colours run past the last entry.
+    PaletteTooLong,
     /// A control character other than a tab between the words, which the
     /// protocol's command line would not carry.
     ControlCharacter(char),
@@ -40,7 +50,9 @@ pub enum LineError {
 impl fmt::Display for LineError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            LineError::UnknownKeyword(w) => write!(f, "unknown keyword `{w}` (expected `clear` or `poly`)"),
+            LineError::UnknownKeyword(w) => {
+                write!(f, "unknown keyword `{w}` (expected `clear`, `poly` or `palette`)")
+            }
             LineError::MissingColor => write!(f, "`poly` needs `color=N`"),
             LineError::BadColor(w) => write!(f, "bad colour `{w}` (expected 0-255)"),
             LineError::BadRule(w) => write!(f, "bad rule `{w}` (expected evenodd or nonzero)"),
@@ -51,6 +63,10 @@ impl fmt::Display for LineError {
             LineError::UnknownOption(w) => write!(f, "unknown option `{w}`"),
             LineError::EmptyContour => write!(f, "empty contour around `|`"),
             LineError::Extra(w) => write!(f, "unexpected `{w}`"),
+            LineError::BadPaletteIndex(w) => write!(f, "bad palette index `{w}` (expected 0-255)"),
+            LineError::BadLevels(w) => write!(f, "bad palette colour `{w}` (expected r,g,b, each 0-63)"),
+            LineError::MissingLevels => write!(f, "`palette` needs an index and at least one r,g,b"),
+            LineError::PaletteTooLong => write!(f, "palette colours run past entry 255"),
             LineError::ControlCharacter(c) => {
                 write!(f, "control character U+{:04X} (words are separated by spaces and tabs)", u32::from(*c))
             }
@@ -63,14 +79,16 @@ type OfWord = fn(String) -> LineError;
 
 /// The texts [`LineError`]'s `Display` writes around a word: what comes
 /// before it, what after, and the error of that word.
-const AROUND_A_WORD: [(&str, &str, OfWord); 7] = [
-    ("unknown keyword `", "` (expected `clear` or `poly`)", LineError::UnknownKeyword),
+const AROUND_A_WORD: [(&str, &str, OfWord); 9] = [
+    ("unknown keyword `", "` (expected `clear`, `poly` or `palette`)", LineError::UnknownKeyword),
     ("bad colour `", "` (expected 0-255)", LineError::BadColor),
     ("bad rule `", "` (expected evenodd or nonzero)", LineError::BadRule),
     ("bad vertex `", "` (expected x,y)", LineError::BadVertex),
     ("coordinate `", "` out of range (|v| < 8388608 pixels)", LineError::CoordinateOutOfRange),
     ("unknown option `", "`", LineError::UnknownOption),
     ("unexpected `", "`", LineError::Extra),
+    ("bad palette index `", "` (expected 0-255)", LineError::BadPaletteIndex),
+    ("bad palette colour `", "` (expected r,g,b, each 0-63)", LineError::BadLevels),
 ];
 
 impl LineError {
@@ -80,6 +98,8 @@ impl LineError {
         let error = match text {
             "`poly` needs `color=N`" => LineError::MissingColor,
             "empty contour around `|`" => LineError::EmptyContour,
+            "`palette` needs an index and at least one r,g,b" => LineError::MissingLevels,
+            "palette colours run past entry 255" => LineError::PaletteTooLong,
             _ => match text.strip_prefix("control character U+") {
                 Some(rest) => {
                     let code = rest.strip_suffix(" (words are separated by spaces and tabs)")?;
@@ -112,57 +132,64 @@ impl fmt::Display for SceneFileError {
 
 /// Parses a whole scene file.
 pub fn parse(name: &str, text: &str) -> Result<Scene, SceneFileError> {
-    let ops = parse_lines(text)?.into_iter().map(|line| line.op).collect();
-    Ok(Scene { name: String::from(name), ops, method: MethodId::Exact })
-}
-
-/// One operation of a scene file and where it stands.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Line<'a> {
-    /// 1-based line number.
-    pub number: usize,
-    pub op: Op,
-    /// The line without its comment and keyword: for a polygon, what the
-    /// protocol's `POLY` command carries after the method.
-    pub spec: &'a str,
-}
-
-/// Parses a whole scene file into its operations, each with its line; the
-/// first bad line is the error.
-pub fn parse_lines(text: &str) -> Result<Vec<Line<'_>>, SceneFileError> {
-    let mut lines = Vec::new();
-    for (i, text) in text.lines().enumerate() {
-        let number = i + 1;
-        if let Some(op) = parse_line(text).map_err(|error| SceneFileError { line: number, error })? {
-            lines.push(Line { number, op, spec: spec_of(text) });
+    let mut scene = Scene::new(String::from(name), Vec::new(), MethodId::Exact);
+    for (i, line) in text.lines().enumerate() {
+        match parse_line(line).map_err(|error| SceneFileError { line: i + 1, error })? {
+            Some(Statement::Op(op)) => scene.ops.push(op),
+            Some(Statement::Palette(entries)) => scene.palette.extend(entries),
+            None => {}
         }
     }
-    Ok(lines)
+    Ok(scene)
 }
 
-/// `line` without its comment and its first word, trimmed.
-fn spec_of(line: &str) -> &str {
-    let line = line.split('#').next().unwrap_or("").trim_start();
-    line.split_once(|c: char| c.is_ascii_whitespace()).map_or("", |(_, rest)| rest.trim())
+/// What one line of a scene file says.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Statement {
+    /// A drawing step: `clear` or `poly`.
+    Op(Op),
+    /// DAC entries the scene sets: `palette`.
+    Palette(Vec<PaletteEntry>),
 }
 
 /// Parses one line: `Ok(None)` for blank lines and comments.
-pub fn parse_line(line: &str) -> Result<Option<Op>, LineError> {
+pub fn parse_line(line: &str) -> Result<Option<Statement>, LineError> {
     let line = words_of(line.split('#').next().unwrap_or(""))?;
     let mut words = line.split_ascii_whitespace();
     let Some(keyword) = words.next() else { return Ok(None) };
-    match keyword {
+    let statement = match keyword {
         "clear" => {
             let color = words.next().ok_or(LineError::MissingColor)?;
             let color = color.parse::<u8>().map_err(|_| LineError::BadColor(String::from(color)))?;
             match words.next() {
-                Some(extra) => Err(LineError::Extra(String::from(extra))),
-                None => Ok(Some(Op::Clear(color))),
+                Some(extra) => return Err(LineError::Extra(String::from(extra))),
+                None => Statement::Op(Op::Clear(color)),
             }
         }
-        "poly" => parse_poly_words(words).map(|p| Some(Op::Fill(p))),
-        other => Err(LineError::UnknownKeyword(String::from(other))),
+        "poly" => Statement::Op(Op::Fill(parse_poly_words(words)?)),
+        "palette" => Statement::Palette(parse_palette_words(words)?),
+        other => return Err(LineError::UnknownKeyword(String::from(other))),
+    };
+    Ok(Some(statement))
+}
+
+/// Parses a `palette` line without its keyword: `I r,g,b [r,g,b ...]`.
+fn parse_palette_words<'a>(mut words: impl Iterator<Item = &'a str>) -> Result<Vec<PaletteEntry>, LineError> {
+    let first = words.next().ok_or(LineError::MissingLevels)?;
+    let first = first.parse::<u8>().map_err(|_| LineError::BadPaletteIndex(String::from(first)))?;
+    let mut entries = Vec::new();
+    for (index, word) in (usize::from(first)..).zip(words) {
+        let bad = || LineError::BadLevels(String::from(word));
+        let mut levels = word.split(',').map(|level| level.parse::<u8>().ok().filter(|&level| level <= MAX_LEVEL));
+        let rgb = [levels.next(), levels.next(), levels.next()].map(Option::flatten);
+        let ([Some(r), Some(g), Some(b)], None) = (rgb, levels.next()) else { return Err(bad()) };
+        let index = u8::try_from(index).map_err(|_| LineError::PaletteTooLong)?;
+        entries.push(PaletteEntry { index, rgb: [r, g, b] });
     }
+    if entries.is_empty() {
+        return Err(LineError::MissingLevels);
+    }
+    Ok(entries)
 }
 
 /// Parses a `poly` line without its keyword (the protocol's `POLY`
@@ -242,10 +269,38 @@ pub fn poly_line(polygon: &Polygon) -> String {
     line
 }
 
-/// The operations of `scene` as a scene file, one line each, that
-/// [`parse`] reads back to the very same operations.
+/// Colours on one `palette` line that [`write`] writes.
+const LEVELS_PER_LINE: usize = 8;
+
+/// The palette of `scene` as `palette` lines: runs of consecutive
+/// indices, at most [`LEVELS_PER_LINE`] colours a line, in the scene's
+/// order (so a later entry for an index still wins).
+fn palette_lines(entries: &[PaletteEntry], text: &mut String) {
+    let mut rest = entries;
+    while let Some(first) = rest.first() {
+        let run = rest
+            .iter()
+            .zip(usize::from(first.index)..ENTRIES)
+            .take(LEVELS_PER_LINE)
+            .take_while(|(entry, index)| usize::from(entry.index) == *index)
+            .count();
+        // Writing to a String cannot fail.
+        let _ = write!(text, "palette {}", first.index);
+        for entry in &rest[..run] {
+            let [r, g, b] = entry.rgb;
+            let _ = write!(text, " {r},{g},{b}");
+        }
+        text.push('\n');
+        rest = &rest[run..];
+    }
+}
+
+/// `scene` as a scene file, its palette first, then one line per
+/// operation, that [`parse`] reads back to the very same palette and
+/// operations.
 pub fn write(scene: &Scene) -> String {
     let mut text = String::new();
+    palette_lines(&scene.palette, &mut text);
     for op in &scene.ops {
         match op {
             Op::Clear(color) => {
@@ -295,6 +350,7 @@ fn parse_coordinate(text: &str) -> Result<i32, LineError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::palette::VGA_DEFAULT;
 
     #[test]
     fn every_line_error_reads_back_from_its_text() {
@@ -310,6 +366,10 @@ mod tests {
             LineError::EmptyContour,
             LineError::Extra(word()),
             LineError::ControlCharacter('\u{1b}'),
+            LineError::BadPaletteIndex(word()),
+            LineError::BadLevels(word()),
+            LineError::MissingLevels,
+            LineError::PaletteTooLong,
         ];
         for error in errors {
             let text = alloc::format!("{error}");
@@ -333,15 +393,36 @@ mod tests {
     }
 
     #[test]
-    fn lines_keep_their_number_and_the_text_a_poly_command_carries() {
-        let text = "# scene\nclear 3\n\n  poly\tcolor=6 0,0 10.5,0 5,-2.25 | 1,1 2,1 2,2 # hole\n";
-        let lines = parse_lines(text).unwrap();
-        assert_eq!(
-            lines.iter().map(|line| (line.number, line.spec)).collect::<Vec<_>>(),
-            [(2, "3"), (4, "color=6 0,0 10.5,0 5,-2.25 | 1,1 2,1 2,2")]
-        );
-        let Op::Fill(polygon) = &lines[1].op else { panic!("line 4 is a polygon") };
-        assert_eq!(parse_poly(lines[1].spec).as_ref(), Ok(polygon));
+    fn palette_lines_set_entries_from_their_index_for_the_whole_scene() {
+        let text = "clear 16\npalette 16 63,32,0 0,0,21 # orange, navy\npoly color=17 0,0 9,0 0,9\npalette 16 1,2,3\n";
+        let scene = parse("t", text).unwrap();
+        let entry = |index, rgb| PaletteEntry { index, rgb };
+        assert_eq!(scene.palette, [entry(16, [63, 32, 0]), entry(17, [0, 0, 21]), entry(16, [1, 2, 3])]);
+        let dac = scene.dac();
+        assert_eq!((dac[15], dac[16], dac[17], dac[18]), ([63, 63, 63], [1, 2, 3], [0, 0, 21], VGA_DEFAULT[18]));
+        assert_eq!(parse_line("palette 255 0,0,0").unwrap(), Some(Statement::Palette(alloc::vec![entry(255, [0; 3])])));
+        assert_eq!(parse_line("palette 255 0,0,0 1,1,1"), Err(LineError::PaletteTooLong));
+        assert_eq!(parse_line("palette 256 0,0,0"), Err(LineError::BadPaletteIndex(String::from("256"))));
+        assert_eq!(parse_line("palette 3"), Err(LineError::MissingLevels));
+        assert_eq!(parse_line("palette"), Err(LineError::MissingLevels));
+        for bad in ["64,0,0", "1,2", "1,2,3,4", "a,b,c", "1,,3", "-1,0,0"] {
+            let line = alloc::format!("palette 3 {bad}");
+            assert_eq!(parse_line(&line), Err(LineError::BadLevels(String::from(bad))), "{line}");
+        }
+    }
+
+    #[test]
+    fn a_palette_is_written_in_runs_that_read_back_in_order() {
+        let entry = |index: u8, rgb| PaletteEntry { index, rgb };
+        let mut scene = Scene::new(String::from("t"), alloc::vec![Op::Clear(3)], MethodId::Exact);
+        scene.palette = (250..=255).map(|i| entry(i, [i - 250; 3])).collect();
+        scene.palette.extend((0..10).map(|i| entry(i, [i, 63 - i, 7])));
+        scene.palette.push(entry(3, [9, 9, 9]));
+        let text = write(&scene);
+        assert_eq!(text.lines().filter(|line| line.starts_with("palette")).count(), 4, "{text}");
+        assert!(text.starts_with("palette 250 0,0,0 1,1,1 2,2,2 3,3,3 4,4,4 5,5,5\npalette 0 0,63,7 "), "{text}");
+        let again = parse("t", &text).unwrap();
+        assert_eq!((again.palette, again.ops), (scene.palette, scene.ops));
     }
 
     #[test]

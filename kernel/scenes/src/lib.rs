@@ -15,8 +15,9 @@ extern crate alloc;
 
 pub mod builtin;
 pub mod file;
+pub mod packed;
 pub mod palette;
 pub mod scene;
 pub mod show;
 
-pub use scene::{DrawReport, Op, Scene};
+pub use scene::{DrawReport, Op, PaletteEntry, Scene};

@@ -8,8 +8,14 @@
 /// Number of palette entries.
 pub const ENTRIES: usize = 256;
 
-/// The default palette, `ENTRIES` rows of `[red, green, blue]` 6-bit levels.
-pub const VGA_DEFAULT: [[u8; 3]; ENTRIES] = [
+/// The highest 6-bit DAC level.
+pub const MAX_LEVEL: u8 = 63;
+
+/// A whole DAC: `ENTRIES` rows of `[red, green, blue]` 6-bit levels.
+pub type Palette = [[u8; 3]; ENTRIES];
+
+/// The default palette.
+pub const VGA_DEFAULT: Palette = [
     [0, 0, 0],
     [0, 0, 42],
     [0, 42, 0],
@@ -276,7 +282,7 @@ pub const fn c6_to_8(level: u8) -> u8 {
 }
 
 /// The palette as 768 bytes of 8-bit RGB, for PNG `PLTE` chunks.
-pub fn to_rgb8(palette: &[[u8; 3]; ENTRIES]) -> [u8; ENTRIES * 3] {
+pub fn to_rgb8(palette: &Palette) -> [u8; ENTRIES * 3] {
     let mut out = [0u8; ENTRIES * 3];
     for (i, rgb) in palette.iter().enumerate() {
         for (c, level) in rgb.iter().enumerate() {

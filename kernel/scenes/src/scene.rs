@@ -6,6 +6,8 @@ use alloc::vec::Vec;
 use raster::sink;
 use raster::{MethodId, Polygon, Refusal, SpanSink};
 
+use crate::palette::{Palette, VGA_DEFAULT};
+
 /// One drawing step.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Op {
@@ -13,6 +15,14 @@ pub enum Op {
     Clear(u8),
     /// One polygon, filled by whichever method draws the scene.
     Fill(Polygon),
+}
+
+/// One entry of the DAC a scene sets: its index and its 6-bit red, green
+/// and blue levels (0-63, as the VGA's DAC takes them).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PaletteEntry {
+    pub index: u8,
+    pub rgb: [u8; 3],
 }
 
 /// A named list of operations. Nothing is cleared implicitly: like the
@@ -25,6 +35,10 @@ pub struct Scene {
     /// (Listing 38.3 uses Listing 38.1, Listing 40.4 the edge-table filler),
     /// `exact` for scene files.
     pub method: MethodId,
+    /// The DAC entries the scene sets over the VGA default palette, in
+    /// order (a later one for the same index wins); empty for a scene in
+    /// the default palette, which every built-in page is.
+    pub palette: Vec<PaletteEntry>,
 }
 
 /// What drawing a scene did.
@@ -48,6 +62,21 @@ impl DrawReport {
 }
 
 impl Scene {
+    /// A scene in the VGA default palette.
+    pub fn new(name: String, ops: Vec<Op>, method: MethodId) -> Self {
+        Self { name, ops, method, palette: Vec::new() }
+    }
+
+    /// The 256 entries the scene is shown in: the VGA default palette with
+    /// the scene's own entries set over it.
+    pub fn dac(&self) -> Palette {
+        let mut dac = VGA_DEFAULT;
+        for entry in &self.palette {
+            dac[usize::from(entry.index)] = entry.rgb;
+        }
+        dac
+    }
+
     /// Draws every operation with `method`. A refused polygon is counted and
     /// skipped; the rest of the scene is still drawn. The sink's type is
     /// known here, so `method` fills with its store inlined

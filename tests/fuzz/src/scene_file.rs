@@ -2,34 +2,26 @@
 //! Parsing never panics, and what it accepts:
 //! - renders with every method, inside the screen, and `exact` draws every
 //!   polygon (it refuses none);
-//! - written back (`file::write`) parses to the very same operations;
-//! - reaches the kernel as the host sends it (`dump` and `run`): each
-//!   polygon's line, in a `POLY` command that fits a command line, is
-//!   accepted by the protocol's parser, and the kernel's `parse_poly` reads
-//!   it as the same polygon.
+//! - written back (`file::write`) parses to the very same palette and
+//!   operations;
+//! - reaches the kernel as the host sends it (`dump` and `run`): packed
+//!   (`scenes::packed`), it unpacks to the very same scene within the
+//!   memory it declares, and not within a byte less.
 
-use protocol::{Command, MAX_LINE};
 use raster::{CoverageSink, MethodId, SCREEN};
-use scenes::file;
-use scenes::Op;
+use scenes::{file, packed};
 
 pub fn check(data: &[u8]) {
     let Ok(text) = std::str::from_utf8(data) else { return };
-    let parsed = file::parse("fuzz", text);
-    let lines = file::parse_lines(text);
-    let scene = match (parsed, lines) {
-        (Ok(scene), Ok(lines)) => {
-            let ops: Vec<&Op> = lines.iter().map(|line| &line.op).collect();
-            assert_eq!(ops, scene.ops.iter().collect::<Vec<_>>(), "parse and parse_lines disagree");
-            reaches_the_kernel(&lines);
-            scene
-        }
-        (Err(error), Err(same)) => {
-            assert_eq!(error, same, "parse and parse_lines reject differently");
-            return;
-        }
-        (parsed, lines) => panic!("parse says {parsed:?}, parse_lines {lines:?}"),
-    };
+    let Ok(scene) = file::parse("fuzz", text) else { return };
+    let bytes = packed::pack(&scene);
+    let memory = packed::memory(&scene);
+    let unpacked = packed::unpack(scene.name.clone(), &bytes, memory);
+    assert_eq!(unpacked.as_ref(), Ok(&scene), "packed as {bytes:?}");
+    if let Some(less) = memory.checked_sub(1) {
+        let refused = packed::unpack(scene.name.clone(), &bytes, less);
+        assert_eq!(refused, Err(packed::UnpackError::OverBudget { budget: less }));
+    }
     for id in MethodId::ALL {
         let mut sink = CoverageSink::new(SCREEN);
         let report = scene.draw(id, &mut sink);
@@ -40,22 +32,7 @@ pub fn check(data: &[u8]) {
     }
     let written = file::write(&scene);
     let again = file::parse("fuzz", &written).unwrap_or_else(|error| panic!("written back as {written:?}: {error}"));
-    assert_eq!(again.ops, scene.ops, "written back as {written:?}");
-}
-
-/// Each polygon line as the harness sends it, `POLY exact <spec>`, when it
-/// fits a command line.
-fn reaches_the_kernel(lines: &[file::Line<'_>]) {
-    for line in lines {
-        let Op::Fill(polygon) = &line.op else { continue };
-        let command = Command::Poly { method: MethodId::Exact, spec: line.spec };
-        let sent = command.to_string();
-        if sent.len() > MAX_LINE {
-            continue;
-        }
-        assert_eq!(Command::parse(sent.as_bytes()), Ok(command), "line {}", line.number);
-        assert_eq!(file::parse_poly(line.spec).as_ref(), Ok(polygon), "line {}", line.number);
-    }
+    assert_eq!((again.palette, again.ops), (scene.palette, scene.ops), "written back as {written:?}");
 }
 
 /// The built-in scenes written as scene files, and the scene of
@@ -74,7 +51,7 @@ pub fn seeds() -> Vec<(String, Vec<u8>)> {
 
 /// The words of the format.
 pub fn dictionary() -> Vec<String> {
-    ["clear", "poly", "color=", "rule=", "evenodd", "nonzero", "|", "#", ",", ".", "-", "\n", " "]
+    ["clear", "poly", "palette", "color=", "rule=", "evenodd", "nonzero", "|", "#", ",", ".", "-", "\n", " "]
         .map(String::from)
         .into()
 }

@@ -4,21 +4,68 @@ use std::io::Write;
 use std::time::Duration;
 
 use anyhow::{bail, ensure, Context, Result};
+use base64::Engine;
 use protocol::{
-    BenchRow, Cleared, ClockSource, Command, DrawReply, LineLosses, Listing, LogEvent, Pong, Ready, ShowReply, TscRate,
+    BenchRow, ChunkReply, Cleared, ClockSource, Command, DrawReply, LineLosses, Listing, LogEvent, Pong, Ready,
+    ShowReply, TscRate, UploadReply, CHUNK_BYTES, UPLOAD_BUDGET,
 };
 use raster::MethodId;
-use scenes::show;
+use scenes::{builtin, packed, show, Scene};
 
 use super::channel::Channel;
 use super::frame_reader::FrameReader;
 use super::reply::{Dump, Reply, REPLY_TIMEOUT};
 use super::sealing::{LineStats, Sealing};
-use crate::picture::render::SceneFile;
 
 /// Longest wait for the READY frame: SeaBIOS, the bootloader's stages and
 /// the mode set under TCG, on a loaded 2-core machine.
 pub const READY_TIMEOUT: Duration = Duration::from_secs(120);
+/// What uploading a scene took.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Uploaded {
+    /// The name the kernel knows the scene by.
+    pub name: String,
+    /// Its packed bytes.
+    pub packed: usize,
+    /// The memory it unpacks to.
+    pub memory: usize,
+    /// The bytes of every command line sent for it, terminators included
+    /// (each try of a retried one counted once).
+    pub sent: usize,
+}
+
+/// `scene` packed (`scenes::packed`) and the memory it unpacks to, if
+/// both fit the kernel's budget for an uploaded scene; else an error
+/// naming its size and the budget. What [`Console::upload`] sends, and
+/// what a command checks before it boots anything.
+pub fn pack_for_upload(scene: &Scene) -> Result<(Vec<u8>, usize)> {
+    let bytes = packed::pack(scene);
+    let memory = packed::memory(scene);
+    ensure!(
+        bytes.len() + memory <= UPLOAD_BUDGET,
+        "{} is too large for the kernel: {} bytes packed and {memory} unpacked, {} in all, where the kernel's \
+         budget for an uploaded scene is {UPLOAD_BUDGET} bytes (docs/protocol.md#uploading-a-scene)",
+        scene.name,
+        bytes.len(),
+        bytes.len() + memory
+    );
+    Ok((bytes, memory))
+}
+
+/// The name a scene is uploaded under: its own, with every character that
+/// is not a letter, a digit, `.`, `_` or `-` made `-` (a command word holds
+/// no space), and `-file` added to a built-in page's name, which the
+/// kernel keeps for the page.
+pub fn upload_name(name: &str) -> String {
+    let word: String =
+        name.chars().map(|c| if c.is_ascii_alphanumeric() || "._-".contains(c) { c } else { '-' }).collect();
+    match word.as_str() {
+        "" => "scene".to_string(),
+        _ if builtin::named(&word).is_some() => format!("{word}-file"),
+        _ => word,
+    }
+}
+
 /// A protocol session over a serial line.
 pub struct Console {
     pub(crate) channel: Channel,
@@ -26,13 +73,15 @@ pub struct Console {
     /// reply matched to its line, steps retried); `None`: plain lines, as
     /// over QEMU's stdio, which loses nothing.
     sealing: Option<Sealing>,
+    /// What the last upload took.
+    last_upload: Option<Uploaded>,
 }
 
 impl Console {
     /// A console that sends plain lines to `input` and reads frames from
     /// `frames`.
     pub fn new(input: impl Write + Send + 'static, frames: FrameReader) -> Self {
-        Self { channel: Channel::new(input, frames), sealing: None }
+        Self { channel: Channel::new(input, frames), sealing: None, last_upload: None }
     }
 
     /// A console that seals every command (`sealing.rs`) and retries a
@@ -143,22 +192,61 @@ impl Console {
         self.draw_command(&Command::Draw { scene, method })
     }
 
-    /// Clears the screen to black and draws a scene file with `method`,
-    /// one command per operation (`CLEAR`, `POLY`), every one of which must
-    /// be answered OK with its reply's text. The commands are all made
-    /// before the first is sent: a polygon too long for a command line
-    /// fails with nothing drawn.
-    pub fn draw_file(&mut self, file: &SceneFile, method: MethodId) -> Result<()> {
-        let commands = file.commands(method)?;
-        self.clear(0)?;
-        for (line, command) in commands {
-            let done = match command {
-                Command::Clear(color) => self.clear(color),
-                _ => self.draw_command(&command).map(|_| ()),
-            };
-            done.with_context(|| format!("{}:{line}", file.path.display()))?;
+    /// Uploads `scene` to the kernel (`UPLOAD`, then its packed bytes in
+    /// `CHUNK`s of [`CHUNK_BYTES`], each retried on its own where the line
+    /// damages it, as a chunk sent twice does no harm), under the name
+    /// [`upload_name`] gives, which it returns with what went over the
+    /// line. A scene over the kernel's budget is refused before anything
+    /// is sent, naming its size and the budget.
+    pub fn upload(&mut self, scene: &Scene) -> Result<Uploaded> {
+        let (bytes, memory) = pack_for_upload(scene)?;
+        let name = upload_name(&scene.name);
+        let start = Command::Upload { name: &name, bytes: bytes.len(), memory, crc: crc32fast::hash(&bytes) };
+        let mut sent = start.to_string().len() + 1;
+        let text = self.retrying(|console| console.ok(&start))?;
+        let reply = UploadReply::parse(&text).with_context(|| format!("`{start}` answered OK \"{text}\""))?;
+        ensure!(
+            (reply.name, reply.bytes, reply.memory) == (name.as_str(), bytes.len(), memory),
+            "`{start}` answered OK \"{text}\", another upload"
+        );
+        let mut last = None;
+        for (i, chunk) in bytes.chunks(CHUNK_BYTES).enumerate() {
+            let offset = i * CHUNK_BYTES;
+            let data = base64::engine::general_purpose::STANDARD.encode(chunk);
+            let command = Command::Chunk { offset, data: &data };
+            sent += command.to_string().len() + 1;
+            let text = self.retrying(|console| console.ok(&command))?;
+            let reply = ChunkReply::parse(&text).with_context(|| format!("`CHUNK {offset}` answered OK \"{text}\""))?;
+            let expected = ChunkReply { received: offset + chunk.len(), total: bytes.len() };
+            ensure!(reply == expected, "`CHUNK {offset}` answered OK \"{text}\", not \"{expected}\"");
+            last = Some(reply);
         }
-        Ok(())
+        ensure!(last.is_none_or(|reply| reply.complete()), "the upload of {name} did not complete");
+        let uploaded = Uploaded { name, packed: bytes.len(), memory, sent };
+        self.last_upload = Some(uploaded.clone());
+        Ok(uploaded)
+    }
+
+    /// What the last upload took, if there was one.
+    pub fn last_upload(&self) -> Option<&Uploaded> {
+        self.last_upload.as_ref()
+    }
+
+    /// Clears the screen to black and draws `scene` with `method`:
+    /// uploaded whole (see [`Console::upload`]), then drawn by name
+    /// (`DRAW`). Returns what went over the line for the upload.
+    pub fn draw_scene(&mut self, scene: &Scene, method: MethodId) -> Result<Uploaded> {
+        let uploaded = self.upload(scene)?;
+        self.clear(0)?;
+        let drawn = self.draw_command(&Command::Draw { scene: &uploaded.name, method: Some(method) })?;
+        let polygons = scene.ops.iter().filter(|op| matches!(op, scenes::Op::Fill(_))).count();
+        ensure!(
+            drawn.polygons == polygons,
+            "the kernel drew {} polygons of {}, not {polygons}",
+            drawn.polygons,
+            scene.name
+        );
+        Ok(uploaded)
     }
 
     /// Has the kernel show frame `frame` of show entry `entry`, with

@@ -12,7 +12,7 @@ mod frame_reader;
 mod reply;
 mod sealing;
 
-pub use console::{Console, READY_TIMEOUT};
+pub use console::{pack_for_upload, upload_name, Console, Uploaded, READY_TIMEOUT};
 pub(crate) use frame_reader::gather_after;
 pub use frame_reader::{forward_bytes, Frame, FrameReader, ReadError, ReadErrorKind};
 pub use reply::{Dump, Reply, REPLY_TIMEOUT};

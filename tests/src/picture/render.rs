@@ -4,13 +4,11 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{anyhow, bail, ensure, Context, Result};
-use protocol::{Command, MAX_LINE};
+use anyhow::{anyhow, bail, Context, Result};
 use raster::{Framebuffer, MethodId, SCREEN};
 use scenes::builtin::{self, Builtin};
-use scenes::palette::VGA_DEFAULT;
 use scenes::show::{self, Entry, Stage, ENTRIES_IN_ORDER};
-use scenes::{file, Op, Scene};
+use scenes::{file, Scene};
 
 use super::Image;
 
@@ -76,15 +74,11 @@ impl SceneSource {
     }
 }
 
-/// A scene file, read and parsed, with each operation's line kept so the
-/// kernel can be sent the same operations and a problem can name its line.
+/// A scene file, read and parsed whole, with where it came from.
 #[derive(Clone)]
 pub struct SceneFile {
     pub path: PathBuf,
     pub scene: Scene,
-    /// Per operation: its line and what a protocol command carries for it
-    /// (the colour of a `clear`, the text after `poly`).
-    lines: Vec<(usize, String)>,
 }
 
 impl SceneFile {
@@ -94,47 +88,19 @@ impl SceneFile {
         let text =
             std::fs::read_to_string(path).with_context(|| format!("failed to read scene file {}", path.display()))?;
         let name = path.file_stem().map_or_else(|| "scene".to_string(), |s| s.to_string_lossy().into_owned());
-        let bad = |error: file::SceneFileError| anyhow!("{}: bad scene file: {error}", path.display());
-        let parsed = file::parse_lines(&text).map_err(bad)?;
-        let lines = parsed.iter().map(|line| (line.number, line.spec.to_string())).collect();
-        let ops = parsed.into_iter().map(|line| line.op).collect();
-        Ok(Self { path: path.to_path_buf(), scene: Scene { name, ops, method: MethodId::Exact }, lines })
-    }
-
-    /// The protocol commands that draw the file with `method`, in order,
-    /// each with its line. Fails, naming the line, if a polygon does not
-    /// fit in one command line ([`MAX_LINE`] bytes): nothing is sent then,
-    /// so nothing is drawn half.
-    pub fn commands(&self, method: MethodId) -> Result<Vec<(usize, Command<'_>)>> {
-        let commands: Vec<(usize, Command<'_>)> = self
-            .scene
-            .ops
-            .iter()
-            .zip(&self.lines)
-            .map(|(op, (line, spec))| match op {
-                Op::Clear(color) => (*line, Command::Clear(*color)),
-                Op::Fill(_) => (*line, Command::Poly { method, spec }),
-            })
-            .collect();
-        for (line, command) in &commands {
-            let len = command.to_string().len();
-            ensure!(
-                len <= MAX_LINE,
-                "{}:{line}: this polygon makes a POLY command of {len} bytes; the kernel takes at most {MAX_LINE} \
-                 (split it into several `poly` lines, or use fewer digits)",
-                self.path.display()
-            );
-        }
-        Ok(commands)
+        let scene =
+            file::parse(&name, &text).map_err(|error| anyhow!("{}: bad scene file: {error}", path.display()))?;
+        Ok(Self { path: path.to_path_buf(), scene })
     }
 }
 
 /// `scene` drawn with `method` on a black 320x200 screen, as an indexed
-/// image with the VGA default palette (the one the kernel loads).
+/// image in the scene's palette (the VGA default with the scene's entries
+/// over it, which the kernel loads to draw it).
 pub fn render(scene: &Scene, method: MethodId) -> Image {
     let mut framebuffer = Framebuffer::new(SCREEN);
     scene.draw(method, &mut framebuffer);
-    Image::from_dac(SCREEN.width as u32, SCREEN.height as u32, framebuffer.pixels().to_vec(), &VGA_DEFAULT)
+    Image::from_dac(SCREEN.width as u32, SCREEN.height as u32, framebuffer.pixels().to_vec(), &scene.dac())
         .expect("a framebuffer has width x height pixels")
 }
 
@@ -205,32 +171,9 @@ mod tests {
     }
 
     #[test]
-    fn a_scene_file_becomes_the_commands_that_draw_it_each_with_its_line() {
-        let text = "clear 2\n# a hole\npoly color=5 0,0 9,0 9,9 0,9 | 2,2 2,7 7,7 # square\n\npoly color=1 rule=nonzero 1,1 3.5,1 1,3\n";
-        let SceneSource::File(file) = from_file("cmds", text).unwrap() else { panic!("not a file") };
-        let lines: Vec<(usize, String)> = file
-            .commands(MethodId::Wgt)
-            .unwrap()
-            .into_iter()
-            .map(|(line, command)| (line, command.to_string()))
-            .collect();
-        assert_eq!(
-            lines,
-            [
-                (1, "CLEAR 2".to_string()),
-                (3, "POLY wgt color=5 0,0 9,0 9,9 0,9 | 2,2 2,7 7,7".to_string()),
-                (5, "POLY wgt color=1 rule=nonzero 1,1 3.5,1 1,3".to_string()),
-            ]
-        );
-    }
-
-    #[test]
-    fn a_polygon_too_long_for_one_command_is_refused_naming_its_line() {
-        let vertices: Vec<String> = (0..700).map(|i| format!("{}.5,{}", i % 320, i % 200)).collect();
-        let text = format!("clear 0\npoly color=1 0,0 1,0 0,1\npoly color=3 {}\n", vertices.join(" "));
-        let SceneSource::File(file) = from_file("long", &text).unwrap() else { panic!("not a file") };
-        let error = format!("{:#}", file.commands(MethodId::Exact).unwrap_err());
-        assert!(error.contains(".scene:3: this polygon makes a POLY command of "), "{error}");
-        assert!(error.contains("the kernel takes at most 4096"), "{error}");
+    fn a_scene_file_renders_in_its_own_palette() {
+        let scene = from_file("palette", "clear 4\npalette 4 1,2,63\n").unwrap().scene();
+        let image = render(&scene, scene.method);
+        assert_eq!(image.color(0), [7, 8, 255]);
     }
 }

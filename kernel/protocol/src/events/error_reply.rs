@@ -4,6 +4,7 @@
 use core::fmt;
 
 use scenes::file::LineError;
+use scenes::packed::UnpackError;
 
 use crate::commands::CommandError;
 use crate::replies::{writes, ClockSource, Expected, Malformed, Prose, VgaCheck};
@@ -34,9 +35,32 @@ pub enum ErrorReply<'a> {
     /// `VGACHECK` found registers that do not read back as written, or
     /// nothing that shows the frame.
     VgaCheck(VgaCheck),
+    /// `UPLOAD` of BYTES packed bytes that unpack to MEMORY bytes, which
+    /// together pass the kernel's budget: nothing is kept.
+    OverBudget { bytes: usize, memory: usize, budget: usize },
+    /// `UPLOAD` under the name of a built-in scene, which `DRAW` would
+    /// find first.
+    BuiltinName(&'a str),
+    /// `CHUNK` with no upload under way.
+    NoUpload,
+    /// `CHUNK` of BYTES bytes at OFFSET past the bytes received so far, or
+    /// past the upload's end.
+    ChunkOutOfPlace { offset: usize, bytes: usize, received: usize, total: usize },
+    /// `CHUNK` whose data is not base64.
+    NotBase64,
+    /// The whole upload arrived with another CRC-32 than `UPLOAD`
+    /// declared: it is dropped.
+    UploadDamaged { declared: u32, actual: u32 },
+    /// The whole upload arrived and checked, but is no packed scene (or
+    /// holds more than it declared): it is dropped.
+    Unpack(UnpackError),
 }
 
 const NO_TIMER: &str = "no such timer counts on this machine: ";
+const NO_UPLOAD: &str = "no upload under way: UPLOAD starts one";
+const NOT_BASE64: &str = "chunk data is not base64";
+const DROPPED: &str = "upload dropped: ";
+const BUILTIN_NAME: &str = "` is a built-in scene's name";
 const NOT_QEMU: &str = " refused: the machine is not identified as QEMU (machine=unknown)";
 
 impl fmt::Display for ErrorReply<'_> {
@@ -50,6 +74,24 @@ impl fmt::Display for ErrorReply<'_> {
             ErrorReply::NotQemu(command) => write!(f, "{command}{NOT_QEMU}"),
             ErrorReply::NoTimer(source) => write!(f, "{NO_TIMER}{}", source.name()),
             ErrorReply::VgaCheck(check) => write!(f, "{check}"),
+            ErrorReply::OverBudget { bytes, memory, budget } => write!(
+                f,
+                "upload refused: {bytes} packed bytes and {memory} unpacked pass the kernel's budget of {budget} \
+                 bytes; nothing was kept"
+            ),
+            ErrorReply::BuiltinName(name) => write!(f, "upload refused: `{name}{BUILTIN_NAME}"),
+            ErrorReply::NoUpload => write!(f, "{NO_UPLOAD}"),
+            ErrorReply::ChunkOutOfPlace { offset, bytes, received, total } => {
+                write!(
+                    f,
+                    "chunk of {bytes} bytes at offset {offset} does not fit: {received} of {total} bytes received"
+                )
+            }
+            ErrorReply::NotBase64 => write!(f, "{NOT_BASE64}"),
+            ErrorReply::UploadDamaged { declared, actual } => {
+                write!(f, "{DROPPED}its CRC-32 is {actual:08x}, not the {declared:08x} declared")
+            }
+            ErrorReply::Unpack(error) => write!(f, "{DROPPED}{error}"),
         }
     }
 }
@@ -58,7 +100,50 @@ impl<'a> ErrorReply<'a> {
     /// Parses the text written by `Display`.
     pub fn parse(text: &'a str) -> Result<Self, Malformed> {
         let mut prose = Prose::new("ERR", text);
-        let reply = if prose.next_is("unknown scene ") {
+        let builtin = text.strip_prefix("upload refused: `").and_then(|rest| rest.strip_suffix(BUILTIN_NAME));
+        let reply = if let Some(name) = builtin {
+            prose.rest();
+            ErrorReply::BuiltinName(name)
+        } else if prose.next_is("upload refused: ") {
+            let bytes = prose.number("bytes")?;
+            prose.expect(" packed bytes and ", "the packed bytes")?;
+            let memory = prose.number("memory")?;
+            prose.expect(" unpacked pass the kernel's budget of ", "the budget")?;
+            let budget = prose.number("budget")?;
+            prose.expect(" bytes; nothing was kept", "nothing was kept")?;
+            ErrorReply::OverBudget { bytes, memory, budget }
+        } else if prose.next_is("chunk of ") {
+            let bytes = prose.number("bytes")?;
+            prose.expect(" bytes at offset ", "the offset")?;
+            let offset = prose.number("offset")?;
+            prose.expect(" does not fit: ", "does not fit")?;
+            let received = prose.number("received")?;
+            prose.expect(" of ", "of")?;
+            let total = prose.number("total")?;
+            prose.expect(" bytes received", "bytes received")?;
+            ErrorReply::ChunkOutOfPlace { offset, bytes, received, total }
+        } else if prose.next_is(DROPPED) {
+            let rest = prose.rest();
+            match rest.strip_prefix("its CRC-32 is ") {
+                Some(crcs) => {
+                    let crc = |digits: &str| u32::from_str_radix(digits, 16).ok().filter(|_| digits.len() == 8);
+                    let (actual, declared) = crcs
+                        .strip_suffix(" declared")
+                        .and_then(|crcs| crcs.split_once(", not the "))
+                        .and_then(|(actual, declared)| Some((crc(actual)?, crc(declared)?)))
+                        .ok_or(prose.malformed(Expected::Shape("two CRC-32s")))?;
+                    ErrorReply::UploadDamaged { declared, actual }
+                }
+                None => ErrorReply::Unpack(
+                    UnpackError::parse(rest)
+                        .ok_or(prose.malformed(Expected::Shape("why the upload does not unpack")))?,
+                ),
+            }
+        } else if prose.next_is(NO_UPLOAD) {
+            ErrorReply::NoUpload
+        } else if prose.next_is(NOT_BASE64) {
+            ErrorReply::NotBase64
+        } else if prose.next_is("unknown scene ") {
             ErrorReply::UnknownScene(prose.quoted("")?)
         } else if prose.next_is("unknown show entry ") {
             ErrorReply::UnknownShowEntry(prose.quoted("")?)
@@ -123,6 +208,16 @@ mod tests {
                 window: None,
                 pat: 0x0007040600070406,
             }),
+            ErrorReply::OverBudget { bytes: 400_000, memory: 900_000, budget: 1 << 20 },
+            ErrorReply::BuiltinName("abrash38-1"),
+            ErrorReply::BuiltinName("a`b"),
+            ErrorReply::NoUpload,
+            ErrorReply::ChunkOutOfPlace { offset: 9000, bytes: 3000, received: 6000, total: 10_000 },
+            ErrorReply::NotBase64,
+            ErrorReply::UploadDamaged { declared: 0x0000_beef, actual: 0xdead_0000 },
+            ErrorReply::Unpack(UnpackError::Truncated),
+            ErrorReply::Unpack(UnpackError::BadOp(7)),
+            ErrorReply::Unpack(UnpackError::OverBudget { budget: 4096 }),
         ];
         for error in errors {
             let text = error.to_string();
@@ -155,6 +250,10 @@ mod tests {
             "unknown command",
             "bad colour `999`",
             "vga: 2 mismatches",
+            "upload refused: 1 packed bytes and 2 unpacked pass the kernel's budget of 3 bytes",
+            "upload dropped: its CRC-32 is beef, not the 0000beef declared",
+            "upload dropped: the dog ate it",
+            "chunk of 1 bytes at offset 2 does not fit: 3 of 4 bytes",
         ] {
             assert!(ErrorReply::parse(garbage).is_err(), "{garbage:?}");
         }

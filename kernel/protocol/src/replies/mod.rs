@@ -13,6 +13,8 @@
 //! | `DRAW`, `POLY`   | `OK`    | [`DrawReply`]       | `draw_reply.rs`   |
 //! | `CLEAR`          | `OK`    | [`Cleared`]         | `draw_reply.rs`   |
 //! | `DEMO`           | `OK`    | [`DemoReply`]       | `demo_reply.rs`   |
+//! | `UPLOAD`         | `OK`    | [`UploadReply`]     | `upload_reply.rs` |
+//! | `CHUNK`          | `OK`    | [`ChunkReply`]      | `upload_reply.rs` |
 //! | `BENCH`          | `BENCH` | [`BenchReply`]      | `bench_reply.rs`  |
 //! | `LIST`           | `LIST`  | [`Listing`]         | `listing.rs`      |
 //! | `VGACHECK`       | `OK`, `ERR` | [`VgaCheck`] | `vga_check.rs`  |
@@ -33,6 +35,7 @@ mod prose;
 mod ready;
 mod show_reply;
 mod tsc_rate;
+mod upload_reply;
 mod vga_check;
 
 pub use bench_reply::{BenchReply, BenchRow, BENCH_UNIT_LINE};
@@ -46,4 +49,5 @@ pub(crate) use prose::{writes, Prose};
 pub use ready::{Firmware, Machine, MemoryType, PciAddress, PciId, Presentation, Ready, Video};
 pub use show_reply::ShowReply;
 pub use tsc_rate::{ClockReadings, ClockSource, TscRate};
+pub use upload_reply::{ChunkReply, UploadReply};
 pub use vga_check::{FramebufferCheck, Mismatch, PageMapping, RegisterGroup, VgaCheck, Window};

@@ -8,7 +8,7 @@ use std::fmt;
 
 use raster::{Point, Polygon, SCREEN, SUBPIXEL_BITS};
 use scenes::builtin::{self, Builtin};
-use scenes::file::{self, LineError};
+use scenes::file::{self, LineError, Statement};
 use scenes::{Op, Scene};
 
 use crate::judge::{exact_coverage, CountCache};
@@ -116,11 +116,19 @@ impl Explorer {
             return Err(InputError::TooLong { bytes: text.len() });
         }
         let mut ops = Vec::new();
+        let mut palette = Vec::new();
         let mut scene_vertices = 0;
         for (i, line) in text.lines().enumerate() {
             let line_number = i + 1;
             let op = file::parse_line(line).map_err(|error| InputError::Line { line: line_number, error })?;
-            let Some(op) = op else { continue };
+            let op = match op {
+                Some(Statement::Op(op)) => op,
+                Some(Statement::Palette(entries)) => {
+                    palette.extend(entries);
+                    continue;
+                }
+                None => continue,
+            };
             if let Op::Fill(polygon) = &op {
                 let vertices = polygon.vertex_count();
                 if vertices > MAX_POLYGON_VERTICES {
@@ -136,7 +144,7 @@ impl Explorer {
             }
             ops.push(op);
         }
-        let scene = Scene { name: "scene file".to_string(), ops, method: raster::MethodId::Exact };
+        let scene = Scene { palette, ..Scene::new("scene file".to_string(), ops, raster::MethodId::Exact) };
         Ok(Self::new(scene, Origin::File))
     }
 
