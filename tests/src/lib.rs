@@ -20,6 +20,7 @@ pub mod browser;
 pub mod cable;
 pub mod checks;
 pub mod client;
+pub mod large_scenes;
 pub mod picture;
 pub mod qemu;
 pub mod secure_boot;

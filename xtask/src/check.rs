@@ -9,6 +9,8 @@ use std::time::Duration;
 
 use anyhow::{bail, Context, Result};
 use harness::cable::open_console;
+use harness::client::pack_for_upload;
+use harness::render::SceneFile;
 use harness::serial_check::{self, write_reports, CheckOptions, Progress, Scope};
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -17,13 +19,20 @@ use crate::opt::CheckOpt;
 pub fn check(opt: &CheckOpt) -> Result<()> {
     let out = absolute(&opt.out).with_context(|| format!("bad output directory {}", opt.out.display()))?;
     let device = opt.serial.display().to_string();
+    let mut scope = if opt.quick { Scope::quick() } else { Scope::full() };
+    // Every file read, and checked against the kernel's budget, before the
+    // line is opened.
+    for path in &opt.scene {
+        let scene = SceneFile::read(path)?.scene;
+        pack_for_upload(&scene)?;
+        scope.files.push(scene);
+    }
     let mut console = open_console(&opt.serial, opt.retries)?;
-    let scope = if opt.quick { Scope::quick() } else { Scope::full() };
     let options = CheckOptions { scope, repeats: opt.repeats, wait: Duration::from_secs(opt.wait) };
     eprintln!(
         "check: {device}: {} pictures, VGACHECK, BENCH of {} scenes; each step retried at most {} times",
         options.scope.pictures(),
-        options.scope.bench_scenes.len(),
+        options.scope.benched().len(),
         opt.retries
     );
     let bar = ProgressBar::new(0);

@@ -5,7 +5,9 @@ use harness::checks::{screen_matches_dump, source_matches_host_render};
 use harness::client::{pack_for_upload, transfer_time, Uploaded, BAUD};
 use harness::render::SceneSource;
 use harness::{Qemu, QemuOptions};
-use scenes::{Op, Scene};
+use protocol::Command;
+use raster::MethodId;
+use scenes::{file, Op, Scene};
 
 use crate::opt::DumpOpt;
 
@@ -37,19 +39,39 @@ pub fn dump(opt: &DumpOpt) -> Result<()> {
 }
 
 /// What uploading `scene` cost on the line, in bytes and in seconds at
-/// the kernel's 115,200 baud (10 bits a byte), and per 1,000 vertices.
+/// the kernel's 115,200 baud (10 bits a byte), and per 1,000 vertices;
+/// beside it, what the same scene costs as text, one `CLEAR` or `POLY`
+/// command line per operation (the way a person can type it, a polygon
+/// that fits in one line).
 fn upload_cost(uploaded: &Uploaded, scene: &Scene) -> String {
     let vertices: usize =
         scene.ops.iter().map(|op| if let Op::Fill(polygon) = op { polygon.vertex_count() } else { 0 }).sum();
-    let seconds = |bytes: f64| transfer_time(bytes as u64, BAUD).as_secs_f64();
-    let per_1000 = uploaded.sent as f64 * 1000.0 / vertices.max(1) as f64;
+    let as_text: usize = scene
+        .ops
+        .iter()
+        .map(|op| match op {
+            Op::Clear(color) => Command::Clear(*color).to_string().len() + 1,
+            Op::Fill(polygon) => {
+                let line = file::poly_line(polygon);
+                let spec = line.strip_prefix("poly ").unwrap_or(&line);
+                Command::Poly { method: MethodId::Exact, spec }.to_string().len() + 1
+            }
+        })
+        .sum();
+    let seconds = |bytes: usize| transfer_time(bytes as u64, BAUD).as_secs_f64();
+    let per_1000 = |bytes: usize| bytes * 1000 / vertices.max(1);
     format!(
-        "uploaded {vertices} vertices as {} packed bytes in {} bytes of command lines ({:.1} s at {BAUD} baud); \
-         per 1,000 vertices {per_1000:.0} bytes, {:.2} s",
+        "uploaded {vertices} vertices as {} packed bytes: {} bytes of command lines, {:.1} s at {BAUD} baud \
+         ({} bytes and {:.2} s per 1,000 vertices); as POLY lines, {as_text} bytes, {:.1} s ({} bytes and {:.2} s \
+         per 1,000 vertices)",
         uploaded.packed,
         uploaded.sent,
-        seconds(uploaded.sent as f64),
-        seconds(per_1000)
+        seconds(uploaded.sent),
+        per_1000(uploaded.sent),
+        seconds(per_1000(uploaded.sent)),
+        seconds(as_text),
+        per_1000(as_text),
+        seconds(per_1000(as_text)),
     )
 }
 

@@ -1,6 +1,7 @@
 //! `cargo xtask kbench`: has the kernel time every method on every demo
-//! scene with `BENCH` and writes the table (`harness::serial_check::bench_table`)
-//! as kernel_bench.md and kernel_bench.json.
+//! scene (or on the user's scene files, each uploaded whole) with `BENCH`
+//! and writes the table (`harness::serial_check::bench_table`) as
+//! kernel_bench.md and kernel_bench.json.
 //!
 //! Under QEMU (the default) the kernel boots under instruction counting:
 //! the numbers are rdtsc ticks of QEMU's virtual clock, one per emulated
@@ -17,9 +18,11 @@ use std::time::Duration;
 
 use anyhow::{Context, Result};
 use harness::cable::open_console;
-use harness::serial_check::bench_table::{BenchTable, TickUnit};
+use harness::client::pack_for_upload;
+use harness::render::SceneFile;
+use harness::serial_check::bench_table::{BenchTable, Benched, TickUnit};
 use harness::{Clock, Console, Qemu, QemuOptions};
-use scenes::builtin;
+use scenes::{builtin, Scene};
 
 use crate::opt::KbenchOpt;
 
@@ -28,9 +31,24 @@ const WAIT_FOR_KERNEL: Duration = Duration::from_secs(120);
 
 pub fn kbench(opt: &KbenchOpt) -> Result<()> {
     let out = absolute(&opt.out).with_context(|| format!("bad output directory {}", opt.out.display()))?;
+    // Every file read, and checked against the kernel's budget, before
+    // anything boots.
+    let files = opt
+        .scene
+        .iter()
+        .map(|path| {
+            let scene = SceneFile::read(path)?.scene;
+            pack_for_upload(&scene)?;
+            Ok(scene)
+        })
+        .collect::<Result<Vec<Scene>>>()?;
+    let scenes = match files.is_empty() {
+        true => builtin::ALL.map(|page| Benched::Page(page.name)).to_vec(),
+        false => files.iter().map(Benched::Uploaded).collect(),
+    };
     let table = match &opt.serial {
-        Some(device) => measure_on_serial(device, opt.retries, opt.repeats)?,
-        None => measure_under_qemu(opt.repeats)?,
+        Some(device) => measure_on_serial(device, opt.retries, opt.repeats, &scenes)?,
+        None => measure_under_qemu(opt.repeats, &scenes)?,
     };
     let markdown = table.markdown(1);
     print!("{markdown}");
@@ -45,27 +63,23 @@ pub fn kbench(opt: &KbenchOpt) -> Result<()> {
     Ok(())
 }
 
-fn scenes() -> Vec<&'static str> {
-    builtin::ALL.map(|page| page.name).to_vec()
-}
-
 fn say(what: &str, _: &Console) {
     eprintln!("xtask: {what}");
 }
 
-fn measure_under_qemu(repeats: u8) -> Result<BenchTable> {
+fn measure_under_qemu(repeats: u8, scenes: &[Benched]) -> Result<BenchTable> {
     let mut qemu = Qemu::boot(QemuOptions { clock: Clock::InstructionCount, ..QemuOptions::default() })?;
-    let table = BenchTable::measure(&mut qemu.console, TickUnit::EmulatedInstructions, &scenes(), repeats, say)?;
+    let table = BenchTable::measure(&mut qemu.console, TickUnit::EmulatedInstructions, scenes, repeats, say)?;
     qemu.quit()?;
     Ok(table)
 }
 
-fn measure_on_serial(device: &Path, retries: u32, repeats: u8) -> Result<BenchTable> {
+fn measure_on_serial(device: &Path, retries: u32, repeats: u8, scenes: &[Benched]) -> Result<BenchTable> {
     let mut console = open_console(device, retries)?;
     let (ready, _) = console.wait_for_kernel(WAIT_FOR_KERNEL, &device.display().to_string())?;
     eprintln!("xtask: the kernel on {}: {ready}", device.display());
     let rate = console.retrying(Console::tsc_rate)?;
-    let table = BenchTable::measure(&mut console, TickUnit::Tsc(rate), &scenes(), repeats, say)?;
+    let table = BenchTable::measure(&mut console, TickUnit::Tsc(rate), scenes, repeats, say)?;
     let retried = console.line_stats().map_or(0, |stats| stats.retries);
     eprintln!("xtask: {retried} BENCH steps retried after the line damaged them");
     Ok(table)

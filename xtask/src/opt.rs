@@ -227,6 +227,10 @@ pub struct KbenchOpt {
     /// With --serial: how many times a step the line damages is retried.
     #[arg(long, default_value_t = DEFAULT_RETRIES)]
     pub retries: u32,
+    /// Time every method on this scene file instead of the demo scenes
+    /// (uploaded whole; may be given several times).
+    #[arg(long, value_name = "FILE")]
+    pub scene: Vec<PathBuf>,
 }
 
 /// `--repeats`: what the kernel's `BENCH` takes, 1 to its most.
@@ -260,6 +264,10 @@ pub struct CheckOpt {
     /// Seconds to wait for the kernel to answer at all (a PC still booting).
     #[arg(long, value_name = "SECONDS", default_value_t = 120)]
     pub wait: u64,
+    /// Also check this scene file (uploaded whole, drawn with every method
+    /// checked, and timed; may be given several times).
+    #[arg(long, value_name = "FILE")]
+    pub scene: Vec<PathBuf>,
 }
 
 #[derive(Args, Debug)]

@@ -101,7 +101,7 @@ pub enum Command<'a> {
     /// together pass [`UPLOAD_BUDGET`](crate::UPLOAD_BUDGET).
     Upload { name: &'a str, bytes: usize, memory: usize, crc: u32 },
     /// `CHUNK OFFSET DATA`: packed bytes of the upload under way, DATA in
-    /// base64 (at most [`CHUNK_BYTES`](crate::CHUNK_BYTES) bytes), at byte
+    /// base64 (the host sends [`CHUNK_BYTES`](crate::CHUNK_BYTES) a chunk), at byte
     /// OFFSET, which must not pass the bytes received so far: a chunk sent
     /// again writes the same bytes again. Answers `OK` with a
     /// [`ChunkReply`](crate::ChunkReply).

@@ -238,7 +238,7 @@ impl Console {
     pub fn draw_scene(&mut self, scene: &Scene, method: MethodId) -> Result<Uploaded> {
         let uploaded = self.upload(scene)?;
         self.clear(0)?;
-        let drawn = self.draw_command(&Command::Draw { scene: &uploaded.name, method: Some(method) })?;
+        let drawn = self.draw_uploaded(&uploaded.name, method)?;
         let polygons = scene.ops.iter().filter(|op| matches!(op, scenes::Op::Fill(_))).count();
         ensure!(
             drawn.polygons == polygons,
@@ -247,6 +247,12 @@ impl Console {
             scene.name
         );
         Ok(uploaded)
+    }
+
+    /// Draws the scene uploaded under `name` with `method` (`DRAW`), over
+    /// what the screen holds; what its answer says was drawn.
+    pub fn draw_uploaded(&mut self, name: &str, method: MethodId) -> Result<DrawReply> {
+        self.draw_command(&Command::Draw { scene: name, method: Some(method) })
     }
 
     /// Has the kernel show frame `frame` of show entry `entry`, with

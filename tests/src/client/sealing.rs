@@ -158,6 +158,15 @@ fn reply_timeout(command: &Command, baud: u32, answer: Duration) -> Duration {
     }
 }
 
+/// `command` as a report names it: its line, but a chunk's data only
+/// counted (a chunk's line is over a thousand characters of base64).
+fn in_brief(command: &Command) -> String {
+    match command {
+        Command::Chunk { offset, data } => format!("CHUNK {offset} <{} characters of base64>", data.len()),
+        _ => command.to_string(),
+    }
+}
+
 /// How long `bytes` take at `baud`, 8N1.
 pub fn transfer_time(bytes: u64, baud: u32) -> Duration {
     Duration::from_secs_f64((bytes * BITS_PER_BYTE) as f64 / f64::from(baud))
@@ -226,7 +235,7 @@ impl Sealing {
                 }
                 (_, Some(_)) => self.stats.stale_replies += 1,
                 (FrameKind::Err, None) => {
-                    let detail = format!("`{command}` answered ERR \"{}\"", frame.text());
+                    let detail = format!("`{}` answered ERR \"{}\"", in_brief(command), frame.text());
                     return Err(self.trouble(TroubleKind::Refused, command, &detail));
                 }
                 (FrameKind::Fatal, None) => bail!("the kernel failed: FATAL \"{}\"", frame.text()),
@@ -243,7 +252,7 @@ impl Sealing {
     /// Counts a trouble with `command` and makes it an error.
     fn trouble(&mut self, kind: TroubleKind, command: &Command, detail: &str) -> anyhow::Error {
         self.stats.troubles[kind as usize] += 1;
-        self.stats.log.push(format!("`{command}`: {}", kind.describe()));
+        self.stats.log.push(format!("`{}`: {}", in_brief(command), kind.describe()));
         Trouble { kind, detail: detail.to_string() }.into()
     }
 
@@ -320,6 +329,13 @@ impl Sealing {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_chunk_is_named_without_its_data() {
+        let chunk = Command::Chunk { offset: 2048, data: "QUJD" };
+        assert_eq!(in_brief(&chunk), "CHUNK 2048 <4 characters of base64>");
+        assert_eq!(in_brief(&Command::Clear(3)), "CLEAR 3");
+    }
 
     #[test]
     fn a_dump_may_take_twice_its_bytes_at_the_baud_rate() {

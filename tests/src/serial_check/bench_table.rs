@@ -10,9 +10,19 @@ use std::fmt::Write as _;
 use anyhow::{ensure, Result};
 use protocol::{TscRate, BENCH_UNIT_LINE};
 use raster::{MethodId, Refusal};
+use scenes::Scene;
 use serde_json::{json, Value};
 
 use crate::client::Console;
+
+/// A scene `BENCH` times: a built-in page, by its name, or a scene of the
+/// user's, uploaded first ([`Console::upload`]) and timed by the name it
+/// was uploaded under.
+#[derive(Clone, Copy, Debug)]
+pub enum Benched<'a> {
+    Page(&'static str),
+    Uploaded(&'a Scene),
+}
 
 /// The pages of the Black Book's Listing 38.3.
 pub const LISTING_38_3: [&str; 3] = ["abrash38-1", "abrash38-2", "abrash38-3"];
@@ -89,7 +99,8 @@ impl TickUnit {
 pub struct BenchTable {
     pub unit: TickUnit,
     pub repeats: u8,
-    pub scenes: Vec<&'static str>,
+    /// The scenes' names: a page's, or the name a scene was uploaded under.
+    pub scenes: Vec<String>,
     pub methods: Vec<&'static str>,
     pub ticks: Vec<Vec<u64>>,
     pub refused: Vec<Vec<(usize, Option<Refusal>)>>,
@@ -97,12 +108,13 @@ pub struct BenchTable {
 
 impl BenchTable {
     /// Has the kernel behind `console` run `BENCH SCENE REPEATS` for each of
-    /// `scenes`, each a step of its own (retried if the console retries),
-    /// calling `progress` with each scene before it is asked.
+    /// `scenes` (an uploaded one uploaded just before), each a step of its
+    /// own (retried if the console retries), calling `progress` with each
+    /// scene before it is asked.
     pub fn measure(
         console: &mut Console,
         unit: TickUnit,
-        scenes: &[&'static str],
+        scenes: &[Benched],
         repeats: u8,
         mut progress: impl FnMut(&str, &Console),
     ) -> Result<Self> {
@@ -110,20 +122,28 @@ impl BenchTable {
         let mut table = BenchTable {
             unit,
             repeats,
-            scenes: scenes.to_vec(),
+            scenes: Vec::with_capacity(scenes.len()),
             methods: methods.clone(),
             ticks: vec![Vec::new(); methods.len()],
             refused: vec![Vec::new(); methods.len()],
         };
-        for &scene in scenes {
+        for benched in scenes {
+            let scene = match benched {
+                Benched::Page(name) => name.to_string(),
+                Benched::Uploaded(scene) => {
+                    progress(&format!("UPLOAD {}", scene.name), console);
+                    console.upload(scene)?.name
+                }
+            };
             progress(&format!("BENCH {scene} {repeats}"), console);
-            let rows = console.retrying(|console| console.bench(scene, repeats))?;
+            let rows = console.retrying(|console| console.bench(&scene, repeats))?;
             let listed: Vec<MethodId> = rows.iter().map(|row| row.method).collect();
             ensure!(listed == MethodId::ALL, "BENCH {scene} listed methods {listed:?}, expected {:?}", MethodId::ALL);
             for ((ticks, refused), row) in table.ticks.iter_mut().zip(&mut table.refused).zip(rows) {
                 ticks.push(row.cycles);
                 refused.push((row.refused, row.refusal));
             }
+            table.scenes.push(scene);
         }
         Ok(table)
     }
@@ -303,7 +323,7 @@ mod tests {
         BenchTable {
             unit,
             repeats: 3,
-            scenes: vec!["a", "b"],
+            scenes: vec!["a".to_string(), "b".to_string()],
             methods: vec!["m1", "m2"],
             ticks: vec![vec![1, 2], vec![3, 4_000_000]],
             refused: vec![vec![(0, None); 2]; 2],
@@ -350,8 +370,8 @@ mod tests {
 
     #[test]
     fn the_float_integer_ratio_sums_the_three_listing_38_3_pages() {
-        let mut scenes = LISTING_38_3.to_vec();
-        scenes.push("other");
+        let mut scenes = LISTING_38_3.map(String::from).to_vec();
+        scenes.push("other".to_string());
         let table = BenchTable {
             unit: TickUnit::EmulatedInstructions,
             repeats: 3,
@@ -379,7 +399,7 @@ mod tests {
         let table = BenchTable {
             unit: TickUnit::EmulatedInstructions,
             repeats: 1,
-            scenes: vec!["a", "b"],
+            scenes: vec!["a".to_string(), "b".to_string()],
             methods: vec!["quick", EXACT, "whole"],
             ticks: vec![vec![10, 10], vec![120, 130], vec![100, 100]],
             refused: vec![

@@ -1,8 +1,9 @@
 //! The harness's checks run on a machine at the other end of a serial
 //! line (`cargo xtask check --serial DEVICE`): the kernel found on the
-//! line, every demo page drawn with every method and the first frame of
-//! every show entry, each `DUMP` compared with the host render; `VGACHECK`;
-//! `BENCH` of every method on every demo scene in the machine's TSC ticks;
+//! line, every demo page drawn with every method, the first frame of every
+//! show entry and the user's own scenes (uploaded whole), each `DUMP`
+//! compared with the host render; `VGACHECK`; `BENCH` of every method on
+//! every demo scene and the user's scenes in the machine's TSC ticks;
 //! the line's losses (`PING`) and what was retried. Every step is retried
 //! as a whole when the line damages it (`crate::client`'s sealing), so a picture is
 //! judged only on a dump that arrived intact. `report` writes the result
@@ -16,14 +17,14 @@ use std::time::{Duration, Instant};
 use anyhow::{ensure, Context, Result};
 use protocol::{Command, LineLosses, TscRate};
 use raster::MethodId;
-use scenes::palette::VGA_DEFAULT;
-use scenes::{builtin, show};
+use scenes::palette::{Palette, VGA_DEFAULT};
+use scenes::{builtin, show, Scene};
 
 use crate::client::{Console, Dump, LineStats, Reply};
 use crate::picture::compare::{compare_images, differing_palette_entries, differing_pixel_count};
 use crate::picture::render::{builtin_scene, render, render_show, show_entry};
 use crate::Image;
-use bench_table::{BenchTable, TickUnit};
+use bench_table::{BenchTable, Benched, TickUnit};
 pub use report::write_reports;
 
 /// What the check covers.
@@ -36,6 +37,9 @@ pub struct Scope {
     pub show_entries: Vec<&'static str>,
     /// Scenes `BENCH` times every method on.
     pub bench_scenes: Vec<&'static str>,
+    /// The user's own scenes (a scene file, an SVG), each uploaded whole,
+    /// drawn with each of `methods` and timed by `BENCH`.
+    pub files: Vec<Scene>,
 }
 
 impl Scope {
@@ -47,6 +51,7 @@ impl Scope {
             methods: MethodId::ALL.to_vec(),
             show_entries: show::ENTRIES_IN_ORDER.iter().map(|entry| entry.name).collect(),
             bench_scenes: pages,
+            files: Vec::new(),
         }
     }
 
@@ -58,12 +63,19 @@ impl Scope {
             methods: vec![MethodId::AbrashFloat, MethodId::Exact],
             show_entries: vec!["lamothe-rotate"],
             bench_scenes: vec!["abrash38-3"],
+            files: Vec::new(),
         }
     }
 
     /// Pictures compared.
     pub fn pictures(&self) -> usize {
-        self.pages.len() * self.methods.len() + self.show_entries.len()
+        (self.pages.len() + self.files.len()) * self.methods.len() + self.show_entries.len()
+    }
+
+    /// Scenes timed by `BENCH`.
+    pub fn benched(&self) -> Vec<Benched<'_>> {
+        let pages = self.bench_scenes.iter().map(|&page| Benched::Page(page));
+        pages.chain(self.files.iter().map(Benched::Uploaded)).collect()
     }
 }
 
@@ -80,8 +92,8 @@ pub struct CheckOptions {
 /// One picture compared.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Picture {
-    /// The page, or the show entry.
-    pub scene: &'static str,
+    /// The page, the show entry, or the user's scene.
+    pub scene: String,
     /// The frame, for a show entry.
     pub frame: Option<u32>,
     pub method: MethodId,
@@ -151,7 +163,7 @@ pub fn run(
 ) -> Result<CheckReport> {
     let started = Instant::now();
     let scope = &options.scope;
-    let total = 4 + scope.pictures() + scope.bench_scenes.len();
+    let total = 4 + scope.pictures() + scope.files.len() * 2 + scope.bench_scenes.len();
     let mut done = 0;
     let mut step = |what: &str, console: &Console| {
         progress(&Progress { done, total, step: what, stats: console.line_stats() });
@@ -174,6 +186,20 @@ pub fn run(
             pictures.push(judge(page, None, method, &expected, &dump, &VGA_DEFAULT));
         }
     }
+    for scene in &scope.files {
+        step(&format!("UPLOAD {}", scene.name), console);
+        let name = console.upload(scene)?.name;
+        for &method in &scope.methods {
+            step(&format!("{} with {method}", scene.name), console);
+            let dump = console.retrying(|console| {
+                console.clear(0)?;
+                console.draw_uploaded(&name, method)?;
+                console.dump()
+            })?;
+            let expected = render(scene, method);
+            pictures.push(judge(&scene.name, None, method, &expected, &dump, &scene.dac()));
+        }
+    }
     for &name in &scope.show_entries {
         let entry = show_entry(name)?;
         let method = entry.method_at(0);
@@ -191,7 +217,7 @@ pub fn run(
         other => anyhow::bail!("`VGACHECK` answered {}", other.describe()),
     };
     let bench =
-        BenchTable::measure(console, TickUnit::Tsc(tsc), &scope.bench_scenes, options.repeats, |what, console| {
+        BenchTable::measure(console, TickUnit::Tsc(tsc), &scope.benched(), options.repeats, |what, console| {
             step(what, console)
         })?;
     step("PING", console);
@@ -216,12 +242,12 @@ pub fn run(
 /// `expected` render and the `palette` it is drawn in; a picture that
 /// differs gets its PNGs written (`compare_images`).
 fn judge(
-    scene: &'static str,
+    scene: &str,
     frame: Option<u32>,
     method: MethodId,
     expected: &Image,
     dump: &Dump,
-    palette: &[[u8; 3]; 256],
+    palette: &Palette,
 ) -> Picture {
     let actual = dump.image();
     let name = match frame {
@@ -229,7 +255,7 @@ fn judge(
         None => format!("check.{scene}.{method}"),
     };
     Picture {
-        scene,
+        scene: scene.to_string(),
         frame,
         method,
         differing_pixels: differing_pixel_count(expected, &actual),

@@ -171,8 +171,8 @@ mod tests {
 
     fn report() -> CheckReport {
         let tsc = TscRate { hz: 1_000_000, source: ClockSource::Pit, readings: ClockReadings::default() };
-        let picture = |scene, frame, differing_pixels| Picture {
-            scene,
+        let picture = |scene: &str, frame, differing_pixels| Picture {
+            scene: scene.to_string(),
             frame,
             method: MethodId::Exact,
             differing_pixels,
@@ -191,7 +191,7 @@ mod tests {
             bench: BenchTable {
                 unit: TickUnit::Tsc(tsc),
                 repeats: 3,
-                scenes: vec!["abrash38-1"],
+                scenes: vec!["abrash38-1".to_string()],
                 methods: vec!["exact"],
                 ticks: vec![vec![500]],
                 refused: vec![vec![(0, None)]],
