@@ -16,6 +16,7 @@ pub mod explore;
 pub mod methods;
 pub mod polygon;
 pub mod scene_file;
+pub mod upload;
 
 /// A fuzz target: its name (the cargo-fuzz binary's), the property it
 /// checks on one input, its seeds (a file name and the bytes) and the
@@ -28,7 +29,7 @@ pub struct Target {
 }
 
 /// Every target, in the order `cargo xtask fuzz` runs them.
-pub static TARGETS: [Target; 5] = [
+pub static TARGETS: [Target; 6] = [
     Target {
         name: "scene_file",
         check: scene_file::check,
@@ -36,6 +37,7 @@ pub static TARGETS: [Target; 5] = [
         dictionary: scene_file::dictionary,
     },
     Target { name: "command", check: command::check, seeds: command::seeds, dictionary: command::dictionary },
+    Target { name: "upload", check: upload::check, seeds: upload::seeds, dictionary: upload::dictionary },
     Target { name: "methods", check: methods::check, seeds: methods::seeds, dictionary: Vec::new },
     Target {
         name: "exact_reference",
