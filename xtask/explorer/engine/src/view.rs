@@ -1,11 +1,11 @@
-//! What a pane shows: a method's picture of the scene in the VGA default
-//! palette, or the difference view of the selected polygon against a judge
+//! What a pane shows: a method's picture of the scene in its palette (the
+//! VGA default, with a scene file's own entries over it), or the difference view of the selected polygon against a judge
 //! (`exact`, or the reference at the method's own sample point), with the
 //! pixels the method adds and the pixels it misses counted for the
 //! selected polygon and over every polygon of the scene.
 
 use raster::{CoverageSink, Framebuffer, MethodId, Polygon, SCREEN, SUBPIXEL_BITS};
-use scenes::palette::{c6_to_8, VGA_DEFAULT};
+use scenes::palette::c6_to_8;
 use scenes::DrawReport;
 
 use crate::judge::{compare, Counts, Judge};
@@ -22,7 +22,8 @@ pub const AGREED: [u8; 3] = [230, 230, 230];
 /// Which picture a pane shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum View {
-    /// The scene as the method draws it, in the VGA default palette.
+    /// The scene as the method draws it, in its palette (the VGA default,
+    /// with a scene file's `palette` entries over it).
     Picture,
     /// The scene darkened, the selected polygon's pixels marked: added
     /// ([`ADDED`]), missed ([`MISSED`]), agreed ([`AGREED`]).
@@ -70,10 +71,11 @@ pub fn render(explorer: &mut Explorer, method: MethodId, view: View, judge: Judg
     let judge = if reference_work > REFERENCE_BUDGET { Judge::Exact } else { judge };
     let mut framebuffer = Framebuffer::new(SCREEN);
     let drawn = explorer.scene().draw(method, &mut framebuffer);
+    let dac = explorer.scene().dac();
     rgba.clear();
     rgba.reserve(RGBA_BYTES);
     for &index in framebuffer.pixels() {
-        let [r, g, b] = VGA_DEFAULT[usize::from(index)].map(c6_to_8);
+        let [r, g, b] = dac[usize::from(index)].map(c6_to_8);
         match view {
             View::Picture => rgba.extend_from_slice(&[r, g, b, 255]),
             View::Difference => rgba.extend_from_slice(&[r / 4, g / 4, b / 4, 255]),
@@ -148,6 +150,14 @@ mod tests {
         let at = |x: usize, y: usize| (y * 320 + x) * 4;
         assert_eq!(rgba[at(318, 5)..at(318, 5) + 4], [0, 168, 168, 255]);
         assert_eq!(rgba[at(100, 100)..at(100, 100) + 4], [168, 87, 0, 255]);
+    }
+
+    #[test]
+    fn a_scene_file_shows_in_its_own_palette() {
+        let mut explorer = Explorer::from_text("clear 3\npalette 3 63,0,63\n").unwrap();
+        let mut rgba = Vec::new();
+        render(&mut explorer, MethodId::Exact, View::Picture, Judge::Exact, &mut rgba);
+        assert_eq!(rgba[..4], [255, 0, 255, 255]);
     }
 
     #[test]
