@@ -221,7 +221,7 @@ mod tests {
         assert!(method.contains("unknown method; the methods are abrash_float, "), "{method}");
         let scene = run(&parse(&["--scene", "no-such-entry", "--headless"]).unwrap()).unwrap_err().to_string();
         assert!(scene.starts_with("`no-such-entry` is neither an entry of the show nor a scene file"), "{scene}");
-        assert!(scene.ends_with(", race"), "{scene}");
+        assert!(scene.ends_with(", race, world"), "{scene}");
     }
 
     #[test]

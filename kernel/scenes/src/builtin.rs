@@ -28,6 +28,7 @@ enum Page {
     Listing40_4(u32),
     LamotheTriangle,
     WgtTriangle,
+    World,
 }
 
 impl Builtin {
@@ -42,6 +43,7 @@ impl Builtin {
             Page::Listing40_4(page) => listing_40_4(page),
             Page::LamotheTriangle => lamothe_triangle(),
             Page::WgtTriangle => wgt_triangle(),
+            Page::World => world(),
         };
         Scene::new(self.name.to_string(), ops, self.method)
     }
@@ -56,9 +58,10 @@ pub const ABRASH40_3: Builtin = Builtin::new("abrash40-3", MethodId::AbrashAet, 
 pub const ABRASH40_4: Builtin = Builtin::new("abrash40-4", MethodId::AbrashAet, Page::Listing40_4(4));
 pub const LAMOTHE_TRIANGLE: Builtin = Builtin::new("lamothe-triangle", MethodId::Lamothe, Page::LamotheTriangle);
 pub const WGT_TRIANGLE: Builtin = Builtin::new("wgt-triangle", MethodId::Wgt, Page::WgtTriangle);
+pub const WORLD: Builtin = Builtin::new("world", MethodId::Exact, Page::World);
 
 /// Every built-in scene, in demo order.
-pub const ALL: [Builtin; 9] = [
+pub const ALL: [Builtin; 10] = [
     ABRASH38_1,
     ABRASH38_2,
     ABRASH38_3,
@@ -68,6 +71,7 @@ pub const ALL: [Builtin; 9] = [
     ABRASH40_4,
     LAMOTHE_TRIANGLE,
     WGT_TRIANGLE,
+    WORLD,
 ];
 
 /// The built-in scene called `name`.
@@ -78,6 +82,16 @@ pub fn named(name: &str) -> Option<&'static Builtin> {
 /// The built-in scene called `name`, built.
 pub fn scene(name: &str) -> Option<Scene> {
     named(name).map(Builtin::scene)
+}
+
+/// The land of the world at 1:110m, a real many-vertex shape: 129 polygons
+/// of 3 to 1,370 vertices, 6,384 in all, in the VGA default palette's
+/// blue (1) and green (2). `art/world.scene`, which `cargo xtask convert`
+/// makes from `art/world.svg` (`art/README.md` says where the outlines
+/// come from). Drawn with `exact`: no book's method draws it right.
+fn world() -> Vec<Op> {
+    // The file is checked to parse by this module's tests.
+    crate::file::parse("world", include_str!("../art/world.scene")).map_or_else(|_| Vec::new(), |scene| scene.ops)
 }
 
 /// Listing 40.4 up to its `page`-th keypress (the book's chapter 40;
@@ -236,6 +250,20 @@ mod tests {
     }
 
     #[test]
+    fn the_world_parses_to_many_polygons_in_two_colours_on_the_screen() {
+        let text = include_str!("../art/world.scene");
+        let parsed = crate::file::parse("world", text).expect("art/world.scene parses");
+        assert_eq!(WORLD.scene().ops, parsed.ops);
+        assert!(parsed.palette.is_empty(), "the world is in the VGA default palette");
+        let polygons: Vec<&Polygon> =
+            parsed.ops.iter().filter_map(|op| if let Op::Fill(p) = op { Some(p) } else { None }).collect();
+        let vertices: usize = polygons.iter().map(|polygon| polygon.vertex_count()).sum();
+        let largest = polygons.iter().map(|polygon| polygon.vertex_count()).max();
+        assert_eq!((polygons.len(), vertices, largest), (129, 6384, Some(1370)));
+        assert!(polygons.iter().all(|polygon| [1, 2].contains(&polygon.color)));
+    }
+
+    #[test]
     fn pages_are_cumulative() {
         let counts = op_counts(0..3);
         // 2 shapes; 5x10 pairs of triangles and 4x(15+15) more; 16 hexagons.
@@ -257,7 +285,7 @@ mod tests {
         let methods: Vec<&str> = ALL.iter().map(|builtin| builtin.scene().method.name()).collect();
         assert_eq!(methods[..3], ["abrash_float"; 3]);
         assert_eq!(methods[3..7], ["abrash_aet"; 4]);
-        assert_eq!(methods[7..], ["lamothe", "wgt"]);
+        assert_eq!(methods[7..], ["lamothe", "wgt", "exact"]);
     }
 
     #[test]

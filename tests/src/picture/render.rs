@@ -124,10 +124,10 @@ mod tests {
     fn unknown_names_list_the_valid_ones() {
         let error = format!("{:#}", builtin_scene("nope").unwrap_err());
         assert!(error.starts_with("unknown scene `nope`; valid scenes: abrash38-1, abrash38-2, "), "{error}");
-        assert!(error.ends_with(", wgt-triangle"), "{error}");
+        assert!(error.ends_with(", wgt-triangle, world"), "{error}");
         let error = format!("{:#}", show_entry("nope").unwrap_err());
         assert!(error.starts_with("unknown show entry `nope`; valid entries: abrash38-1, "), "{error}");
-        assert!(error.ends_with(", race"), "{error}");
+        assert!(error.ends_with(", race, world"), "{error}");
         let Err(error) = SceneSource::find("nope") else { panic!("`nope` is a scene") };
         let error = format!("{error:#}");
         assert!(

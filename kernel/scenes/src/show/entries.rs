@@ -20,6 +20,9 @@ pub(super) enum Kind {
     PendletonDepth,
     /// One scene drawn by every method in turn.
     Race,
+    /// A built-in page drawn by every method in turn, on the race's
+    /// schedule: real art, where the methods' failures show.
+    EveryMethod(Builtin),
 }
 
 /// One scene of the show.
@@ -43,6 +46,16 @@ impl Entry {
         Self { name, frames, method, kind }
     }
 
+    /// The built-in page the entry draws, for a still and for a page drawn
+    /// by every method in turn; `None` for an animation of the show's own
+    /// polygons (all convex).
+    pub fn page(&self) -> Option<Builtin> {
+        match self.kind {
+            Kind::Still(page) | Kind::EveryMethod(page) => Some(page),
+            _ => None,
+        }
+    }
+
     /// Whether frames differ from each other.
     pub fn is_animated(&self) -> bool {
         self.frames > 1
@@ -64,10 +77,11 @@ impl Entry {
     }
 
     /// The method that draws frame `frame` when the viewer picked none: the
-    /// source's method, or for the race the method whose turn it is.
+    /// source's method, or for the race and the pages drawn by every method
+    /// the method whose turn it is.
     pub fn method_at(&self, frame: u32) -> MethodId {
         match self.kind {
-            Kind::Race => race::method_at(self.wrap(frame)),
+            Kind::Race | Kind::EveryMethod(_) => race::method_at(self.wrap(frame)),
             _ => self.method,
         }
     }
@@ -89,6 +103,7 @@ pub const ENTRIES_IN_ORDER: &[Entry] = &[
     Entry::animation("wgt-texture", shaded::TEXTURE_FRAMES, MethodId::Wgt, Kind::WgtTexture),
     Entry::animation("pendleton-zbuffer", shaded::DEPTH_FRAMES, MethodId::Pendleton, Kind::PendletonDepth),
     Entry::animation("race", race::FRAMES, MethodId::Exact, Kind::Race),
+    Entry::animation("world", race::FRAMES, MethodId::Exact, Kind::EveryMethod(builtin::WORLD)),
 ];
 
 /// The entry called `name`.
@@ -103,11 +118,13 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_race_gives_every_method_a_turn_and_stills_keep_their_source_s() {
-        let race = entry("race").unwrap();
-        let turns: Vec<MethodId> = (0..race.frames).map(|f| race.method_at(f)).collect();
-        for method in MethodId::ALL {
-            assert!(turns.contains(&method), "{method} never races");
+    fn the_race_and_the_world_give_every_method_a_turn_and_stills_keep_their_source_s() {
+        for name in ["race", "world"] {
+            let entry = entry(name).unwrap();
+            let turns: Vec<MethodId> = (0..entry.frames).map(|f| entry.method_at(f)).collect();
+            for method in MethodId::ALL {
+                assert!(turns.contains(&method), "{method} never has a turn in {name}");
+            }
         }
         for still in ENTRIES_IN_ORDER.iter().filter(|e| !e.is_animated()) {
             let builtin = builtin::named(still.name).expect("a still is a built-in scene");

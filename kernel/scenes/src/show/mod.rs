@@ -27,6 +27,7 @@ mod trig;
 use alloc::vec;
 use alloc::vec::Vec;
 
+use crate::builtin::Builtin;
 use crate::scene::{DrawReport, Scene};
 use entries::Kind;
 use raster::sink;
@@ -68,7 +69,7 @@ impl Stage {
         let animated = method.method();
         sink::clear(&mut self.target, 0);
         match entry.kind {
-            Kind::Still(_) => draw_page(&mut self.still, entry, method, &mut self.target),
+            Kind::Still(page) | Kind::EveryMethod(page) => draw_page(&mut self.still, &page, method, &mut self.target),
             Kind::LamotheRotate => lamothe::draw(frame, animated, &mut self.scratch, &mut self.target),
             Kind::WgtGouraud => shaded::gouraud(frame, animated, &mut self.scratch, &mut self.target),
             Kind::WgtTexture => shaded::texture(frame, animated, &mut self.scratch, &mut self.target),
@@ -86,7 +87,10 @@ impl Stage {
     /// draws nothing but the black.
     pub fn draw_still<S: SpanSink>(&mut self, entry: &Entry, method: MethodId, target: &mut S) -> DrawReport {
         sink::clear(target, 0);
-        draw_page(&mut self.still, entry, method, target)
+        match entry.kind {
+            Kind::Still(page) => draw_page(&mut self.still, &page, method, target),
+            _ => DrawReport::default(),
+        }
     }
 
     /// Draws frame `frame` of a shaded entry with `method`, modelling what
@@ -105,7 +109,7 @@ impl Stage {
             Kind::WgtGouraud => shaded::Shaded::Gouraud,
             Kind::WgtTexture => shaded::Shaded::Texture,
             Kind::PendletonDepth => shaded::Shaded::Depth,
-            Kind::Still(_) | Kind::LamotheRotate | Kind::Race => return None,
+            Kind::Still(_) | Kind::LamotheRotate | Kind::Race | Kind::EveryMethod(_) => return None,
         };
         sink::clear(&mut self.target, 0);
         let (scratch, depth, target) = (&mut self.scratch, &mut self.depth, &mut self.target);
@@ -129,11 +133,9 @@ impl Stage {
     }
 }
 
-/// Draws the still page of `entry` with `method` onto `target`, building
-/// the page into `built` unless it is the one built last; nothing for an
-/// entry that is not a still.
-fn draw_page<S: SpanSink>(built: &mut Option<Scene>, entry: &Entry, method: MethodId, target: &mut S) -> DrawReport {
-    let Kind::Still(page) = entry.kind else { return DrawReport::default() };
+/// Draws built-in `page` with `method` onto `target`, building the page
+/// into `built` unless it is the one built last.
+fn draw_page<S: SpanSink>(built: &mut Option<Scene>, page: &Builtin, method: MethodId, target: &mut S) -> DrawReport {
     let scene = match built {
         Some(scene) if scene.name == page.name => scene,
         built => built.insert(page.scene()),
@@ -154,8 +156,34 @@ mod tests {
 
     use super::*;
 
+    /// The entries whose picture moves from frame to frame: the animated
+    /// ones but the pages drawn by every method in turn, whose picture
+    /// changes only with the method.
     fn animations() -> impl Iterator<Item = &'static Entry> {
-        ENTRIES_IN_ORDER.iter().filter(|entry| entry.is_animated())
+        ENTRIES_IN_ORDER.iter().filter(|entry| entry.is_animated() && !matches!(entry.kind, Kind::EveryMethod(_)))
+    }
+
+    #[test]
+    fn the_world_is_drawn_by_the_method_whose_turn_it_is_and_exact_draws_it_whole() {
+        let world = entry("world").unwrap();
+        let mut stage = Stage::new();
+        let mut pictures = Vec::new();
+        for frame in (0..world.frames).step_by(world.frames as usize / MethodId::ALL.len()) {
+            let method = world.method_at(frame);
+            let strays = stage.stray_spans();
+            let (pixels, report) = frame_of(&mut stage, world, frame, method);
+            assert_eq!(report.polygons, 129, "world with {method}");
+            assert_eq!(stage.stray_spans(), strays, "world with {method} drew outside the screen");
+            if method == MethodId::Exact {
+                assert_eq!(report.refused, 0, "exact refused {report:?}");
+            }
+            pictures.push((method, pixels));
+        }
+        let methods: Vec<MethodId> = pictures.iter().map(|(method, _)| *method).collect();
+        assert_eq!(methods, MethodId::ALL);
+        let exact = &pictures.last().expect("exact has the last turn").1;
+        let differing = pictures.iter().filter(|(_, pixels)| pixels != exact).count();
+        assert!(differing >= 5, "only {differing} methods draw the world otherwise than exact");
     }
 
     /// Frame `frame` of `entry` with `method` on `stage`, and its report.
