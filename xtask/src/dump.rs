@@ -12,8 +12,9 @@ use scenes::{file, Op, Scene};
 use crate::opt::DumpOpt;
 
 pub fn dump(opt: &DumpOpt) -> Result<()> {
-    // Check the scene (a whole scene file, every line) before spending a boot.
-    let source = SceneSource::find(&opt.scene)?;
+    // Check the scene (a whole scene file, every line, or a whole SVG)
+    // before spending a boot.
+    let source = opt.drawing.source()?;
     let method = opt.method.unwrap_or(source.scene().method);
     if let SceneSource::File(file) = &source {
         pack_for_upload(&file.scene)?;
@@ -78,10 +79,20 @@ fn upload_cost(uploaded: &Uploaded, scene: &Scene) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::opt::{parse_command, Action};
+    use crate::source::svg_fixture;
+
+    /// `cargo xtask dump ARGS --out DIR`.
+    fn dump_with(args: &[&str], out: &std::path::Path) -> Result<()> {
+        let out = out.to_str().expect("a UTF-8 temporary path");
+        match parse_command("dump", &[args, &["--out", out]].concat())? {
+            Action::Dump(opt) => dump(&opt),
+            other => panic!("parsed as {other:?}"),
+        }
+    }
 
     fn dump_of(scene: &str) -> String {
-        let out = std::env::temp_dir();
-        format!("{:#}", dump(&DumpOpt { scene: scene.to_string(), method: None, out }).unwrap_err())
+        format!("{:#}", dump_with(&["--scene", scene], &std::env::temp_dir()).unwrap_err())
     }
 
     #[test]
@@ -104,5 +115,36 @@ mod tests {
     fn an_unknown_scene_lists_the_built_in_ones() {
         let error = dump_of("no-such-scene");
         assert!(error.starts_with("`no-such-scene` is neither a built-in scene nor a scene file"), "{error}");
+    }
+
+    #[test]
+    fn a_bad_svg_is_refused_before_any_boot_and_nothing_is_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        for (name, expected) in [
+            ("bad/text.svg", "not imported: <text id=\"caption\"> at line 4 cannot be imported: text is not drawn"),
+            ("bad/huge.svg", "not imported: shape #far reaches 100000000 pixels once fitted to the screen"),
+        ] {
+            let svg = svg_fixture(name);
+            let error = format!("{:#}", dump_with(&["--svg", svg.to_str().unwrap()], &out).unwrap_err());
+            assert!(error.contains(expected), "{error}");
+            assert!(!out.exists(), "{name}: {} was written", out.display());
+        }
+    }
+
+    /// Boots QEMU once per SVG: the kernel draws each uploaded, and `dump`
+    /// holds its picture to the host render and QEMU's screendump.
+    #[test]
+    fn svgs_are_drawn_by_the_kernel_as_on_the_host() -> Result<()> {
+        let dir = tempfile::tempdir()?;
+        let holes = svg_fixture("holes.svg");
+        dump_with(&["--svg", holes.to_str().unwrap()], dir.path())?;
+        let icon = svg_fixture("icon.svg");
+        dump_with(&["--svg", icon.to_str().unwrap(), "--palette", "vga", "--tolerance", "0.5"], dir.path())?;
+        let mut written: Vec<String> =
+            std::fs::read_dir(dir.path())?.map(|entry| entry.unwrap().file_name().to_string_lossy().into()).collect();
+        written.sort();
+        assert_eq!(written, ["holes.png", "holes.screen.png", "icon.png", "icon.screen.png"]);
+        Ok(())
     }
 }

@@ -3,6 +3,7 @@
 //! library, shared with the tests.
 
 mod check;
+mod convert;
 mod dump;
 mod fuzz;
 mod kbench;
@@ -13,6 +14,7 @@ mod record;
 mod render;
 mod run;
 mod soak;
+mod source;
 mod test;
 
 use anyhow::Result;
@@ -43,6 +45,7 @@ fn main() -> Result<()> {
         }
         Action::Dump(opt) => dump::dump(&opt),
         Action::Render(opt) => render::render(&opt),
+        Action::Convert(opt) => convert::convert(&opt),
         Action::Record(opt) => record::record(&opt),
         Action::Test(opt) => test::test(&opt),
         Action::Lab(opt) => lab::lab(&opt),

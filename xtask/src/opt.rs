@@ -3,10 +3,12 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
-use clap::{Args, Parser, Subcommand};
+use clap::{ArgGroup, Args, Parser, Subcommand};
 use harness::Adapter;
 use protocol::{Firmware, BENCH_DEFAULT_REPEATS, BENCH_MAX_REPEATS};
 use raster::MethodId;
+
+use crate::source::{SceneArgs, SvgArgs};
 
 /// The developer's hands: run the demo, build the image, dump, render,
 /// record, test.
@@ -36,6 +38,9 @@ pub enum Action {
     Dump(DumpOpt),
     /// Renders a scene on the host with the same raster code.
     Render(RenderOpt),
+    /// Converts an SVG into a scene file: prints what could not be drawn
+    /// as the SVG asks and the scene's size; writes nothing on an error.
+    Convert(ConvertOpt),
     /// Boots the kernel headless, has it show frames of a show entry
     /// (`SHOW`), dumps each and writes them as an animated GIF; every dump
     /// is checked against the host render unless --no-verify.
@@ -82,10 +87,10 @@ pub struct RunOpt {
     /// Run headless even when a display is available.
     #[arg(long)]
     pub headless: bool,
-    /// Show this entry of the show (a book page or an animation) and stay
-    /// on it, or draw this scene file and keep it on the screen.
-    #[arg(long, value_name = "NAME|FILE")]
-    pub scene: Option<String>,
+    /// Show an entry of the show (a book page or an animation) and stay on
+    /// it, or draw a scene file or an SVG and keep it on the screen.
+    #[command(flatten)]
+    pub drawing: SceneArgs,
     /// Draw every entry (or the scene file) with this method, as the digit
     /// keys do.
     #[arg(long)]
@@ -108,13 +113,14 @@ pub struct RunOpt {
 }
 
 #[derive(Args, Debug)]
+#[command(group(ArgGroup::new("drawn").args(["scene", "svg"]).required(true)))]
 pub struct DumpOpt {
-    /// A built-in scene, or the path of a scene file (sent to the kernel
-    /// line by line with CLEAR and POLY).
-    #[arg(long, value_name = "NAME|FILE")]
-    pub scene: String,
+    /// A built-in scene, a scene file or an SVG (a file or an SVG is
+    /// uploaded to the kernel whole).
+    #[command(flatten)]
+    pub drawing: SceneArgs,
     /// Fill method (default: the scene's own, the method its source uses;
-    /// exact for scene files).
+    /// exact for scene files and SVGs).
     #[arg(long)]
     pub method: Option<MethodId>,
     /// Directory for the two PNGs.
@@ -123,17 +129,30 @@ pub struct DumpOpt {
 }
 
 #[derive(Args, Debug)]
+#[command(group(ArgGroup::new("drawn").args(["scene", "svg"]).required(true)))]
 pub struct RenderOpt {
-    /// A built-in scene, or the path of a scene file.
-    #[arg(long, value_name = "NAME|FILE")]
-    pub scene: String,
+    /// A built-in scene, a scene file or an SVG.
+    #[command(flatten)]
+    pub drawing: SceneArgs,
     /// Fill method (default: the scene's own, the method its source uses;
-    /// exact for scene files).
+    /// exact for scene files and SVGs).
     #[arg(long)]
     pub method: Option<MethodId>,
     /// The PNG to write.
     #[arg(long, value_name = "FILE.png")]
     pub out: PathBuf,
+}
+
+#[derive(Args, Debug)]
+pub struct ConvertOpt {
+    /// The SVG to convert.
+    #[arg(long, value_name = "IN")]
+    pub svg: PathBuf,
+    /// The scene file to write; written beside it first, renamed when complete.
+    #[arg(long, value_name = "OUT.scene")]
+    pub out: PathBuf,
+    #[command(flatten)]
+    pub import: SvgArgs,
 }
 
 #[derive(Args, Debug)]

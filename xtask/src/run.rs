@@ -18,25 +18,29 @@ use scenes::show::{self, Entry, ENTRIES_IN_ORDER};
 
 use crate::opt::RunOpt;
 use crate::record::{summary, Frames, Recording};
+use crate::source::SceneArgs;
 
 /// Show frames from one recorded frame to the next when running headless:
 /// a loop of 256 frames becomes a GIF of 64.
 const HEADLESS_STEP: u32 = 4;
 
-/// What `--scene` names.
+/// What `--scene` or `--svg` names.
 enum OnScreen {
-    /// The whole show (no `--scene`), or one entry of it.
+    /// The whole show (neither), or one entry of it.
     Show(Option<&'static Entry>),
-    /// A scene file, drawn once and left on the screen.
+    /// A scene file or an SVG, drawn once and left on the screen.
     File(SceneFile),
 }
 
 impl OnScreen {
-    /// A show entry called `name`, or else the scene file at that path; an
-    /// error listing the entries when it is neither. Checked before QEMU
-    /// starts.
-    fn find(name: Option<&str>) -> Result<Self> {
-        let Some(name) = name else { return Ok(OnScreen::Show(None)) };
+    /// The SVG imported; or the show entry `--scene` names, or else the
+    /// scene file at that path; an error listing the entries when it is
+    /// neither. Checked before QEMU starts.
+    fn find(drawing: &SceneArgs) -> Result<Self> {
+        if let Some(file) = drawing.svg_file()? {
+            return Ok(OnScreen::File(file));
+        }
+        let Some(name) = drawing.scene.as_deref() else { return Ok(OnScreen::Show(None)) };
         if let Some(entry) = show::entry(name) {
             return Ok(OnScreen::Show(Some(entry)));
         }
@@ -49,7 +53,7 @@ impl OnScreen {
 
 pub fn run(opt: &RunOpt) -> Result<()> {
     // Everything that can be refused is refused before QEMU starts.
-    let shown = OnScreen::find(opt.scene.as_deref())?;
+    let shown = OnScreen::find(&opt.drawing)?;
     if let OnScreen::File(file) = &shown {
         pack_for_upload(&file.scene)?;
     }
@@ -200,8 +204,8 @@ mod tests {
     fn defaults_are_the_whole_show_under_the_bios_on_the_standard_vga_from_the_disk() {
         let opt = parse(&[]).unwrap();
         assert_eq!(
-            (opt.scene, opt.method, opt.firmware, opt.vga, opt.usb, opt.out),
-            (None, None, Firmware::Bios, Adapter::Std, false, None)
+            (opt.drawing.scene, opt.drawing.svg, opt.method, opt.firmware, opt.vga, opt.usb, opt.out),
+            (None, None, None, Firmware::Bios, Adapter::Std, false, None)
         );
     }
 

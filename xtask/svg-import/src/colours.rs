@@ -134,8 +134,9 @@ fn merge_nearest(colours: &[[u8; 3]], weights: &[u64], most: usize) -> Merged {
         let gone = nearest[keep].1;
         let (keep, gone) = (keep.min(gone), keep.max(gone));
         alive[gone] = false;
-        for channel in 0..3 {
-            sums[keep][channel] += sums[gone][channel];
+        let gone_sums = sums[gone];
+        for (sum, more) in sums[keep].iter_mut().zip(gone_sums) {
+            *sum += more;
         }
         weight[keep] += weight[gone];
         mean[keep] = sums[keep].map(|sum| ((sum + weight[keep] / 2) / weight[keep]) as u8);

@@ -210,8 +210,9 @@ fn subpixel(pixels: f64, name: &str) -> Result<i32> {
         bail!("{name} has a coordinate that is not a number once fitted to the screen");
     }
     if !(f64::from(i32::MIN)..=f64::from(i32::MAX)).contains(&subpixels) {
+        let pixels = if pixels.abs() < 1e9 { format!("{pixels:.0}") } else { format!("{pixels:.3e}") };
         bail!(
-            "{name} reaches {pixels:.0} pixels once fitted to the screen, past the range of 1/256-pixel \
+            "{name} reaches {pixels} pixels once fitted to the screen, past the range of 1/256-pixel \
              coordinates (-8388608 to 8388607.99)"
         );
     }

@@ -11,7 +11,7 @@ pub(crate) type Rgb = [u8; 3];
 
 /// The colour to fill with for `paint` at `opacity` (the paint's own
 /// times its groups'), noting in `notes` what was made flat or opaque
-/// under `element`'s name (which says fill or stroke); `None` for a paint
+/// as `element` (the fill or the stroke of a shape); `None` for a paint
 /// at opacity 0, which is not drawn (and noted).
 pub(crate) fn flat_colour(paint: &Paint, opacity: f32, element: &str, notes: &mut Notes) -> Option<Rgb> {
     if opacity <= 0.0 {
@@ -31,13 +31,13 @@ pub(crate) fn flat_colour(paint: &Paint, opacity: f32, element: &str, notes: &mu
     match (paint, mean_of(paint)) {
         (Paint::Pattern(_), Some(colour)) => notes.add(
             "patterns drawn flat in the mean of the colours they paint",
-            format!("{element}: {server}, {count} colours, as {}", hex(colour)),
+            format!("{element}, {server} of {count} colours, as {}", hex(colour)),
         ),
         (_, Some(colour)) => notes.add(
             "gradients drawn flat in the mean of their stops' colours",
-            format!("{element}: {server}, {count} stops, as {}", hex(colour)),
+            format!("{element}, {server} of {count} stops, as {}", hex(colour)),
         ),
-        (_, None) => notes.add("paints of no colour, drawn black", format!("{element}: {server}")),
+        (_, None) => notes.add("paints of no colour, drawn black", format!("{element}, {server}")),
     }
     Some(mean_of(paint).unwrap_or([0; 3]))
 }
@@ -108,13 +108,16 @@ mod tests {
     fn opacity_is_noted_and_zero_is_not_drawn() {
         let mut notes = Notes::default();
         let red = Paint::Color(usvg::Color::new_rgb(255, 0, 0));
-        assert_eq!(flat_colour(&red, 1.0, "shape #a (fill)", &mut notes), Some([255, 0, 0]));
+        assert_eq!(flat_colour(&red, 1.0, "the fill of shape #a", &mut notes), Some([255, 0, 0]));
         assert!(notes.lines().is_empty());
-        assert_eq!(flat_colour(&red, 0.25, "shape #b (stroke)", &mut notes), Some([255, 0, 0]));
-        assert_eq!(flat_colour(&red, 0.0, "shape #c (fill)", &mut notes), None);
+        assert_eq!(flat_colour(&red, 0.25, "the stroke of shape #b", &mut notes), Some([255, 0, 0]));
+        assert_eq!(flat_colour(&red, 0.0, "the fill of shape #c", &mut notes), None);
         assert_eq!(
             notes.lines(),
-            ["opacity below 1, drawn opaque: shape #b (stroke) at 0.25", "opacity 0, not drawn: shape #c (fill)"]
+            [
+                "opacity below 1, drawn opaque: the stroke of shape #b at 0.25",
+                "opacity 0, not drawn: the fill of shape #c"
+            ]
         );
     }
 }

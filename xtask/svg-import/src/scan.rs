@@ -117,7 +117,7 @@ fn check_numbers(element: Node) -> Result<()> {
 /// An error naming `what` if any of `numbers` is beyond [`LARGEST_NUMBER`]
 /// (or not a number).
 fn within_range(what: &str, numbers: &[f64]) -> Result<()> {
-    match numbers.iter().find(|number| !(number.abs() <= LARGEST_NUMBER)) {
+    match numbers.iter().find(|number| number.is_nan() || number.abs() > LARGEST_NUMBER) {
         Some(number) => bail!("{what} holds {number:e}, beyond the ±{LARGEST_NUMBER:e} taken"),
         None => Ok(()),
     }

@@ -1,0 +1,136 @@
+//! What a command draws: `--scene NAME|FILE` or `--svg FILE` (with the
+//! import's options), the arguments every command that draws a scene
+//! flattens into its own, and their resolution to the harness's
+//! [`SceneSource`] or [`SceneFile`]. An SVG is imported here, before
+//! anything boots, and its notes are printed; the harness never sees SVG.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Result};
+use clap::Args;
+use harness::render::{SceneFile, SceneSource};
+use svg_import::{import_file, Options, PaletteChoice, ViewBox};
+
+/// `--scene NAME|FILE` or `--svg FILE`, not both.
+#[derive(Args, Debug)]
+pub struct SceneArgs {
+    /// A scene by name (for `run`, an entry of the show; for the others, a
+    /// built-in page) or the path of a scene file.
+    #[arg(long, value_name = "NAME|FILE", conflicts_with = "svg")]
+    pub scene: Option<String>,
+    /// An SVG drawing, imported as a scene file would be read
+    /// (docs/scenes.md, "From SVG").
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
+    #[command(flatten)]
+    pub import: SvgArgs,
+}
+
+/// How `--svg` is imported.
+#[derive(Args, Debug)]
+pub struct SvgArgs {
+    /// The most a flattened curve or stroke may stray from the SVG's, in
+    /// screen pixels, no finer than 1/256 [default: 0.1].
+    #[arg(long, value_name = "PX")]
+    pub tolerance: Option<f64>,
+    /// The part of the drawing fitted to the 320x200 screen, in the SVG's
+    /// user units (default: its viewBox, or else its width and height).
+    #[arg(long, value_name = "X,Y,W,H")]
+    pub view_box: Option<ViewBox>,
+    /// `own`: a palette of the scene's own, the SVG's colours at 6 bits a
+    /// channel; `vga`: the nearest entries of the VGA default palette
+    /// [default: own].
+    #[arg(long, value_name = "own|vga")]
+    pub palette: Option<PaletteChoice>,
+}
+
+impl SvgArgs {
+    /// The import's options, the defaults where none is given (left to
+    /// here, so that one given without `--svg` can be told from none).
+    pub fn options(&self) -> Options {
+        let defaults = Options::default();
+        Options {
+            tolerance: self.tolerance.unwrap_or(defaults.tolerance),
+            view_box: self.view_box,
+            palette: self.palette.unwrap_or(defaults.palette),
+        }
+    }
+
+    /// The SVG at `path` imported as a scene file named after it, its
+    /// notes printed (`xtask: note: ...`).
+    pub fn import(&self, path: &Path) -> Result<SceneFile> {
+        let imported = import_file(path, &self.options())?;
+        for note in &imported.notes {
+            eprintln!("xtask: note: {note}");
+        }
+        Ok(SceneFile { path: path.to_path_buf(), scene: imported.scene })
+    }
+}
+
+impl SceneArgs {
+    /// The scene asked for: the SVG imported, or the built-in scene or
+    /// scene file `--scene` names; an error when neither is given.
+    pub fn source(&self) -> Result<SceneSource> {
+        match (&self.scene, self.svg_file()?) {
+            (_, Some(file)) => Ok(SceneSource::File(file)),
+            (Some(name), None) => SceneSource::find(name),
+            (None, None) => bail!("no scene: give --scene NAME|FILE or --svg FILE"),
+        }
+    }
+
+    /// The SVG imported, if `--svg` is given; an error if the import's
+    /// options are given without it.
+    pub fn svg_file(&self) -> Result<Option<SceneFile>> {
+        let SvgArgs { tolerance, view_box, palette } = &self.import;
+        match &self.svg {
+            Some(path) => self.import.import(path).map(Some),
+            None if tolerance.is_some() || view_box.is_some() || palette.is_some() => {
+                bail!("--tolerance, --view-box and --palette go with --svg")
+            }
+            None => Ok(None),
+        }
+    }
+}
+
+/// The SVG `name` of the import's test drawings (`xtask/svg-import/tests/svg/`).
+#[cfg(test)]
+pub fn svg_fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("svg-import/tests/svg").join(name)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::opt::{parse_command, Action};
+
+    #[test]
+    fn scene_and_svg_exclude_each_other_and_render_needs_one() {
+        let both = parse_command("render", &["--scene", "abrash38-1", "--svg", "a.svg", "--out", "a.png"]);
+        let error = both.unwrap_err().to_string();
+        assert!(error.contains("the argument '--scene <NAME|FILE>' cannot be used with '--svg <FILE>'"), "{error}");
+        let neither = parse_command("render", &["--out", "a.png"]).unwrap_err().to_string();
+        assert!(neither.contains("the following required arguments were not provided"), "{neither}");
+        assert!(parse_command("run", &["--svg", "a.svg", "--palette", "vga", "--view-box", "0,0,5,5"]).is_ok());
+    }
+
+    #[test]
+    fn the_import_options_without_svg_are_refused() {
+        for option in [["--tolerance", "0.5"], ["--view-box", "0,0,1,1"], ["--palette", "vga"]] {
+            for scene in [&["--scene", "abrash38-1"][..], &[]] {
+                let args = [scene, &option[..]].concat();
+                let Action::Run(opt) = parse_command("run", &args).unwrap() else { panic!("not run") };
+                let Err(error) = opt.drawing.source() else { panic!("{args:?} accepted") };
+                assert_eq!(error.to_string(), "--tolerance, --view-box and --palette go with --svg", "{args:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn bad_import_options_are_refused_by_the_parser() {
+        let error = parse_command("run", &["--svg", "a.svg", "--view-box", "0,0,5"]).unwrap_err().to_string();
+        assert!(error.contains("bad view box `0,0,5` (expected four numbers, X,Y,W,H)"), "{error}");
+        let error = parse_command("run", &["--svg", "a.svg", "--palette", "ega"]).unwrap_err().to_string();
+        assert!(error.contains("unknown palette `ega`; the palettes are own, vga"), "{error}");
+        let error = parse_command("run", &["--svg", "a.svg", "--tolerance", "fine"]).unwrap_err().to_string();
+        assert!(error.contains("invalid value 'fine' for '--tolerance <PX>'"), "{error}");
+    }
+}
