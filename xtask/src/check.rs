@@ -9,8 +9,6 @@ use std::time::Duration;
 
 use anyhow::{bail, Context, Result};
 use harness::cable::open_console;
-use harness::client::pack_for_upload;
-use harness::render::SceneFile;
 use harness::serial_check::{self, write_reports, CheckOptions, Progress, Scope};
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -20,13 +18,7 @@ pub fn check(opt: &CheckOpt) -> Result<()> {
     let out = absolute(&opt.out).with_context(|| format!("bad output directory {}", opt.out.display()))?;
     let device = opt.serial.display().to_string();
     let mut scope = if opt.quick { Scope::quick() } else { Scope::full() };
-    // Every file read, and checked against the kernel's budget, before the
-    // line is opened.
-    for path in &opt.scene {
-        let scene = SceneFile::read(path)?.scene;
-        pack_for_upload(&scene)?;
-        scope.files.push(scene);
-    }
+    scope.files = opt.files.read()?.into_iter().map(|file| file.scene).collect();
     let mut console = open_console(&opt.serial, opt.retries)?;
     let options = CheckOptions { scope, repeats: opt.repeats, wait: Duration::from_secs(opt.wait) };
     eprintln!(

@@ -93,4 +93,24 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&out).unwrap(), "clear 3\n");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1, "no temporary file is left");
     }
+
+    /// The show's world (`kernel/scenes/art/`) is the committed SVG as
+    /// `convert --palette vga` writes it today: the kernel's page cannot
+    /// drift from its source, nor the import from what the kernel draws.
+    #[test]
+    fn the_world_the_kernel_draws_is_its_svg_converted() -> Result<()> {
+        let art = Path::new(env!("CARGO_MANIFEST_DIR")).join("../kernel/scenes/art");
+        let dir = tempfile::tempdir()?;
+        let out = dir.path().join("world.scene");
+        let svg = art.join("world.svg");
+        let args = ["--svg", svg.to_str().unwrap(), "--palette", "vga", "--out", out.to_str().unwrap()];
+        let Action::Convert(opt) = parse_command("convert", &args)? else { panic!("not convert") };
+        convert(&opt)?;
+        let committed = std::fs::read_to_string(art.join("world.scene"))?;
+        assert!(
+            std::fs::read_to_string(&out)? == committed,
+            "kernel/scenes/art/world.scene is not world.svg converted"
+        );
+        Ok(())
+    }
 }

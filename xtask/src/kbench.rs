@@ -18,11 +18,9 @@ use std::time::Duration;
 
 use anyhow::{Context, Result};
 use harness::cable::open_console;
-use harness::client::pack_for_upload;
-use harness::render::SceneFile;
 use harness::serial_check::bench_table::{BenchTable, Benched, TickUnit};
 use harness::{Clock, Console, Qemu, QemuOptions};
-use scenes::{builtin, Scene};
+use scenes::builtin;
 
 use crate::opt::KbenchOpt;
 
@@ -31,20 +29,10 @@ const WAIT_FOR_KERNEL: Duration = Duration::from_secs(120);
 
 pub fn kbench(opt: &KbenchOpt) -> Result<()> {
     let out = absolute(&opt.out).with_context(|| format!("bad output directory {}", opt.out.display()))?;
-    // Every file read, and checked against the kernel's budget, before
-    // anything boots.
-    let files = opt
-        .scene
-        .iter()
-        .map(|path| {
-            let scene = SceneFile::read(path)?.scene;
-            pack_for_upload(&scene)?;
-            Ok(scene)
-        })
-        .collect::<Result<Vec<Scene>>>()?;
+    let files = opt.files.read()?;
     let scenes = match files.is_empty() {
         true => builtin::ALL.map(|page| Benched::Page(page.name)).to_vec(),
-        false => files.iter().map(Benched::Uploaded).collect(),
+        false => files.iter().map(|file| Benched::Uploaded(&file.scene)).collect(),
     };
     let table = match &opt.serial {
         Some(device) => measure_on_serial(device, opt.retries, opt.repeats, &scenes)?,
@@ -87,7 +75,26 @@ fn measure_on_serial(device: &Path, retries: u32, repeats: u8, scenes: &[Benched
 
 #[cfg(test)]
 mod tests {
+    use super::kbench;
     use crate::opt::{parse_command, Action};
+    use crate::source::svg_fixture;
+
+    #[test]
+    fn scene_files_and_svgs_are_read_and_refused_before_any_boot() {
+        let svg = svg_fixture("holes.svg");
+        let args = ["--svg", svg.to_str().unwrap(), "--svg", svg.to_str().unwrap(), "--tolerance", "0.5"];
+        let Ok(Action::Kbench(opt)) = parse_command("kbench", &args) else { panic!() };
+        let files = opt.files.read().unwrap();
+        assert_eq!(files.len(), 2);
+        assert_eq!(files[0].scene.name, "holes");
+        let Ok(Action::Kbench(opt)) = parse_command("kbench", &["--palette", "vga"]) else { panic!() };
+        let error = format!("{:#}", kbench(&opt).unwrap_err());
+        assert_eq!(error, "--tolerance, --view-box and --palette go with --svg");
+        let bad = svg_fixture("bad/text.svg");
+        let Ok(Action::Kbench(opt)) = parse_command("kbench", &["--svg", bad.to_str().unwrap()]) else { panic!() };
+        let error = format!("{:#}", kbench(&opt).unwrap_err());
+        assert!(error.contains("bad/text.svg"), "{error}");
+    }
 
     #[test]
     fn serial_takes_a_device_and_retries_a_count() {

@@ -8,7 +8,7 @@ use harness::Adapter;
 use protocol::{Firmware, BENCH_DEFAULT_REPEATS, BENCH_MAX_REPEATS};
 use raster::MethodId;
 
-use crate::source::{SceneArgs, SvgArgs};
+use crate::source::{SceneArgs, SceneFiles, SvgArgs};
 
 /// The developer's hands: run the demo, build the image, dump, render,
 /// record, test.
@@ -157,17 +157,20 @@ pub struct ConvertOpt {
 
 #[derive(Args, Debug)]
 pub struct RecordOpt {
-    /// A show entry: an animation (e.g. lamothe-rotate, race) or a still page.
-    #[arg(long)]
-    pub scene: String,
-    /// How many frames to record.
+    /// A show entry (an animation such as lamothe-rotate, race or world, or
+    /// a still page), or a scene file or an SVG, filmed drawn by every
+    /// method in turn, a frame each.
+    #[command(flatten)]
+    pub drawing: SceneArgs,
+    /// How many frames of a show entry to record.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
-    pub frames: u32,
+    pub frames: Option<u32>,
     /// The animated GIF to write; written beside it first, renamed when complete.
     #[arg(long, value_name = "FILE.gif")]
     pub out: PathBuf,
     /// Fill method for every frame (default: the entry's own; in the race,
-    /// the method whose turn it is).
+    /// the method whose turn it is; for a scene file or an SVG, every
+    /// method in turn).
     #[arg(long)]
     pub method: Option<MethodId>,
     /// The first frame recorded (frame numbers wrap around the entry's frames).
@@ -246,10 +249,10 @@ pub struct KbenchOpt {
     /// With --serial: how many times a step the line damages is retried.
     #[arg(long, default_value_t = DEFAULT_RETRIES)]
     pub retries: u32,
-    /// Time every method on this scene file instead of the demo scenes
-    /// (uploaded whole; may be given several times).
-    #[arg(long, value_name = "FILE")]
-    pub scene: Vec<PathBuf>,
+    /// Time every method on these scene files and SVGs (each uploaded
+    /// whole) instead of the demo scenes.
+    #[command(flatten)]
+    pub files: SceneFiles,
 }
 
 /// `--repeats`: what the kernel's `BENCH` takes, 1 to its most.
@@ -283,10 +286,10 @@ pub struct CheckOpt {
     /// Seconds to wait for the kernel to answer at all (a PC still booting).
     #[arg(long, value_name = "SECONDS", default_value_t = 120)]
     pub wait: u64,
-    /// Also check this scene file (uploaded whole, drawn with every method
-    /// checked, and timed; may be given several times).
-    #[arg(long, value_name = "FILE")]
-    pub scene: Vec<PathBuf>,
+    /// Also check these scene files and SVGs (each uploaded whole, drawn
+    /// with every method checked, and timed).
+    #[command(flatten)]
+    pub files: SceneFiles,
 }
 
 #[derive(Args, Debug)]

@@ -1,6 +1,9 @@
 //! `cargo xtask record`: frames of a show entry drawn by the kernel with
 //! `SHOW`, read back with `DUMP` (framebuffer and DAC), written as an
-//! animated GIF paced like the demo.
+//! animated GIF paced like the demo; or a scene file or an SVG, uploaded
+//! and drawn by every method in turn (`DRAW`), a frame each, captioned on
+//! the host with the method and how many pixels it sets otherwise than
+//! `exact`.
 
 use std::fs::{self, Permissions};
 use std::io::{BufWriter, Write};
@@ -9,13 +12,15 @@ use std::path::Path;
 
 use anyhow::{bail, ensure, Context, Result};
 use harness::checks::show_matches_host_render;
-use harness::render::show_entry;
+use harness::client::pack_for_upload;
+use harness::picture::compare::{compare_images, compare_palettes, differing_pixel_count};
+use harness::render::{render, show_entry, SceneFile};
 use harness::{Clock, Console, Dump, Qemu, QemuOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 use protocol::ShowReply;
-use raster::{MethodId, SCREEN};
+use raster::{MethodId, Size, SpanSink, SCREEN};
 use scenes::palette::{to_rgb8, ENTRIES};
-use scenes::show::{Entry, FRAMES_PER_SECOND};
+use scenes::show::{self, draw_caption, Entry, FRAMES_PER_SECOND};
 use tempfile::NamedTempFile;
 
 use crate::opt::RecordOpt;
@@ -30,8 +35,16 @@ fn delay(step: u32) -> u16 {
 
 pub fn record(opt: &RecordOpt) -> Result<()> {
     // Everything that can be checked is checked before spending a boot.
-    let entry = show_entry(&opt.scene)?;
-    let frames = Frames { start: opt.start, step: opt.step, count: opt.frames };
+    if let Some(file) = opt.drawing.svg_file()? {
+        return record_every_method(&file, opt);
+    }
+    let name = opt.drawing.scene.as_deref().context("no scene: give --scene ENTRY|FILE or --svg FILE")?;
+    if show::entry(name).is_none() && Path::new(name).is_file() {
+        return record_every_method(&SceneFile::read(Path::new(name))?, opt);
+    }
+    let entry = show_entry(name)?;
+    let count = opt.frames.context("--frames N: how many frames of the show entry to record")?;
+    let frames = Frames { start: opt.start, step: opt.step, count };
     let recording = Recording::new(entry, frames, opt.method, !opt.no_verify, &opt.out)?;
     // Instruction counting: the cycles in the labels and the summary count
     // emulated instructions, the same in every run (`SHOW` is not paced by
@@ -42,6 +55,69 @@ pub fn record(opt: &RecordOpt) -> Result<()> {
     qemu.quit()?;
     println!("{}", opt.out.display());
     Ok(())
+}
+
+/// Seconds each method's frame stays up in the recording of a scene file.
+const SECONDS_A_METHOD: u16 = 2;
+
+/// `file` uploaded and drawn by every method in turn (or by `--method`
+/// alone), each dump checked against the host render unless
+/// `--no-verify`, then captioned and written as a frame of
+/// [`SECONDS_A_METHOD`].
+fn record_every_method(file: &SceneFile, opt: &RecordOpt) -> Result<()> {
+    pack_for_upload(&file.scene)?;
+    let mut partial = Some(partial_file_for(&opt.out)?);
+    let methods = opt.method.map_or(MethodId::ALL.to_vec(), |method| vec![method]);
+    let exact = render(&file.scene, MethodId::Exact);
+    let mut qemu = Qemu::boot(QemuOptions::default())?;
+    let console = &mut qemu.console;
+    let name = console.upload(&file.scene)?.name;
+    let mut gif: Option<Gif<BufWriter<NamedTempFile>>> = None;
+    for method in methods {
+        console.clear(0)?;
+        let drawn = console.draw_uploaded(&name, method)?;
+        let mut dump = console.dump()?;
+        if !opt.no_verify {
+            let at = format!("{name}.{method}.record");
+            compare_images(&at, &render(&file.scene, method), &dump.image())?;
+            compare_palettes(&at, &file.scene.dac(), &dump.palette)?;
+        }
+        let off = differing_pixel_count(&exact, &dump.image());
+        let refused = match drawn.refused {
+            0 => String::new(),
+            n => format!(", {n} polygons refused"),
+        };
+        println!("{method}: {off} pixels otherwise than exact{refused}");
+        draw_caption(&mut Pixels(&mut dump.pixels), &file.scene.name, method.name(), &format!("{off} px off"));
+        match gif.as_mut() {
+            Some(gif) => gif.add(&dump)?,
+            None => {
+                let out = BufWriter::new(partial.take().context("the GIF is started once")?);
+                gif = Some(Gif::new(out, &dump, 100 * SECONDS_A_METHOD)?);
+            }
+        }
+    }
+    let partial = gif.context("no method to record")?.finish()?.into_inner().context("failed to write the GIF")?;
+    partial.persist(&opt.out).with_context(|| format!("failed to rename the GIF to {}", opt.out.display()))?;
+    qemu.quit()?;
+    println!("{}", opt.out.display());
+    Ok(())
+}
+
+/// A dump's pixels as a target the caption is drawn into.
+struct Pixels<'a>(&'a mut [u8]);
+
+impl SpanSink for Pixels<'_> {
+    fn size(&self) -> Size {
+        SCREEN
+    }
+
+    fn span(&mut self, y: i32, x_start: i32, x_end: i32, color: u8) {
+        if SCREEN.holds_span(y, x_start, x_end) {
+            let row = (y * SCREEN.width) as usize;
+            self.0[row + x_start as usize..row + x_end as usize].fill(color);
+        }
+    }
 }
 
 /// Which frames of an entry to film: `count` of them from `start`, every
@@ -263,15 +339,7 @@ mod tests {
 
     #[test]
     fn bad_names_and_outputs_are_refused_before_any_boot() {
-        let opt = |scene: &str, out: &str| RecordOpt {
-            scene: scene.into(),
-            frames: 1,
-            out: out.into(),
-            method: None,
-            start: 0,
-            step: 1,
-            no_verify: false,
-        };
+        let opt = |scene: &str, out: &str| parse(&["--scene", scene, "--frames", "1", "--out", out]).unwrap();
         let error = |opt: RecordOpt| format!("{:#}", record(&opt).unwrap_err());
         let unknown_scene = error(opt("nope", "/tmp/x.gif"));
         assert!(unknown_scene.starts_with("unknown show entry `nope`; valid entries: abrash38-1"), "{unknown_scene}");
@@ -287,6 +355,34 @@ mod tests {
         assert!(directory.ends_with("d.gif is a directory; name a FILE.gif"), "{directory}");
         let unwritable = error(opt("race", "/proc/polylab/x.gif"));
         assert!(unwritable.starts_with("cannot create the directory /proc/polylab"), "{unwritable}");
+        let no_frames = error(parse(&["--scene", "race", "--out", "x.gif"]).unwrap());
+        assert_eq!(no_frames, "--frames N: how many frames of the show entry to record");
+        let bad_svg = crate::source::svg_fixture("bad/text.svg");
+        let bad_svg = error(parse(&["--svg", bad_svg.to_str().unwrap(), "--out", "/tmp/x.gif"]).unwrap());
+        assert!(bad_svg.contains("bad/text.svg"), "{bad_svg}");
+        let svg = crate::source::svg_fixture("holes.svg");
+        let not_gif = error(parse(&["--svg", svg.to_str().unwrap(), "--out", "/tmp/x.png"]).unwrap());
+        assert!(not_gif.contains("the recording is an animated GIF"), "{not_gif}");
+    }
+
+    /// A scene file filmed by every method: one frame each, each dump the
+    /// host render before its caption, which names the method.
+    #[test]
+    fn an_svg_is_filmed_drawn_by_every_method_in_turn() -> Result<()> {
+        let dir = tempfile::tempdir()?;
+        let out = dir.path().join("holes.gif");
+        let svg = crate::source::svg_fixture("holes.svg");
+        record(&parse(&["--svg", svg.to_str().unwrap(), "--out", out.to_str().unwrap()]).unwrap())?;
+        let mut decoder = gif::DecodeOptions::new();
+        decoder.set_color_output(gif::ColorOutput::Indexed);
+        let mut decoder = decoder.read_info(fs::File::open(&out)?)?;
+        let mut frames = 0;
+        while let Some(frame) = decoder.read_next_frame()? {
+            assert_eq!((frame.width, frame.height, frame.delay), (320, 200, 200));
+            frames += 1;
+        }
+        assert_eq!(frames, MethodId::ALL.len());
+        Ok(())
     }
 
     #[test]

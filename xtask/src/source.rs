@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
 use clap::Args;
+use harness::client::pack_for_upload;
 use harness::render::{SceneFile, SceneSource};
 use svg_import::{import_file, Options, PaletteChoice, ViewBox};
 
@@ -89,6 +90,40 @@ impl SceneArgs {
             }
             None => Ok(None),
         }
+    }
+}
+
+/// Scene files and SVGs a command takes several of (`--scene FILE` and
+/// `--svg FILE`, each as often as wanted), with the import's options.
+#[derive(Args, Debug)]
+pub struct SceneFiles {
+    /// A scene file (may be given several times).
+    #[arg(long, value_name = "FILE")]
+    pub scene: Vec<PathBuf>,
+    /// An SVG drawing, imported as `--svg` is elsewhere (may be given
+    /// several times).
+    #[arg(long, value_name = "FILE")]
+    pub svg: Vec<PathBuf>,
+    #[command(flatten)]
+    pub import: SvgArgs,
+}
+
+impl SceneFiles {
+    /// Every file read (the scene files, then the SVGs imported, notes
+    /// printed), each checked against the kernel's budget for an upload:
+    /// all of it before anything boots or opens a line.
+    pub fn read(&self) -> Result<Vec<SceneFile>> {
+        let SvgArgs { tolerance, view_box, palette } = &self.import;
+        if self.svg.is_empty() && (tolerance.is_some() || view_box.is_some() || palette.is_some()) {
+            bail!("--tolerance, --view-box and --palette go with --svg");
+        }
+        let files = self.scene.iter().map(|path| SceneFile::read(path));
+        let svgs = self.svg.iter().map(|path| self.import.import(path));
+        let files = files.chain(svgs).collect::<Result<Vec<SceneFile>>>()?;
+        for file in &files {
+            pack_for_upload(&file.scene)?;
+        }
+        Ok(files)
     }
 }
 

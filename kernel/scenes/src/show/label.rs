@@ -43,6 +43,16 @@ pub(super) fn draw_labels(target: &mut dyn SpanSink, entry: &Entry, frame: u32, 
     draw_line(target, BOTTOM_ROW, method, &cost, BOTTOM_COLOR);
 }
 
+/// Draws `top` at the top of `target`, `bottom_left` and `bottom_right` at
+/// its bottom, as [`draw_labels`] draws an entry's: a caption in the show's
+/// letters for a picture that is no entry of the show.
+pub(super) fn draw_caption(target: &mut dyn SpanSink, top: &str, bottom_left: &str, bottom_right: &str) {
+    draw_line(target, TOP_ROW, top, &Line::new(), TOP_COLOR);
+    let mut right = Line::new();
+    let _ = right.write_str(bottom_right);
+    draw_line(target, BOTTOM_ROW, bottom_left, &right, BOTTOM_COLOR);
+}
+
 /// `left` from the left margin and `right` up to the right margin on the
 /// line whose glyphs start at row `y`; `left` is cut short to leave a blank
 /// column before `right`.

@@ -143,6 +143,12 @@ fn draw_page<S: SpanSink>(built: &mut Option<Scene>, page: &Builtin, method: Met
     scene.draw(method, target)
 }
 
+/// Draws a caption over `target` in the letters of the labels: `top` at
+/// the top, `bottom_left` and `bottom_right` at the bottom.
+pub fn draw_caption(target: &mut dyn SpanSink, top: &str, bottom_left: &str, bottom_right: &str) {
+    label::draw_caption(target, top, bottom_left, bottom_right);
+}
+
 /// Draws the labels of frame `frame` (modulo `entry.frames`) of `entry`
 /// over `target`: the entry and frame number at the top, the method and
 /// the cycles its draw took at the bottom.
