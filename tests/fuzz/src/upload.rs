@@ -21,10 +21,8 @@ pub fn check(data: &[u8]) {
     let mut declared = 0;
     for line in data.split(|&byte| byte == b'\n') {
         match Command::parse(line) {
-            Ok(Command::Upload { name, bytes, memory, crc }) => {
-                if upload.start(name, bytes, memory, crc).is_ok() {
-                    declared = memory;
-                }
+            Ok(Command::Upload { name, bytes, memory, crc }) if upload.start(name, bytes, memory, crc).is_ok() => {
+                declared = memory;
             }
             Ok(Command::Chunk { offset, data }) => {
                 if let Ok(reply) = upload.chunk(offset, data) {
