@@ -231,7 +231,7 @@ fn hostile_scene_files_get_a_message_and_the_page_keeps_answering() -> Result<()
     let many: Vec<String> = (0..5000).map(|i| format!("{},{}", i % 320, (i * 7) % 200)).collect();
     explorer.open_text(&format!("poly color=3 {}\n", many.join(" ")))?;
     let message = explorer.text("#message")?;
-    ensure!(message.contains("line 1: a polygon of 5000 vertices; the explorer takes at most 1024"), "{message}");
+    ensure!(message.contains("line 1: a polygon of 5000 vertices; the explorer takes at most 4096"), "{message}");
     still_answers(&explorer, "lamothe")
 }
 
