@@ -21,7 +21,7 @@ fn page_dir() -> Result<PathBuf> {
     static PAGE: OnceLock<Result<PathBuf, String>> = OnceLock::new();
     PAGE.get_or_init(|| {
         let dir = workspace::target_dir().join("explorer-test");
-        write_page(&dir, None).map(|()| dir).map_err(|error| format!("{error:#}"))
+        write_page(&dir, None, None).map(|()| dir).map_err(|error| format!("{error:#}"))
     })
     .clone()
     .map_err(anyhow::Error::msg)
@@ -309,5 +309,27 @@ fn a_click_selects_the_topmost_polygon_under_the_pointer() -> Result<()> {
         explorer.wait_for_render_after(renders)?;
         ensure!(explorer.text("#poly")? == polygon, "a click on pixel ({x}, {y}) selected {}", explorer.text("#poly")?);
     }
+    Ok(())
+}
+
+/// `cargo xtask explore --scene FILE` (or `--svg FILE`) puts the scene
+/// beside the page, which opens it when its address names no scene: the
+/// canvas is the host render, in the scene's own palette.
+#[test]
+fn a_scene_given_to_explore_opens_in_its_own_palette() -> Result<()> {
+    let text = "clear 0\npalette 20 63,32,0 10,20,63\n\
+                poly color=20 20,20 300,20 300,180 20,180 | 80,60 80,140 240,140 240,60\n\
+                poly color=21 rule=nonzero 160,30 60,170 260,170\n";
+    let dir = workspace::target_dir().join("explorer-test-scene");
+    write_page(&dir, None, Some(text))?;
+    let server = PageServer::start(&dir)?;
+    let browser = Browser::start()?;
+    let explorer = Explorer { browser, server };
+    explorer.go("#a=exact&view=picture")?;
+    let scene = scenes::file::parse("given", text).map_err(|error| anyhow::anyhow!("{error}"))?;
+    compare_images("explorer-given-scene-exact", &render(&scene, MethodId::Exact), &explorer.canvas("a")?)?;
+    // The address now carries the scene, so the link opens it again.
+    let fragment = explorer.session().execute("return location.hash;", vec![])?;
+    ensure!(fragment.as_str().is_some_and(|hash| hash.contains("text=")), "the address is {fragment}");
     Ok(())
 }

@@ -52,7 +52,10 @@ fn main() -> Result<()> {
         Action::Lint => lint::lint(),
         Action::Kbench(opt) => kbench::kbench(&opt),
         Action::Check(opt) => check::check(&opt),
-        Action::Explore(opt) => explorer_site::explore(opt.out.as_deref(), opt.results.as_deref()),
+        Action::Explore(opt) => {
+            let scene = opt.drawing.optional_source()?.map(|source| scenes::file::write(&source.scene()));
+            explorer_site::explore(opt.out.as_deref(), opt.results.as_deref(), scene.as_deref())
+        }
         Action::Fuzz(opt) => fuzz::fuzz(&opt),
         Action::Soak(opt) => soak::soak(&opt),
     }

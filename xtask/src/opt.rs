@@ -302,6 +302,10 @@ pub struct ExploreOpt {
     /// to copy beside the page, whose figures it then shows.
     #[arg(long, value_name = "FILE")]
     pub results: Option<PathBuf>,
+    /// A scene (a built-in page, a scene file or, with --svg, an SVG) the
+    /// page opens when its address names none.
+    #[command(flatten)]
+    pub drawing: SceneArgs,
 }
 
 /// The firmware `name` names; otherwise an error listing them.

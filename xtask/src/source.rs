@@ -79,6 +79,15 @@ impl SceneArgs {
         }
     }
 
+    /// The scene asked for, if one is: as [`SceneArgs::source`], but `None`
+    /// when neither `--scene` nor `--svg` is given.
+    pub fn optional_source(&self) -> Result<Option<SceneSource>> {
+        match (&self.scene, &self.svg) {
+            (None, None) => self.svg_file().map(|_| None),
+            _ => self.source().map(Some),
+        }
+    }
+
     /// The SVG imported, if `--svg` is given; an error if the import's
     /// options are given without it.
     pub fn svg_file(&self) -> Result<Option<SceneFile>> {

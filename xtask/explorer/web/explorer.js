@@ -672,6 +672,36 @@ function useResults(text, from) {
   guarded(render);
 }
 
+// Whether the address `hash` names a scene of its own.
+function namesScene(hash) {
+  const params = new URLSearchParams(hash.replace(/^#/, ""));
+  return params.has("text") || params.has("scene");
+}
+
+// The scene `cargo xtask explore --scene FILE` (or `--svg FILE`) put beside
+// the page, opened unless the address the page was opened at named one.
+async function loadServedScene(addressNamedOne) {
+  if (addressNamedOne) return;
+  let response;
+  try {
+    response = await fetch("scene.scene");
+  } catch {
+    return;
+  }
+  if (!response.ok) return;
+  const text = await response.text();
+  $("scene-text").value = text;
+  guarded(() => {
+    if (loadText(text)) {
+      engine.ex_select(Math.max(0, engine.ex_polygon_count() - 1));
+      showMessage("Opened the scene given to `cargo xtask explore`.", "info");
+    }
+    syncControls();
+    render();
+    writeFragment();
+  });
+}
+
 async function loadServedResults() {
   try {
     const response = await fetch("results.json");
@@ -705,12 +735,14 @@ async function main() {
   builtins = readOutput(engine.ex_builtins()).split("\n");
   makePanes();
   wireControls();
+  const addressNamedScene = namesScene(location.hash);
   await guarded(() => {
     applyFragment(location.hash);
     syncControls();
     render();
     writeFragment();
   });
+  await loadServedScene(addressNamedScene);
   await loadServedResults();
   document.body.dataset.ready = "1";
 }

@@ -21,6 +21,8 @@ const WEB_FILES: [&str; 3] = ["index.html", "explorer.js", "explorer.css"];
 pub const MODULE: &str = "explorer.wasm";
 /// Where the page looks for the lab's results.
 pub const RESULTS: &str = "results.json";
+/// Where the page looks for a scene to open when its address names none.
+pub const SCENE: &str = "scene.scene";
 
 /// Where the wasm build goes: a directory of its own, so it never waits on
 /// (or invalidates) the host build's lock and artifacts.
@@ -47,8 +49,9 @@ pub fn build_module() -> Result<PathBuf> {
 }
 
 /// Writes the page into `out`: the module just built, the hand-written
-/// files, and `results` (a lab `results.json`) as `results.json` when given.
-pub fn write_page(out: &Path, results: Option<&Path>) -> Result<()> {
+/// files, `results` (a lab `results.json`) as `results.json` and `scene`
+/// (a scene file's text) as `scene.scene` when given.
+pub fn write_page(out: &Path, results: Option<&Path>, scene: Option<&str>) -> Result<()> {
     let module = build_module()?;
     std::fs::create_dir_all(out).with_context(|| format!("failed to create {}", out.display()))?;
     let copy = |from: &Path, name: &str| -> Result<()> {
@@ -63,24 +66,33 @@ pub fn write_page(out: &Path, results: Option<&Path>) -> Result<()> {
     }
     match results {
         Some(results) => copy(results, RESULTS)?,
-        // A results.json left from an earlier --results would be shown as
-        // if it had been given this time.
-        None => match std::fs::remove_file(out.join(RESULTS)) {
-            Err(error) if error.kind() != std::io::ErrorKind::NotFound => {
-                return Err(error).with_context(|| format!("failed to remove an old {RESULTS} in {}", out.display()))
-            }
-            _ => {}
-        },
+        None => remove_old(out, RESULTS)?,
+    }
+    match scene {
+        Some(text) => std::fs::write(out.join(SCENE), text)
+            .with_context(|| format!("failed to write {SCENE} in {}", out.display()))?,
+        None => remove_old(out, SCENE)?,
     }
     Ok(())
+}
+
+/// Removes `name` from `out` if an earlier run left it there: it would be
+/// shown as if it had been given this time.
+fn remove_old(out: &Path, name: &str) -> Result<()> {
+    match std::fs::remove_file(out.join(name)) {
+        Err(error) if error.kind() != std::io::ErrorKind::NotFound => {
+            Err(error).with_context(|| format!("failed to remove an old {name} in {}", out.display()))
+        }
+        _ => Ok(()),
+    }
 }
 
 /// `cargo xtask explore`: writes the page to `out` and prints the folder,
 /// or with no `out` writes it under `target/explorer` and serves it until
 /// the process is stopped, printing its address.
-pub fn explore(out: Option<&Path>, results: Option<&Path>) -> Result<()> {
+pub fn explore(out: Option<&Path>, results: Option<&Path>, scene: Option<&str>) -> Result<()> {
     let dir = out.map_or_else(|| workspace::target_dir().join("explorer"), Path::to_path_buf);
-    write_page(&dir, results)?;
+    write_page(&dir, results, scene)?;
     if out.is_some() {
         println!("{}", dir.display());
         return Ok(());
@@ -167,6 +179,7 @@ fn page_file(url: &str) -> Option<(&str, &'static str)> {
         "explorer.css" => "text/css; charset=utf-8",
         MODULE => "application/wasm",
         RESULTS => "application/json",
+        SCENE => "text/plain; charset=utf-8",
         _ => return None,
     };
     Some((name, content_type))
@@ -196,6 +209,7 @@ mod tests {
         assert_eq!(page_file("/?x=1#scene=abrash38-3"), Some(("index.html", "text/html; charset=utf-8")));
         assert_eq!(page_file("/explorer.wasm"), Some(("explorer.wasm", "application/wasm")));
         assert_eq!(page_file("/results.json"), Some(("results.json", "application/json")));
+        assert_eq!(page_file("/scene.scene"), Some(("scene.scene", "text/plain; charset=utf-8")));
         assert_eq!(page_file("/../Cargo.toml"), None);
         assert_eq!(page_file("/web/index.html"), None);
     }
