@@ -102,10 +102,12 @@ fn methods_allocate_as_their_info_says_and_the_show_adds_nothing() {
     }
     assert!(wrong.is_empty(), "{wrong:#?}");
 
-    // Every animated entry, drawn and labelled with each method that takes
-    // nothing for convex polygons, allocates nothing after its first frame.
+    // Every animation of the show's own (convex) polygons, drawn and
+    // labelled with each method that takes nothing for convex polygons,
+    // allocates nothing after its first frame. (A page drawn by every
+    // method in turn is real art, whose outlines are not convex.)
     let mut stage = Stage::new();
-    for entry in ENTRIES_IN_ORDER.iter().filter(|e| e.is_animated()) {
+    for entry in ENTRIES_IN_ORDER.iter().filter(|e| e.is_animated() && e.page().is_none()) {
         for method in MethodId::ALL.into_iter().filter(|m| m.method().info().heap != Heap::EveryPolygon) {
             stage.draw(entry, 0, method);
             for frame in [1, entry.frames / 2, entry.frames - 1] {

@@ -47,6 +47,9 @@ pub struct Stage {
     scratch: Scratch,
     /// The still scene built last, kept so a still page is built once.
     still: Option<Scene>,
+    /// The page drawn by every method in turn, built once and kept apart
+    /// from the stills', so that playing it leaves the still kept as it was.
+    art: Option<Scene>,
 }
 
 impl Default for Stage {
@@ -58,7 +61,7 @@ impl Default for Stage {
 impl Stage {
     pub fn new() -> Self {
         let pixels = (SCREEN.width * SCREEN.height) as usize;
-        Self { target: Framebuffer::new(SCREEN), depth: vec![0; pixels], scratch: Scratch::new(), still: None }
+        Self { target: Framebuffer::new(SCREEN), depth: vec![0; pixels], scratch: Scratch::new(), still: None, art: None }
     }
 
     /// Draws frame `frame` (modulo `entry.frames`) of `entry` with `method`
@@ -69,7 +72,8 @@ impl Stage {
         let animated = method.method();
         sink::clear(&mut self.target, 0);
         match entry.kind {
-            Kind::Still(page) | Kind::EveryMethod(page) => draw_page(&mut self.still, &page, method, &mut self.target),
+            Kind::Still(page) => draw_page(&mut self.still, &page, method, &mut self.target),
+            Kind::EveryMethod(page) => draw_page(&mut self.art, &page, method, &mut self.target),
             Kind::LamotheRotate => lamothe::draw(frame, animated, &mut self.scratch, &mut self.target),
             Kind::WgtGouraud => shaded::gouraud(frame, animated, &mut self.scratch, &mut self.target),
             Kind::WgtTexture => shaded::texture(frame, animated, &mut self.scratch, &mut self.target),
