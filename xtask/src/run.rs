@@ -178,6 +178,7 @@ mod tests {
 
     use super::*;
     use crate::opt::{parse_command, Action};
+    use crate::source::svg_fixture;
     use harness::render::render_show;
     use harness::Adapter;
 
@@ -268,5 +269,29 @@ mod tests {
         let written = run_headless(&["--scene", file.to_str().unwrap(), "--method", "abrash_aet"], &out)?;
         assert_eq!(written, ["mine.png"]);
         Ok(())
+    }
+
+    #[test]
+    fn svgs_are_drawn_and_kept_checked_against_the_host_render() -> Result<()> {
+        let dir = tempfile::tempdir()?;
+        let strokes = svg_fixture("strokes.svg");
+        let written = run_headless(&["--svg", strokes.to_str().unwrap()], &dir.path().join("strokes"))?;
+        assert_eq!(written, ["strokes.png"]);
+        // The left star alone, in the VGA palette, with the edge tables.
+        let rules = svg_fixture("rules.svg");
+        let args = ["--svg", rules.to_str().unwrap(), "--view-box", "0,0,160,200", "--palette", "vga"];
+        let written = run_headless(&[&args[..], &["--method", "abrash_aet"]].concat(), &dir.path().join("rules"))?;
+        assert_eq!(written, ["rules.png"]);
+        Ok(())
+    }
+
+    #[test]
+    fn a_bad_svg_is_refused_before_qemu_starts_and_nothing_is_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        let nan = svg_fixture("bad/nan.svg");
+        let error = format!("{:#}", run_headless(&["--svg", nan.to_str().unwrap()], &out).unwrap_err());
+        assert!(error.contains("not imported: <path id=\"broken\"> at line 3: bad path data: "), "{error}");
+        assert!(!out.exists());
     }
 }

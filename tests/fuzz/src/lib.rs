@@ -16,6 +16,7 @@ pub mod explore;
 pub mod methods;
 pub mod polygon;
 pub mod scene_file;
+pub mod svg;
 
 /// A fuzz target: its name (the cargo-fuzz binary's), the property it
 /// checks on one input, its seeds (a file name and the bytes) and the
@@ -28,7 +29,7 @@ pub struct Target {
 }
 
 /// Every target, in the order `cargo xtask fuzz` runs them.
-pub static TARGETS: [Target; 5] = [
+pub static TARGETS: [Target; 6] = [
     Target {
         name: "scene_file",
         check: scene_file::check,
@@ -44,6 +45,7 @@ pub static TARGETS: [Target; 5] = [
         dictionary: Vec::new,
     },
     Target { name: "explorer", check: explore::check, seeds: explore::seeds, dictionary: Vec::new },
+    Target { name: "svg", check: svg::check, seeds: svg::seeds, dictionary: svg::dictionary },
 ];
 
 /// The target called `name`.
