@@ -46,6 +46,7 @@ pub fn seeds() -> Vec<(String, Vec<u8>)> {
         drawing!("icon.svg"),
         drawing!("strokes.svg"),
         drawing!("paints.svg"),
+        drawing!("shapes.svg"),
         drawing!("bad/text.svg"),
         drawing!("bad/image.svg"),
         drawing!("bad/malformed.svg"),

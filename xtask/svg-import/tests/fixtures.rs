@@ -158,6 +158,23 @@ fn strokes_keep_their_width_caps_dashes_and_joins() {
 }
 
 #[test]
+fn every_basic_shape_styles_and_paint_order() {
+    let imported = imported("shapes.svg");
+    let drawn = Drawn::new(&imported.scene);
+    drawn.expect(WHITE, &[(10, 8), (99, 11)], "the line's stroke, 4 wide");
+    drawn.expect(BACKGROUND, &[(10, 7), (100, 10)], "beside the line");
+    drawn.expect(GREEN, &[(60, 60), (21, 60), (60, 41)], "the ellipse");
+    drawn.expect(BACKGROUND, &[(60, 39), (30, 45)], "outside the ellipse");
+    drawn.expect([63, 32, 0], &[(150, 40)], "the polygon, orange from the style sheet");
+    drawn.expect(YELLOW, &[(30, 160)], "the path, yellow from its style attribute");
+    // paint-order="stroke": the stroke first, the fill over its inner half.
+    let polygons = polygons(&imported.scene);
+    assert_eq!([polygons[3].contours.len(), polygons[4].contours.len()], [2, 1], "the stroke, then the fill");
+    drawn.expect(RED, &[(210, 10), (219, 50), (289, 89)], "the stroke's outer half");
+    drawn.expect(BLUE, &[(220, 20), (229, 50), (279, 79)], "the fill over the stroke's inner half");
+}
+
+#[test]
 fn gradients_and_patterns_are_drawn_flat_and_named_in_the_notes() {
     let imported = imported("paints.svg");
     assert_eq!(
