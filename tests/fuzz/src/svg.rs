@@ -47,6 +47,7 @@ pub fn seeds() -> Vec<(String, Vec<u8>)> {
         drawing!("strokes.svg"),
         drawing!("paints.svg"),
         drawing!("shapes.svg"),
+        drawing!("ignored.svg"),
         drawing!("bad/text.svg"),
         drawing!("bad/image.svg"),
         drawing!("bad/malformed.svg"),
