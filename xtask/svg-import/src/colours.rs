@@ -49,7 +49,8 @@ pub(crate) fn own(colours: &[Rgb]) -> Indexed {
     let mut notes = Vec::new();
     let merged = merge_nearest(&distinct, &weights, OWN_ENTRIES);
     if distinct.len() > OWN_ENTRIES {
-        let moved = distinct.iter().zip(&merged.of_colour).map(|(colour, &entry)| distance(*colour, merged.colours[entry]));
+        let moved =
+            distinct.iter().zip(&merged.of_colour).map(|(colour, &entry)| distance(*colour, merged.colours[entry]));
         notes.push(format!(
             "{} distinct colours at 6 bits a channel, more than the palette's {OWN_ENTRIES} entries beside the \
              background: the nearest merged until {OWN_ENTRIES} were left, moving a colour by at most {:.1} levels",
@@ -153,10 +154,13 @@ fn merge_nearest(colours: &[[u8; 3]], weights: &[u64], most: usize) -> Merged {
         }
     }
     let survivors: Vec<usize> = (0..count).filter(|&at| alive[at]).collect();
-    let place = |at: usize| survivors.binary_search(&at).unwrap_or(0);
+    let mut place = vec![0; count];
+    for (place_of_survivor, &at) in survivors.iter().enumerate() {
+        place[at] = place_of_survivor;
+    }
     Merged {
         colours: survivors.iter().map(|&at| mean[at]).collect(),
-        of_colour: owner.iter().map(|&at| place(at)).collect(),
+        of_colour: owner.iter().map(|&at| place[at]).collect(),
     }
 }
 

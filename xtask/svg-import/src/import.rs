@@ -131,7 +131,12 @@ impl Drawing {
             match node {
                 Node::Group(child) => self.group(child, opacity)?,
                 Node::Path(path) => self.path(path, opacity)?,
-                Node::Image(_) | Node::Text(_) => bail!("#{}: images and text are not drawn", node.id()),
+                Node::Image(_) | Node::Text(_) => {
+                    bail!(
+                        "{}: images and text are not drawn",
+                        element_name("image or text", node.id(), self.shapes + 1)
+                    )
+                }
             }
         }
         Ok(())
@@ -158,7 +163,14 @@ impl Drawing {
         Ok(())
     }
 
-    fn fill(&mut self, path: &usvg::Path, outline: &BezPath, to_screen: Affine, opacity: f32, name: &str) -> Result<()> {
+    fn fill(
+        &mut self,
+        path: &usvg::Path,
+        outline: &BezPath,
+        to_screen: Affine,
+        opacity: f32,
+        name: &str,
+    ) -> Result<()> {
         let Some(fill) = path.fill() else { return Ok(()) };
         let what = format!("the fill of {name}");
         let Some(colour) = flat_colour(fill.paint(), fill.opacity().get() * opacity, &what, &mut self.notes) else {
@@ -173,11 +185,17 @@ impl Drawing {
         Ok(())
     }
 
-    fn stroke(&mut self, path: &usvg::Path, outline: &BezPath, to_screen: Affine, opacity: f32, name: &str) -> Result<()> {
+    fn stroke(
+        &mut self,
+        path: &usvg::Path,
+        outline: &BezPath,
+        to_screen: Affine,
+        opacity: f32,
+        name: &str,
+    ) -> Result<()> {
         let Some(stroke) = path.stroke() else { return Ok(()) };
         let what = format!("the stroke of {name}");
-        let Some(colour) = flat_colour(stroke.paint(), stroke.opacity().get() * opacity, &what, &mut self.notes)
-        else {
+        let Some(colour) = flat_colour(stroke.paint(), stroke.opacity().get() * opacity, &what, &mut self.notes) else {
             return Ok(());
         };
         if stroke.linejoin() == usvg::LineJoin::MiterClip {

@@ -91,7 +91,7 @@ fn holes_come_from_winding_under_nonzero_and_from_evenodd() {
     drawn.expect(ring, &[(100, 30), (100, 170), (30, 100), (155, 100)], "the ring");
     drawn.expect(BACKGROUND, &[(100, 70), (130, 100), (100, 8)], "the ring's hole and outside it");
     drawn.expect([47, 8, 8], &[(100, 100), (100, 81)], "the dot in the hole"); // #c02020
-    // The window's frame, x 210-310 and y 20-180, its panes cut out.
+                                                                               // The window's frame, x 210-310 and y 20-180, its panes cut out.
     let frame = [8, 24, 47]; // #2060c0
     drawn.expect(frame, &[(215, 60), (260, 60), (240, 97), (305, 175)], "the frame");
     drawn.expect(BACKGROUND, &[(240, 60), (280, 60), (240, 140), (280, 140)], "the panes");
@@ -249,7 +249,9 @@ fn colours_take_their_own_entries_at_6_bits_or_the_vga_default() {
     for level in 0..64 {
         for (row, rgb) in [[level, 0, 0], [0, level, 63 - level], [level, level, level]].iter().enumerate() {
             let [r, g, b] = rgb.map(eight_bit);
-            svg.push_str(&format!("<rect x=\"{level}\" y=\"{row}\" width=\"1\" height=\"1\" fill=\"rgb({r},{g},{b})\"/>"));
+            svg.push_str(&format!(
+                "<rect x=\"{level}\" y=\"{row}\" width=\"1\" height=\"1\" fill=\"rgb({r},{g},{b})\"/>"
+            ));
         }
     }
     svg.push_str("</svg>");
