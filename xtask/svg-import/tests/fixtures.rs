@@ -200,6 +200,14 @@ fn what_is_ignored_or_drawn_otherwise_is_noted() {
 }
 
 #[test]
+fn a_paints_opacity_is_its_own_times_its_groups() {
+    let svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 10 10\"><g opacity=\"0.5\">\
+               <g opacity=\"0.5\"><rect id=\"r\" width=\"5\" height=\"5\" fill-opacity=\"0.5\"/></g></g></svg>";
+    let imported = import("x", svg.as_bytes(), &Options::default()).unwrap();
+    assert_eq!(imported.notes[0], "opacity below 1, drawn opaque: the fill of shape #r at 0.12");
+}
+
+#[test]
 fn strokes_too_wide_or_too_finely_dashed_are_refused() {
     let svg = |stroke: &str| {
         format!(
