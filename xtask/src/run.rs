@@ -294,4 +294,26 @@ mod tests {
         assert!(error.contains("not imported: <path id=\"broken\"> at line 3: bad path data: "), "{error}");
         assert!(!out.exists());
     }
+
+    #[test]
+    fn the_import_options_go_with_svg_only() {
+        assert!(parse(&["--svg", "a.svg", "--palette", "vga", "--view-box", "0,0,5,5", "--tolerance", "1"]).is_ok());
+        for option in [["--tolerance", "0.5"], ["--view-box", "0,0,1,1"], ["--palette", "vga"]] {
+            for scene in [&["--scene", "abrash38-1"][..], &[]] {
+                let args = [scene, &option[..]].concat();
+                let error = run(&parse(&args).unwrap()).unwrap_err().to_string();
+                assert_eq!(error, "--tolerance, --view-box and --palette go with --svg", "{args:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn bad_import_options_are_refused_by_the_parser() {
+        let error = parse(&["--svg", "a.svg", "--view-box", "0,0,5"]).unwrap_err().to_string();
+        assert!(error.contains("bad view box `0,0,5` (expected four numbers, X,Y,W,H)"), "{error}");
+        let error = parse(&["--svg", "a.svg", "--palette", "ega"]).unwrap_err().to_string();
+        assert!(error.contains("unknown palette `ega`; the palettes are own, vga"), "{error}");
+        let error = parse(&["--svg", "a.svg", "--tolerance", "fine"]).unwrap_err().to_string();
+        assert!(error.contains("invalid value 'fine' for '--tolerance <PX>'"), "{error}");
+    }
 }
