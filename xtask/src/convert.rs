@@ -1,6 +1,8 @@
 //! `cargo xtask convert`: an SVG written as a scene file.
 
+use std::fs::Permissions;
 use std::io::Write;
+use std::os::unix::fs::PermissionsExt;
 use std::path::Path;
 
 use anyhow::{Context, Result};
@@ -24,8 +26,13 @@ fn write_atomically(path: &Path, text: &str) -> Result<()> {
         _ => Path::new("."),
     };
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let mut temporary =
-        tempfile::NamedTempFile::new_in(dir).with_context(|| format!("cannot write in {}", dir.display()))?;
+    let mut temporary = tempfile::Builder::new()
+        .prefix(".convert-")
+        .suffix(".scene.partial")
+        // What `File::create` asks for: the umask decides.
+        .permissions(Permissions::from_mode(0o666))
+        .tempfile_in(dir)
+        .with_context(|| format!("cannot write in {}", dir.display()))?;
     temporary.write_all(text.as_bytes()).with_context(|| format!("cannot write beside {}", path.display()))?;
     temporary.persist(path).with_context(|| format!("cannot write {}", path.display()))?;
     Ok(())
@@ -73,6 +80,11 @@ mod tests {
         assert_eq!(file::parse("holes", &text).unwrap(), imported.scene);
         assert!(text.starts_with("palette 1 55,40,8 47,8,8 8,24,47\nclear 0\npoly color=1 rule=nonzero "), "{text}");
         assert_eq!(summary(&imported.scene), "holes: 3 polygons, 8 contours, 128 vertices, 3 palette entries");
+        // Made as `File::create` makes a file, not private as a temporary one.
+        let created = dir.path().join("created");
+        std::fs::File::create(&created)?;
+        let mode = |path: &Path| std::fs::metadata(path).map(|m| m.permissions().mode());
+        assert_eq!(mode(&out)?, mode(&created)?);
         // In the VGA palette: no palette line.
         convert_svg("holes.svg", &["--palette", "vga"], &out)?;
         assert!(std::fs::read_to_string(&out)?.starts_with("clear 0\npoly color=43 rule=nonzero "));

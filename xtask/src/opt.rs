@@ -319,7 +319,7 @@ pub struct FuzzOpt {
     #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..))]
     pub seconds: u32,
     /// One target (scene_file, command, methods, exact_reference,
-    /// explorer); all of them, one after the other, if none is named.
+    /// explorer, svg); all of them, one after the other, if none is named.
     pub target: Option<String>,
 }
 

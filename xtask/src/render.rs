@@ -73,4 +73,13 @@ mod tests {
             assert!(!out.exists(), "{svg}: {} was written", out.display());
         }
     }
+
+    #[test]
+    fn scene_and_svg_exclude_each_other_and_render_needs_one() {
+        let both = parse_command("render", &["--scene", "abrash38-1", "--svg", "a.svg", "--out", "a.png"]);
+        let error = both.unwrap_err().to_string();
+        assert!(error.contains("the argument '--scene <NAME|FILE>' cannot be used with '--svg <FILE>'"), "{error}");
+        let neither = parse_command("render", &["--out", "a.png"]).unwrap_err().to_string();
+        assert!(neither.contains("the following required arguments were not provided"), "{neither}");
+    }
 }

@@ -178,6 +178,7 @@ mod tests {
 
     use super::*;
     use crate::opt::{parse_command, Action};
+    use crate::source::svg_fixture;
     use harness::render::render_show;
     use harness::Adapter;
 
@@ -268,5 +269,51 @@ mod tests {
         let written = run_headless(&["--scene", file.to_str().unwrap(), "--method", "abrash_aet"], &out)?;
         assert_eq!(written, ["mine.png"]);
         Ok(())
+    }
+
+    #[test]
+    fn svgs_are_drawn_and_kept_checked_against_the_host_render() -> Result<()> {
+        let dir = tempfile::tempdir()?;
+        let strokes = svg_fixture("strokes.svg");
+        let written = run_headless(&["--svg", strokes.to_str().unwrap()], &dir.path().join("strokes"))?;
+        assert_eq!(written, ["strokes.png"]);
+        // The left star alone, in the VGA palette, with the edge tables.
+        let rules = svg_fixture("rules.svg");
+        let args = ["--svg", rules.to_str().unwrap(), "--view-box", "0,0,160,200", "--palette", "vga"];
+        let written = run_headless(&[&args[..], &["--method", "abrash_aet"]].concat(), &dir.path().join("rules"))?;
+        assert_eq!(written, ["rules.png"]);
+        Ok(())
+    }
+
+    #[test]
+    fn a_bad_svg_is_refused_before_qemu_starts_and_nothing_is_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        let nan = svg_fixture("bad/nan.svg");
+        let error = format!("{:#}", run_headless(&["--svg", nan.to_str().unwrap()], &out).unwrap_err());
+        assert!(error.contains("not imported: <path id=\"broken\"> at line 3: bad path data: "), "{error}");
+        assert!(!out.exists());
+    }
+
+    #[test]
+    fn the_import_options_go_with_svg_only() {
+        assert!(parse(&["--svg", "a.svg", "--palette", "vga", "--view-box", "0,0,5,5", "--tolerance", "1"]).is_ok());
+        for option in [["--tolerance", "0.5"], ["--view-box", "0,0,1,1"], ["--palette", "vga"]] {
+            for scene in [&["--scene", "abrash38-1"][..], &[]] {
+                let args = [scene, &option[..]].concat();
+                let error = run(&parse(&args).unwrap()).unwrap_err().to_string();
+                assert_eq!(error, "--tolerance, --view-box and --palette go with --svg", "{args:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn bad_import_options_are_refused_by_the_parser() {
+        let error = parse(&["--svg", "a.svg", "--view-box", "0,0,5"]).unwrap_err().to_string();
+        assert!(error.contains("bad view box `0,0,5` (expected four numbers, X,Y,W,H)"), "{error}");
+        let error = parse(&["--svg", "a.svg", "--palette", "ega"]).unwrap_err().to_string();
+        assert!(error.contains("unknown palette `ega`; the palettes are own, vga"), "{error}");
+        let error = parse(&["--svg", "a.svg", "--tolerance", "fine"]).unwrap_err().to_string();
+        assert!(error.contains("invalid value 'fine' for '--tolerance <PX>'"), "{error}");
     }
 }

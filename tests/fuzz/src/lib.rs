@@ -16,6 +16,7 @@ pub mod explore;
 pub mod methods;
 pub mod polygon;
 pub mod scene_file;
+pub mod svg;
 pub mod upload;
 
 /// A fuzz target: its name (the cargo-fuzz binary's), the property it
@@ -29,7 +30,7 @@ pub struct Target {
 }
 
 /// Every target, in the order `cargo xtask fuzz` runs them.
-pub static TARGETS: [Target; 6] = [
+pub static TARGETS: [Target; 7] = [
     Target {
         name: "scene_file",
         check: scene_file::check,
@@ -46,6 +47,7 @@ pub static TARGETS: [Target; 6] = [
         dictionary: Vec::new,
     },
     Target { name: "explorer", check: explore::check, seeds: explore::seeds, dictionary: Vec::new },
+    Target { name: "svg", check: svg::check, seeds: svg::seeds, dictionary: svg::dictionary },
 ];
 
 /// The target called `name`.

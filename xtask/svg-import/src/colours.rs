@@ -154,10 +154,13 @@ fn merge_nearest(colours: &[[u8; 3]], weights: &[u64], most: usize) -> Merged {
         }
     }
     let survivors: Vec<usize> = (0..count).filter(|&at| alive[at]).collect();
-    let place = |at: usize| survivors.binary_search(&at).unwrap_or(0);
+    let mut place = vec![0; count];
+    for (place_of_survivor, &at) in survivors.iter().enumerate() {
+        place[at] = place_of_survivor;
+    }
     Merged {
         colours: survivors.iter().map(|&at| mean[at]).collect(),
-        of_colour: owner.iter().map(|&at| place(at)).collect(),
+        of_colour: owner.iter().map(|&at| place[at]).collect(),
     }
 }
 

@@ -8,7 +8,7 @@ use kurbo::{Affine, BezPath};
 use raster::{FillRule, MethodId, Point, Polygon};
 use scenes::{Op, Scene};
 use usvg::roxmltree::{Document, ParsingOptions};
-use usvg::{Group, Node, PaintOrder};
+use usvg::{Group, Node, Opacity, Paint, PaintOrder};
 
 use crate::colours;
 use crate::fit::{affine, to_screen};
@@ -95,6 +95,17 @@ struct Fill {
     colour: Rgb,
 }
 
+/// One visible path on its way to polygons: its outline in its own
+/// coordinates, the transform from them to the screen, its groups'
+/// opacity and its name in notes and errors.
+struct Shape<'a> {
+    path: &'a usvg::Path,
+    outline: BezPath,
+    to_screen: Affine,
+    opacity: f32,
+    name: String,
+}
+
 /// The walk through usvg's tree.
 struct Drawing {
     to_screen: Affine,
@@ -131,7 +142,12 @@ impl Drawing {
             match node {
                 Node::Group(child) => self.group(child, opacity)?,
                 Node::Path(path) => self.path(path, opacity)?,
-                Node::Image(_) | Node::Text(_) => bail!("#{}: images and text are not drawn", node.id()),
+                Node::Image(_) | Node::Text(_) => {
+                    bail!(
+                        "{}: images and text are not drawn",
+                        element_name("image or text", node.id(), self.shapes + 1)
+                    )
+                }
             }
         }
         Ok(())
@@ -144,61 +160,52 @@ impl Drawing {
             return Ok(());
         }
         self.shapes += 1;
-        let name = element_name("shape", path.id(), self.shapes);
-        let outline = bez_path(path.data());
-        let to_screen = self.to_screen * affine(path.abs_transform());
+        let shape = Shape {
+            path,
+            outline: bez_path(path.data()),
+            to_screen: self.to_screen * affine(path.abs_transform()),
+            opacity,
+            name: element_name("shape", path.id(), self.shapes),
+        };
         let fill_first = path.paint_order() == PaintOrder::FillAndStroke;
         for filling in [fill_first, !fill_first] {
             if filling {
-                self.fill(path, &outline, to_screen, opacity, &name)?;
+                self.fill(&shape)?;
             } else {
-                self.stroke(path, &outline, to_screen, opacity, &name)?;
+                self.stroke(&shape)?;
             }
         }
         Ok(())
     }
 
-    fn fill(
-        &mut self,
-        path: &usvg::Path,
-        outline: &BezPath,
-        to_screen: Affine,
-        opacity: f32,
-        name: &str,
-    ) -> Result<()> {
-        let Some(fill) = path.fill() else { return Ok(()) };
-        let what = format!("the fill of {name}");
-        let Some(colour) = flat_colour(fill.paint(), fill.opacity().get() * opacity, &what, &mut self.notes) else {
-            return Ok(());
-        };
+    fn fill(&mut self, shape: &Shape) -> Result<()> {
+        let Some(fill) = shape.path.fill() else { return Ok(()) };
+        let Some(colour) = self.colour(shape, "fill", fill.paint(), fill.opacity()) else { return Ok(()) };
         let rule = match fill.rule() {
             usvg::FillRule::NonZero => FillRule::NonZero,
             usvg::FillRule::EvenOdd => FillRule::EvenOdd,
         };
-        let contours = filled(outline, to_screen, self.tolerance, name)?;
+        let contours = filled(&shape.outline, shape.to_screen, self.tolerance, &shape.name)?;
         self.push(contours, rule, colour);
         Ok(())
     }
 
-    fn stroke(
-        &mut self,
-        path: &usvg::Path,
-        outline: &BezPath,
-        to_screen: Affine,
-        opacity: f32,
-        name: &str,
-    ) -> Result<()> {
-        let Some(stroke) = path.stroke() else { return Ok(()) };
-        let what = format!("the stroke of {name}");
-        let Some(colour) = flat_colour(stroke.paint(), stroke.opacity().get() * opacity, &what, &mut self.notes) else {
-            return Ok(());
-        };
+    fn stroke(&mut self, shape: &Shape) -> Result<()> {
+        let Some(stroke) = shape.path.stroke() else { return Ok(()) };
+        let Some(colour) = self.colour(shape, "stroke", stroke.paint(), stroke.opacity()) else { return Ok(()) };
         if stroke.linejoin() == usvg::LineJoin::MiterClip {
-            self.notes.add("miter-clip joins drawn as miter joins", name.to_string());
+            self.notes.add("miter-clip joins drawn as miter joins", shape.name.clone());
         }
-        let contours = stroked(outline, stroke, to_screen, self.tolerance, name)?;
+        let contours = stroked(&shape.outline, stroke, shape.to_screen, self.tolerance, &shape.name)?;
         self.push(contours, FillRule::NonZero, colour);
         Ok(())
+    }
+
+    /// The flat colour of the shape's `part` (fill or stroke), painted
+    /// with `paint` at `opacity` times the shape's groups'.
+    fn colour(&mut self, shape: &Shape, part: &str, paint: &Paint, opacity: Opacity) -> Option<Rgb> {
+        let what = format!("the {part} of {}", shape.name);
+        flat_colour(paint, opacity.get() * shape.opacity, &what, &mut self.notes)
     }
 
     /// A polygon of `contours`, unless it has none (nothing of it covers

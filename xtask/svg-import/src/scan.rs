@@ -1,10 +1,13 @@
 //! The SVG's XML read before usvg converts it, for what usvg would drop
 //! without a word: text and images (usvg, built without text layout,
-//! leaves text out, and an image it cannot load is left out too), path
+//! leaves text out, and an image it cannot load is left out too), a
+//! `use` of another file or of nothing, path
 //! data, points, transforms and shape sizes that do not parse (usvg draws
 //! a path up to its first error and ignores a bad transform) or hold
 //! numbers too large for its 32-bit floats (a path whose coordinates
 //! overflow is dropped).
+
+use std::collections::HashSet;
 
 use anyhow::{bail, Result};
 use usvg::roxmltree::{Document, Node};
@@ -12,6 +15,8 @@ use usvg::roxmltree::{Document, Node};
 /// The SVG namespace. Elements in it or in none are SVG's, as usvg takes
 /// them; those of others (an editor's own) are not.
 const SVG_NAMESPACE: &str = "http://www.w3.org/2000/svg";
+/// XLink's namespace, of SVG 1.1's `xlink:href`.
+const XLINK_NAMESPACE: &str = "http://www.w3.org/1999/xlink";
 
 /// The largest number taken in geometry. 32-bit floats hold up to about
 /// 3.4e38; below this bound, a path's coordinates (which usvg adds up
@@ -45,14 +50,28 @@ pub(crate) fn check(document: &Document) -> Result<()> {
         };
         bail!("not an SVG: the root element is <{}>{namespace}, not SVG's <svg>", root.tag_name().name());
     }
+    let ids: HashSet<&str> = root.descendants().filter_map(|node| node.attribute("id")).collect();
     for element in root.descendants().filter(|node| is_svg(*node)) {
         let tag = element.tag_name().name();
         if let Some((_, why)) = REFUSED.iter().find(|(refused, _)| *refused == tag) {
             bail!("{} cannot be imported: {why}", described(document, element));
         }
-        check_numbers(element).map_err(|error| error.context(described(document, element)))?;
+        let checked = if tag == "use" { check_reference(element, &ids) } else { Ok(()) };
+        checked.and_then(|()| check_numbers(element)).map_err(|error| error.context(described(document, element)))?;
     }
     Ok(())
+}
+
+/// A `use` refers to an element of this file (usvg leaves out one that
+/// refers to another file or to no element).
+fn check_reference(element: Node, ids: &HashSet<&str>) -> Result<()> {
+    let href = element.attribute("href").or_else(|| element.attribute((XLINK_NAMESPACE, "href")));
+    match href.map(|href| (href, href.strip_prefix('#'))) {
+        None => bail!("a <use> with no href"),
+        Some((href, None)) => bail!("refers to `{href}`, outside this file"),
+        Some((_, Some(id))) if !ids.contains(id) => bail!("refers to #{id}, which this file does not have"),
+        Some(_) => Ok(()),
+    }
 }
 
 /// Whether `node` is an SVG element.
@@ -161,6 +180,21 @@ mod tests {
         assert!(error.starts_with("<foreignObject> at line 2 cannot be imported"), "{error}");
         // The same names in another namespace are not SVG's.
         assert!(checked("<x:text xmlns:x=\"urn:editor\">note</x:text>").is_ok());
+    }
+
+    #[test]
+    fn a_use_must_refer_to_an_element_of_the_file() {
+        let xlink = "xmlns:xlink=\"http://www.w3.org/1999/xlink\"";
+        assert!(checked(&format!("<rect id=\"r\"/><use href=\"#r\"/><use {xlink} xlink:href=\"#r\"/>")).is_ok());
+        assert_eq!(
+            refusal("<use id=\"u\" href=\"#nothing\"/>"),
+            "<use id=\"u\"> at line 2: refers to #nothing, which this file does not have"
+        );
+        assert_eq!(
+            refusal("<use href=\"icons.svg#home\"/>"),
+            "<use> at line 2: refers to `icons.svg#home`, outside this file"
+        );
+        assert_eq!(refusal("<use/>"), "<use> at line 2: a <use> with no href");
     }
 
     #[test]

@@ -155,6 +155,79 @@ fn strokes_keep_their_width_caps_dashes_and_joins() {
     drawn.expect(YELLOW, &[(80, 144)], "the miter's point");
     drawn.expect(BACKGROUND, &[(240, 144)], "cut by the bevel");
     drawn.expect(MAGENTA, &[(240, 148)], "below the bevel");
+    // The same angle at (160, 155) with a miter limit of 1: bevelled.
+    drawn.expect(BACKGROUND, &[(160, 150)], "the miter past its limit");
+    drawn.expect([0, 63, 63], &[(160, 153)], "below the limited miter's bevel");
+}
+
+#[test]
+fn every_basic_shape_styles_and_paint_order() {
+    let imported = imported("shapes.svg");
+    let drawn = Drawn::new(&imported.scene);
+    drawn.expect(WHITE, &[(10, 8), (99, 11)], "the line's stroke, 4 wide");
+    drawn.expect(BACKGROUND, &[(10, 7), (100, 10)], "beside the line");
+    drawn.expect(GREEN, &[(60, 60), (21, 60), (60, 41)], "the ellipse");
+    drawn.expect(BACKGROUND, &[(60, 39), (30, 45)], "outside the ellipse");
+    drawn.expect([63, 32, 0], &[(150, 40)], "the polygon, orange from the style sheet");
+    drawn.expect(YELLOW, &[(30, 160)], "the path, yellow from its style attribute");
+    // paint-order="stroke": the stroke first, the fill over its inner half.
+    let polygons = polygons(&imported.scene);
+    assert_eq!([polygons[3].contours.len(), polygons[4].contours.len()], [2, 1], "the stroke, then the fill");
+    drawn.expect(RED, &[(210, 10), (219, 50), (289, 89)], "the stroke's outer half");
+    drawn.expect(BLUE, &[(220, 20), (229, 50), (279, 79)], "the fill over the stroke's inner half");
+}
+
+#[test]
+fn what_is_ignored_or_drawn_otherwise_is_noted() {
+    let imported = imported("ignored.svg");
+    assert_eq!(
+        imported.notes,
+        [
+            "clip paths ignored, drawn unclipped: group #clipped",
+            "masks ignored, drawn unmasked: group #masked",
+            "filters ignored: group #blurred",
+            "blend modes ignored, drawn normally: group #multiplied",
+            "opacity 0, not drawn: the fill of shape #invisible",
+            "opacity below 1, drawn opaque: the fill of shape 6 (no id) at 0.25; the stroke of shape 6 (no id) at 0.50",
+            "miter-clip joins drawn as miter joins: shape 6 (no id)",
+            "1 of the 6 polygons are black, the background's colour: they show only where they cover others",
+        ]
+    );
+    let drawn = Drawn::new(&imported.scene);
+    // The clip path would leave only x < 50 of the red square.
+    drawn.expect(RED, &[(10, 10), (89, 89)], "unclipped");
+    drawn.expect(BACKGROUND, &[(150, 150)], "the invisible square is not drawn");
+}
+
+#[test]
+fn a_paints_opacity_is_its_own_times_its_groups() {
+    let svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 10 10\"><g opacity=\"0.5\">\
+               <g opacity=\"0.5\"><rect id=\"r\" width=\"5\" height=\"5\" fill-opacity=\"0.5\"/></g></g></svg>";
+    let imported = import("x", svg.as_bytes(), &Options::default()).unwrap();
+    assert_eq!(imported.notes[0], "opacity below 1, drawn opaque: the fill of shape #r at 0.12");
+}
+
+#[test]
+fn strokes_too_wide_or_too_finely_dashed_are_refused() {
+    let svg = |stroke: &str| {
+        format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 320 200\">\
+             <path id=\"s\" d=\"M10 10 H310\" stroke=\"#fff\" {stroke}/></svg>"
+        )
+    };
+    let refusal = |stroke: &str| format!("{:#}", import("x", svg(stroke).as_bytes(), &Options::default()).unwrap_err());
+    assert_eq!(
+        refusal("stroke-width=\"2e7\""),
+        "shape #s's stroke is 20000000 pixels wide once fitted to the screen, past the 16777216 taken"
+    );
+    // Just under the widest: its outline, 8,000,000 pixels each side of
+    // the line, is still within the subpixels' range.
+    assert!(import("x", svg("stroke-width=\"1.6e7\"").as_bytes(), &Options::default()).is_ok());
+    assert_eq!(
+        refusal("stroke-dasharray=\"0.001\""),
+        "shape #s's dash pattern cuts its stroke into about 300000 dashes, past the 100000 taken"
+    );
+    assert!(import("x", svg("stroke-dasharray=\"0.01\"").as_bytes(), &Options::default()).is_ok());
 }
 
 #[test]

@@ -61,7 +61,13 @@ impl Default for Stage {
 impl Stage {
     pub fn new() -> Self {
         let pixels = (SCREEN.width * SCREEN.height) as usize;
-        Self { target: Framebuffer::new(SCREEN), depth: vec![0; pixels], scratch: Scratch::new(), still: None, art: None }
+        Self {
+            target: Framebuffer::new(SCREEN),
+            depth: vec![0; pixels],
+            scratch: Scratch::new(),
+            still: None,
+            art: None,
+        }
     }
 
     /// Draws frame `frame` (modulo `entry.frames`) of `entry` with `method`
