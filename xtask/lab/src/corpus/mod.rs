@@ -15,6 +15,7 @@ mod scene;
 mod shapes;
 mod stress;
 mod tiling;
+pub mod user;
 
 pub use family::{Axis, Family, Group, Sweep, SEED};
 
