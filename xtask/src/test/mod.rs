@@ -119,15 +119,19 @@ fn is_whole_run(cargo_args: &[String]) -> bool {
 }
 
 /// Whether `cargo test --workspace ARGS` compiles the lab crate: unless
-/// the arguments choose only integration tests by name (`--test NAME`;
-/// the lab has none) or only packages other than the lab.
+/// the arguments choose only integration tests by name (`--test NAME`)
+/// none of which is the lab's (a file in `xtask/lab/tests/`), or only
+/// packages other than the lab.
 fn builds_the_lab(cargo_args: &[String]) -> bool {
     let args = cargo_part(cargo_args);
     let packages: Vec<&str> = values_of(args, &["--package", "-p"]).collect();
     let other_targets = ["--lib", "--bins", "--benches", "--all-targets", "--doc"];
-    let tests_only =
-        values_of(args, &["--test"]).next().is_some() && !args.iter().any(|arg| other_targets.contains(&arg.as_str()));
-    (packages.is_empty() || packages.contains(&"lab")) && !tests_only
+    let tests: Vec<&str> = values_of(args, &["--test"]).collect();
+    let lab_tests = install::workspace::root().join("xtask/lab/tests");
+    let others_only = !tests.is_empty()
+        && !args.iter().any(|arg| other_targets.contains(&arg.as_str()))
+        && !tests.iter().any(|name| lab_tests.join(format!("{name}.rs")).is_file());
+    (packages.is_empty() || packages.contains(&"lab")) && !others_only
 }
 
 /// The values `args` gives any of `flags`, as `FLAG VALUE` or `FLAG=VALUE`.
@@ -227,7 +231,11 @@ mod tests {
         for chosen in ["--test pages", "--test=pages --test bochs", "-p harness", "--package=xtask --lib"] {
             assert!(!builds_the_lab(&args(chosen)), "{chosen}");
         }
-        for all in ["", "-- --test pages", "every_page", "-p lab", "--package=lab", "--test pages --lib"] {
+        let lab_tests = ["--test scene", "--test=pages --test scene"];
+        for all in ["", "-- --test pages", "every_page", "-p lab", "--package=lab", "--test pages --lib"]
+            .iter()
+            .chain(&lab_tests)
+        {
             assert!(builds_the_lab(&args(all)), "{all}");
         }
     }
