@@ -22,13 +22,13 @@
 //! Other x86-64 cores get the same padding; the lab has been timed with
 //! and without it on Cascade Lake only.
 //!
-//! With `--scene FILE` the lab measures the polygons of the user's scene
-//! instead of the corpus. The scene is read here, into a [`Scene`], before
-//! anything is installed, built or written, so a bad file costs no build;
-//! the lab is handed that scene as a scene file of its own
-//! ([`scenes::file::write`], which it reads back to the same polygons), with
-//! what the report says it came from. Another way in (an SVG file) needs
-//! only another arm of [`user_scene`] giving a [`Scene`].
+//! With `--scene FILE` or `--svg FILE` the lab measures the polygons of
+//! the user's scene instead of the corpus. The scene is read (or the SVG
+//! imported by `svg_import`) here, into a [`Scene`], before anything is
+//! installed, built or written, so a bad file costs no build; the lab is
+//! handed that scene as a scene file of its own ([`scenes::file::write`],
+//! which it reads back to the same polygons), with what the report says it
+//! came from.
 
 use std::path::{absolute, Path, PathBuf};
 
@@ -82,12 +82,25 @@ struct UserScene {
     from: String,
 }
 
-/// The scene the user asked the lab to measure, read whole (a bad file is
-/// an error naming its line); `None` for the corpus.
+/// The scene the user asked the lab to measure: a scene file read whole (a
+/// bad file is an error naming its line), or an SVG imported (what it
+/// drew otherwise than the SVG asks is printed, and named in the report);
+/// `None` for the corpus.
 fn user_scene(opt: &LabOpt) -> Result<Option<UserScene>> {
-    let Some(path) = &opt.scene else { return Ok(None) };
-    let file = SceneFile::read(path)?;
-    Ok(Some(UserScene { scene: file.scene, from: path.display().to_string() }))
+    if let Some(path) = &opt.scene {
+        let file = SceneFile::read(path)?;
+        return Ok(Some(UserScene { scene: file.scene, from: path.display().to_string() }));
+    }
+    let Some(path) = &opt.svg else { return Ok(None) };
+    let imported = svg_import::import_file(path, &svg_import::Options::default())?;
+    for note in &imported.notes {
+        eprintln!("xtask: {}: {note}", path.display());
+    }
+    let mut from = format!("{}, imported by svg_import", path.display());
+    if !imported.notes.is_empty() {
+        from = format!("{from}: {}", imported.notes.join("; "));
+    }
+    Ok(Some(UserScene { scene: imported.scene, from }))
 }
 
 /// Writes `scene` into `dir` as the scene file the lab reads, named after
@@ -103,7 +116,40 @@ mod tests {
     use super::*;
 
     fn opt(scene: Option<PathBuf>) -> LabOpt {
-        LabOpt { quick: true, runs: 1, out: None, scene }
+        LabOpt { quick: true, runs: 1, out: None, scene, svg: None }
+    }
+
+    fn svg(path: PathBuf) -> LabOpt {
+        LabOpt { svg: Some(path), ..opt(None) }
+    }
+
+    /// An SVG's polygons as `svg_import` makes them, named after the file,
+    /// with what it drew otherwise in the report's words.
+    #[test]
+    fn an_svg_is_imported_for_the_lab() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("ring.svg");
+        std::fs::write(
+            &path,
+            r##"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 32 20"><path fill="#c00" fill-opacity="0.5" fill-rule="evenodd" d="M2 2h28v16H2z M8 6h16v8H8z"/></svg>"##,
+        )
+        .unwrap();
+        let user = user_scene(&svg(path.clone())).unwrap().unwrap();
+        let expected = svg_import::import_file(&path, &svg_import::Options::default()).unwrap();
+        assert_eq!(user.scene, expected.scene);
+        assert_eq!(user.scene.name, "ring");
+        assert!(!expected.notes.is_empty());
+        assert!(user.from.starts_with(&format!("{}, imported by svg_import: ", path.display())), "{}", user.from);
+        assert!(expected.notes.iter().all(|note| user.from.contains(note.as_str())), "{}", user.from);
+    }
+
+    #[test]
+    fn a_bad_svg_is_refused_naming_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("broken.svg");
+        std::fs::write(&path, "<svg xmlns=\"http://www.w3.org/2000/svg\"><path d=\"M0 0 L").unwrap();
+        let error = format!("{:#}", user_scene(&svg(path)).err().unwrap());
+        assert!(error.contains("broken.svg: not imported"), "{error}");
     }
 
     /// The scene handed to the lab reads back to the user's, palette,
