@@ -34,7 +34,9 @@ use std::path::{absolute, Path, PathBuf};
 
 use anyhow::{Context, Result};
 use harness::render::SceneFile;
+use install::lab_art::ensure_lab_art;
 use install::libraries::ensure_lab_libraries;
+use install::missing::ensure_all;
 use install::process::run_streaming;
 use scenes::Scene;
 
@@ -53,8 +55,13 @@ const NATIVE_TARGET_DIR: &str = "target/native";
 pub fn lab(opt: &LabOpt) -> Result<()> {
     let user = user_scene(opt)?;
     // The Cairo peer builds against the system libcairo; the Allegro,
-    // SDL2_gfx and GD peers against theirs.
-    ensure_lab_libraries()?;
+    // SDL2_gfx and GD peers against theirs; the corpus (not a scene) has
+    // Debian's flags.
+    if user.is_some() {
+        ensure_lab_libraries()?;
+    } else {
+        ensure_all(&[ensure_lab_libraries, ensure_lab_art])?;
+    }
     let default_out = if user.is_some() { "target/lab-scene" } else { "target/lab" };
     let out = opt.out.clone().unwrap_or_else(|| PathBuf::from(default_out));
     let out = absolute(&out).with_context(|| format!("bad output directory {}", out.display()))?;

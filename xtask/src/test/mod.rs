@@ -12,6 +12,7 @@ use anyhow::Result;
 use boot_image::{build_image, IMAGE_ENV};
 use install::browser::ensure_chromium;
 use install::emulators::{ensure_bochs, ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_secure_boot_ovmf};
+use install::lab_art::ensure_lab_art;
 use install::libraries::ensure_lab_libraries;
 use install::missing::{ensure_all, Step};
 use install::process::run_streaming;
@@ -59,9 +60,10 @@ pub fn test(opt: &TestOpt) -> Result<()> {
     let run_needs: &[Step] = if is_whole_run(&opt.cargo_args) { &WHOLE_RUN } else { &[] };
     // The lab, a workspace member, builds its peers against libcairo,
     // Allegro 4, SDL2 with SDL2_gfx, and GD: needed before cargo compiles
-    // it, which no test can do for itself.
+    // it, which no test can do for itself; its corpus's tests read the
+    // flags of its third-party family.
     if builds_the_lab(&opt.cargo_args) {
-        ensure_now_or_all_at_once(ensure_lab_libraries, run_needs)?;
+        ensure_now_or_all_at_once(ensure_lab_needs, run_needs)?;
     }
     let Some(selection) = Selection::parse(&opt.cargo_args) else {
         let image = install_and_build_image(run_needs)?;
@@ -102,6 +104,12 @@ fn ensure_now_or_all_at_once(now: Step, later: &[Step]) -> Result<()> {
         return Err(error);
     }
     Ok(())
+}
+
+/// What building and testing the lab needs: its peers' C libraries and
+/// the flags of its third-party family.
+fn ensure_lab_needs() -> Result<()> {
+    ensure_all(&[ensure_lab_libraries, ensure_lab_art])
 }
 
 /// Installs what the run's tests need (`needs`: [`WHOLE_RUN`] for a whole

@@ -49,7 +49,8 @@ pub(crate) fn own(colours: &[Rgb]) -> Indexed {
     let mut notes = Vec::new();
     let merged = merge_nearest(&distinct, &weights, OWN_ENTRIES);
     if distinct.len() > OWN_ENTRIES {
-        let moved = distinct.iter().zip(&merged.of_colour).map(|(colour, &entry)| distance(*colour, merged.colours[entry]));
+        let moved =
+            distinct.iter().zip(&merged.of_colour).map(|(colour, &entry)| distance(*colour, merged.colours[entry]));
         notes.push(format!(
             "{} distinct colours at 6 bits a channel, more than the palette's {OWN_ENTRIES} entries beside the \
              background: the nearest merged until {OWN_ENTRIES} were left, moving a colour by at most {:.1} levels",

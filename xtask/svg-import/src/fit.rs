@@ -43,7 +43,12 @@ pub(crate) fn to_screen(document: &Document, tree: &usvg::Tree, view_box: Option
 /// height above zero; `None` if it has none or usvg would ignore it.
 fn own_view_box(document: &Document) -> Option<ViewBox> {
     let parsed: svgtypes::ViewBox = document.root_element().attribute("viewBox")?.parse().ok()?;
-    (parsed.w > 0.0 && parsed.h > 0.0).then_some(ViewBox { x: parsed.x, y: parsed.y, width: parsed.w, height: parsed.h })
+    (parsed.w > 0.0 && parsed.h > 0.0).then_some(ViewBox {
+        x: parsed.x,
+        y: parsed.y,
+        width: parsed.w,
+        height: parsed.h,
+    })
 }
 
 /// The transform usvg puts between the root's user units and its

@@ -158,7 +158,14 @@ impl Drawing {
         Ok(())
     }
 
-    fn fill(&mut self, path: &usvg::Path, outline: &BezPath, to_screen: Affine, opacity: f32, name: &str) -> Result<()> {
+    fn fill(
+        &mut self,
+        path: &usvg::Path,
+        outline: &BezPath,
+        to_screen: Affine,
+        opacity: f32,
+        name: &str,
+    ) -> Result<()> {
         let Some(fill) = path.fill() else { return Ok(()) };
         let what = format!("{name} (fill)");
         let Some(colour) = flat_colour(fill.paint(), fill.opacity().get() * opacity, &what, &mut self.notes) else {
@@ -173,11 +180,17 @@ impl Drawing {
         Ok(())
     }
 
-    fn stroke(&mut self, path: &usvg::Path, outline: &BezPath, to_screen: Affine, opacity: f32, name: &str) -> Result<()> {
+    fn stroke(
+        &mut self,
+        path: &usvg::Path,
+        outline: &BezPath,
+        to_screen: Affine,
+        opacity: f32,
+        name: &str,
+    ) -> Result<()> {
         let Some(stroke) = path.stroke() else { return Ok(()) };
         let what = format!("{name} (stroke)");
-        let Some(colour) = flat_colour(stroke.paint(), stroke.opacity().get() * opacity, &what, &mut self.notes)
-        else {
+        let Some(colour) = flat_colour(stroke.paint(), stroke.opacity().get() * opacity, &what, &mut self.notes) else {
             return Ok(());
         };
         if stroke.linejoin() == usvg::LineJoin::MiterClip {

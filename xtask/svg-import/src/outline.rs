@@ -232,11 +232,13 @@ mod tests {
         let got = filled(&path, Affine::scale(2.0), 0.1, "shape").unwrap();
         // The repeated vertex and the closing one go; the two-vertex
         // subpath covers nothing and goes too.
-        assert_eq!(got, [vec![pixels(0, 0), pixels(20, 0), pixels(20, 20)], vec![
-            pixels(80, 80),
-            pixels(100, 80),
-            pixels(100, 100)
-        ]]);
+        assert_eq!(
+            got,
+            [
+                vec![pixels(0, 0), pixels(20, 0), pixels(20, 20)],
+                vec![pixels(80, 80), pixels(100, 80), pixels(100, 100)]
+            ]
+        );
     }
 
     #[test]
