@@ -21,12 +21,24 @@
 //! peers' alike; with it every build lays its jumps out the same way.
 //! Other x86-64 cores get the same padding; the lab has been timed with
 //! and without it on Cascade Lake only.
+//!
+//! With `--scene FILE` or `--svg FILE` the lab measures the polygons of
+//! the user's scene instead of the corpus. The scene is read (or the SVG
+//! imported by `svg_import`) here, into a [`Scene`], before anything is
+//! installed, built or written, so a bad file costs no build; the lab is
+//! handed that scene as a scene file of its own ([`scenes::file::write`],
+//! which it reads back to the same polygons), with what the report says it
+//! came from.
 
-use std::path::absolute;
+use std::path::{absolute, Path, PathBuf};
 
 use anyhow::{Context, Result};
+use harness::render::SceneFile;
+use install::lab_art::ensure_lab_art;
 use install::libraries::ensure_lab_libraries;
+use install::missing::ensure_all;
 use install::process::run_streaming;
+use scenes::Scene;
 
 use crate::opt::LabOpt;
 
@@ -41,10 +53,18 @@ const NATIVE_RUSTFLAGS: &str = if cfg!(target_arch = "x86_64") {
 const NATIVE_TARGET_DIR: &str = "target/native";
 
 pub fn lab(opt: &LabOpt) -> Result<()> {
+    let user = user_scene(opt)?;
     // The Cairo peer builds against the system libcairo; the Allegro,
-    // SDL2_gfx and GD peers against theirs.
-    ensure_lab_libraries()?;
-    let out = absolute(&opt.out).with_context(|| format!("bad output directory {}", opt.out.display()))?;
+    // SDL2_gfx and GD peers against theirs; the corpus (not a scene) has
+    // Debian's flags.
+    if user.is_some() {
+        ensure_lab_libraries()?;
+    } else {
+        ensure_all(&[ensure_lab_libraries, ensure_lab_art])?;
+    }
+    let default_out = if user.is_some() { "target/lab-scene" } else { "target/lab" };
+    let out = opt.out.clone().unwrap_or_else(|| PathBuf::from(default_out));
+    let out = absolute(&out).with_context(|| format!("bad output directory {}", out.display()))?;
     let mut command = install::toolchain::host();
     command.env("RUSTFLAGS", NATIVE_RUSTFLAGS);
     command.args(["run", "--quiet", "--release", "--package", "lab", "--target-dir", NATIVE_TARGET_DIR, "--"]);
@@ -53,5 +73,119 @@ pub fn lab(opt: &LabOpt) -> Result<()> {
     }
     command.arg("--runs").arg(opt.runs.to_string());
     command.arg("--out").arg(out);
+    // Held until the lab is done with the scene file in it.
+    let scene_dir = tempfile::tempdir().context("failed to make a folder for the scene")?;
+    if let Some(user) = &user {
+        let path = handed_over(&user.scene, scene_dir.path())?;
+        command.arg("--scene").arg(path).arg("--scene-from").arg(&user.from);
+    }
     run_streaming(&mut command)
+}
+
+/// The user's shapes, as the lab is to measure them: the scene, and what
+/// the user gave, as the report names it.
+struct UserScene {
+    scene: Scene,
+    from: String,
+}
+
+/// The scene the user asked the lab to measure: a scene file read whole (a
+/// bad file is an error naming its line), or an SVG imported (what it
+/// drew otherwise than the SVG asks is printed, and named in the report);
+/// `None` for the corpus.
+fn user_scene(opt: &LabOpt) -> Result<Option<UserScene>> {
+    if let Some(path) = &opt.scene {
+        let file = SceneFile::read(path)?;
+        return Ok(Some(UserScene { scene: file.scene, from: path.display().to_string() }));
+    }
+    let Some(path) = &opt.svg else { return Ok(None) };
+    let imported = svg_import::import_file(path, &svg_import::Options::default())?;
+    for note in &imported.notes {
+        eprintln!("xtask: {}: {note}", path.display());
+    }
+    let mut from = format!("{}, imported by svg_import", path.display());
+    if !imported.notes.is_empty() {
+        from = format!("{from}: {}", imported.notes.join("; "));
+    }
+    Ok(Some(UserScene { scene: imported.scene, from }))
+}
+
+/// Writes `scene` into `dir` as the scene file the lab reads, named after
+/// the scene (the lab names the scene by the file's stem); returns its path.
+fn handed_over(scene: &Scene, dir: &Path) -> Result<PathBuf> {
+    let path = dir.join(format!("{}.scene", scene.name));
+    std::fs::write(&path, scenes::file::write(scene)).with_context(|| format!("failed to write {}", path.display()))?;
+    Ok(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn opt(scene: Option<PathBuf>) -> LabOpt {
+        LabOpt { quick: true, runs: 1, out: None, scene, svg: None }
+    }
+
+    fn svg(path: PathBuf) -> LabOpt {
+        LabOpt { svg: Some(path), ..opt(None) }
+    }
+
+    /// An SVG's polygons as `svg_import` makes them, named after the file,
+    /// with what it drew otherwise in the report's words.
+    #[test]
+    fn an_svg_is_imported_for_the_lab() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("ring.svg");
+        std::fs::write(
+            &path,
+            r##"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 32 20"><path fill="#c00" fill-opacity="0.5" fill-rule="evenodd" d="M2 2h28v16H2z M8 6h16v8H8z"/></svg>"##,
+        )
+        .unwrap();
+        let user = user_scene(&svg(path.clone())).unwrap().unwrap();
+        let expected = svg_import::import_file(&path, &svg_import::Options::default()).unwrap();
+        assert_eq!(user.scene, expected.scene);
+        assert_eq!(user.scene.name, "ring");
+        assert!(!expected.notes.is_empty());
+        assert!(user.from.starts_with(&format!("{}, imported by svg_import: ", path.display())), "{}", user.from);
+        assert!(expected.notes.iter().all(|note| user.from.contains(note.as_str())), "{}", user.from);
+    }
+
+    #[test]
+    fn a_bad_svg_is_refused_naming_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("broken.svg");
+        std::fs::write(&path, "<svg xmlns=\"http://www.w3.org/2000/svg\"><path d=\"M0 0 L").unwrap();
+        let error = format!("{:#}", user_scene(&svg(path)).err().unwrap());
+        assert!(error.contains("broken.svg: not imported"), "{error}");
+    }
+
+    /// The scene handed to the lab reads back to the user's, palette,
+    /// clears, rules and subpixel vertices alike, under the user's name.
+    #[test]
+    fn the_scene_handed_over_is_the_users() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("mine.scene");
+        std::fs::write(
+            &path,
+            "palette 16 63,0,0 0,63,0\nclear 1\npoly color=16 rule=nonzero 0.5,0 10.00390625,0 5,-8.25 | 1,1 2,1 \
+             1,2\nclear 2\npoly color=17 1,0 0,1 1,1\n",
+        )
+        .unwrap();
+        let user = user_scene(&opt(Some(path.clone()))).unwrap().unwrap();
+        assert_eq!(user.from, path.display().to_string());
+        let lab_dir = tempfile::tempdir().unwrap();
+        let handed = handed_over(&user.scene, lab_dir.path()).unwrap();
+        assert_eq!(handed.file_stem().unwrap(), "mine");
+        let text = std::fs::read_to_string(&handed).unwrap();
+        assert_eq!(scenes::file::parse("mine", &text).unwrap(), user.scene);
+    }
+
+    #[test]
+    fn a_bad_scene_is_refused_naming_its_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("bad.scene");
+        std::fs::write(&path, "clear 0\npoly color=300 0,0 1,0 0,1\n").unwrap();
+        let error = user_scene(&opt(Some(path))).err().unwrap().to_string();
+        assert!(error.contains("bad.scene: bad scene file: line 2: bad colour `300`"), "{error}");
+    }
 }

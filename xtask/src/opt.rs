@@ -50,8 +50,9 @@ pub enum Action {
     /// Checks formatting and runs clippy (warnings are errors) over the host
     /// crates and, with the pinned nightly, the kernel.
     Lint,
-    /// Measures every method for speed and accuracy (release build) and
-    /// writes results.json, report.md and charts under --out.
+    /// Measures every method for speed and accuracy (release build), on the
+    /// corpus or on the polygons of --scene FILE or --svg FILE, and writes
+    /// results.json, report.md and charts under --out.
     Lab(LabOpt),
     /// Boots the kernel with instruction counting, times every method on
     /// every demo scene with `BENCH` (rdtsc ticks, one per emulated
@@ -222,16 +223,28 @@ pub struct TestOpt {
 
 #[derive(Args, Debug)]
 pub struct LabOpt {
-    /// A small corpus and short timing, for CI (a few minutes).
+    /// A small corpus and short timing, for CI (a few minutes); with
+    /// --scene or --svg, the short timing alone.
     #[arg(long)]
     pub quick: bool,
     /// Runs of the whole timing, one after the other; with 2 or more the
     /// report says how far they disagree.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..))]
     pub runs: u16,
-    /// Where results.json, report.md and the charts go.
-    #[arg(long, default_value = "target/lab")]
-    pub out: PathBuf,
+    /// Where results.json, report.md and the charts go [default:
+    /// target/lab, or target/lab-scene with --scene or --svg].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Measure every method and peer on the polygons of this scene file
+    /// instead of the corpus, in families by class; a bad file is refused
+    /// before anything is built or written.
+    #[arg(long, value_name = "FILE", conflicts_with = "svg")]
+    pub scene: Option<PathBuf>,
+    /// The same for an SVG file, imported as `svg_import` imports it (its
+    /// default options: curves within 0.1 px, its view box fitted to
+    /// 320x200).
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]

@@ -40,6 +40,7 @@ pub mod browser;
 pub mod distribution;
 pub mod emulators;
 pub mod files;
+pub mod lab_art;
 pub mod libraries;
 pub mod missing;
 pub mod once;

@@ -19,7 +19,8 @@ use raster::Polygon;
 
 fn families(c: &mut Criterion) {
     let contenders = Contender::all();
-    let everyday = corpus::build(Budget::QUICK).into_iter().filter(|f| f.group != Group::Stress);
+    let everyday =
+        corpus::build(Budget::QUICK).expect("the corpus builds").into_iter().filter(|f| f.group != Group::Stress);
     for family in everyday {
         // Judging finds the polygons each contender fails on, which the
         // lab leaves out of its timing too, and the exact spans.

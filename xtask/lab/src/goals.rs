@@ -16,7 +16,7 @@ pub fn measure(results: &Results) -> Vec<GoalRow> {
         results.rows_of(EXACT).filter_map(|r| Some(r.wrong_pixels? + r.overdraw? + r.gaps.unwrap_or(0))).sum();
     vec![
         GoalRow {
-            measure: "exact's wrong, overdrawn and missing pixels over the whole corpus".into(),
+            measure: "exact's wrong, overdrawn and missing pixels over every family".into(),
             value: Some(wrong as f64),
             note: None,
             goal: "0, the same pixels (exact_golden)".into(),

@@ -213,7 +213,7 @@ mod tests {
     use crate::corpus::{self, Budget};
 
     fn family(name: &str) -> Family {
-        corpus::build(Budget::QUICK).into_iter().find(|f| f.name == name).unwrap()
+        corpus::build(Budget::QUICK).unwrap().into_iter().find(|f| f.name == name).unwrap()
     }
 
     const FAST: Timing = Timing { repeats: 2, min_repeat: std::time::Duration::ZERO };

@@ -47,6 +47,9 @@ pub struct GoalRow {
 pub struct Results {
     pub seed: u64,
     pub quick: bool,
+    /// The user's scene whose polygons were measured in place of the
+    /// corpus (`lab --scene`); `None` for the corpus.
+    pub scene: Option<SceneInfo>,
     pub families: Vec<FamilyInfo>,
     pub contenders: Vec<ContenderInfo>,
     pub rows: Vec<Row>,
@@ -62,6 +65,15 @@ pub struct Results {
     pub build: Build,
     /// How the times were taken.
     pub timing: TimingInfo,
+}
+
+/// The user's scene a run measured.
+#[derive(Clone, Debug, Serialize)]
+pub struct SceneInfo {
+    /// The scene's name (its file's stem).
+    pub name: String,
+    /// What the user gave: the file, and how it was read.
+    pub from: String,
 }
 
 /// How the times were taken: how many runs of the whole timing, how many
@@ -234,6 +246,7 @@ impl Results {
         Self {
             seed,
             quick,
+            scene: None,
             families: vec![],
             contenders: infos,
             rows: vec![],

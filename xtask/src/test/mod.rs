@@ -12,6 +12,7 @@ use anyhow::Result;
 use boot_image::{build_image, IMAGE_ENV};
 use install::browser::ensure_chromium;
 use install::emulators::{ensure_bochs, ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_secure_boot_ovmf};
+use install::lab_art::ensure_lab_art;
 use install::libraries::ensure_lab_libraries;
 use install::missing::{ensure_all, Step};
 use install::process::run_streaming;
@@ -59,9 +60,10 @@ pub fn test(opt: &TestOpt) -> Result<()> {
     let run_needs: &[Step] = if is_whole_run(&opt.cargo_args) { &WHOLE_RUN } else { &[] };
     // The lab, a workspace member, builds its peers against libcairo,
     // Allegro 4, SDL2 with SDL2_gfx, and GD: needed before cargo compiles
-    // it, which no test can do for itself.
+    // it, which no test can do for itself; its corpus's tests read the
+    // flags of its third-party family.
     if builds_the_lab(&opt.cargo_args) {
-        ensure_now_or_all_at_once(ensure_lab_libraries, run_needs)?;
+        ensure_now_or_all_at_once(ensure_lab_needs, run_needs)?;
     }
     let Some(selection) = Selection::parse(&opt.cargo_args) else {
         let image = install_and_build_image(run_needs)?;
@@ -104,6 +106,12 @@ fn ensure_now_or_all_at_once(now: Step, later: &[Step]) -> Result<()> {
     Ok(())
 }
 
+/// What building and testing the lab needs: its peers' C libraries and
+/// the flags of its third-party family.
+fn ensure_lab_needs() -> Result<()> {
+    ensure_all(&[ensure_lab_libraries, ensure_lab_art])
+}
+
 /// Installs what the run's tests need (`needs`: [`WHOLE_RUN`] for a whole
 /// run), a user who is not root told every missing package at once;
 /// then builds the image.
@@ -119,15 +127,19 @@ fn is_whole_run(cargo_args: &[String]) -> bool {
 }
 
 /// Whether `cargo test --workspace ARGS` compiles the lab crate: unless
-/// the arguments choose only integration tests by name (`--test NAME`;
-/// the lab has none) or only packages other than the lab.
+/// the arguments choose only integration tests by name (`--test NAME`)
+/// none of which is the lab's (a file in `xtask/lab/tests/`), or only
+/// packages other than the lab.
 fn builds_the_lab(cargo_args: &[String]) -> bool {
     let args = cargo_part(cargo_args);
     let packages: Vec<&str> = values_of(args, &["--package", "-p"]).collect();
     let other_targets = ["--lib", "--bins", "--benches", "--all-targets", "--doc"];
-    let tests_only =
-        values_of(args, &["--test"]).next().is_some() && !args.iter().any(|arg| other_targets.contains(&arg.as_str()));
-    (packages.is_empty() || packages.contains(&"lab")) && !tests_only
+    let tests: Vec<&str> = values_of(args, &["--test"]).collect();
+    let lab_tests = install::workspace::root().join("xtask/lab/tests");
+    let others_only = !tests.is_empty()
+        && !args.iter().any(|arg| other_targets.contains(&arg.as_str()))
+        && !tests.iter().any(|name| lab_tests.join(format!("{name}.rs")).is_file());
+    (packages.is_empty() || packages.contains(&"lab")) && !others_only
 }
 
 /// The values `args` gives any of `flags`, as `FLAG VALUE` or `FLAG=VALUE`.
@@ -227,7 +239,11 @@ mod tests {
         for chosen in ["--test pages", "--test=pages --test bochs", "-p harness", "--package=xtask --lib"] {
             assert!(!builds_the_lab(&args(chosen)), "{chosen}");
         }
-        for all in ["", "-- --test pages", "every_page", "-p lab", "--package=lab", "--test pages --lib"] {
+        let lab_tests = ["--test scene", "--test=pages --test scene"];
+        for all in ["", "-- --test pages", "every_page", "-p lab", "--package=lab", "--test pages --lib"]
+            .iter()
+            .chain(&lab_tests)
+        {
             assert!(builds_the_lab(&args(all)), "{all}");
         }
     }

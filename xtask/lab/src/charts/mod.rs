@@ -21,6 +21,7 @@ mod versus;
 
 use common::FONT;
 
+use crate::corpus::{Axis, Group};
 use crate::results::Results;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -42,6 +43,20 @@ impl Chart {
         Chart::ModellingCost,
         Chart::VersusExact,
     ];
+
+    /// The charts `results` has something to draw on: the rotation
+    /// sweep's where a family sweeps the angle, the scaling chart where
+    /// one sweeps area or vertex count, the stability map where there are
+    /// stress families (the corpus has all three, a user's scene none).
+    pub fn drawn(results: &Results) -> impl Iterator<Item = Chart> + '_ {
+        let swept = |axes: &[Axis]| results.sweeps.iter().any(|s| axes.contains(&s.axis));
+        Chart::ALL.into_iter().filter(move |chart| match chart {
+            Chart::Rotation => swept(&[Axis::Angle]),
+            Chart::Scaling => swept(&[Axis::Area, Axis::Vertices]),
+            Chart::Stability => results.families.iter().any(|f| f.group == Group::Stress),
+            Chart::SpeedVsAccuracy | Chart::ModellingCost | Chart::VersusExact => true,
+        })
+    }
 
     /// The file name, without extension.
     pub const fn name(self) -> &'static str {
@@ -82,10 +97,11 @@ impl Chart {
     }
 }
 
-/// Draws every chart into `out` as `NAME.svg` and `NAME.png`.
+/// Draws every chart `results` has something for ([`Chart::drawn`]) into
+/// `out` as `NAME.svg` and `NAME.png`.
 pub fn draw_all(results: &Results, out: &Path) -> Result<()> {
     register_font()?;
-    for chart in Chart::ALL {
+    for chart in Chart::drawn(results) {
         let svg = out.join(format!("{}.svg", chart.name()));
         let root = SVGBackend::new(&svg, chart.size()).into_drawing_area();
         chart.draw(&root, results).with_context(|| format!("failed to draw {}", svg.display()))?;

@@ -1,7 +1,8 @@
 //! What modelling costs: per family, each of exact's paths and fill_auto
 //! against the cheapest path that takes the whole family, fill_auto's
-//! choice marked and its classification's share shaded; beside it, the
-//! show's shaded entries as they need and over-modelled.
+//! choice marked and its classification's share shaded; beside it, where
+//! the run timed them, the show's shaded entries as they need and
+//! over-modelled.
 
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
@@ -30,6 +31,9 @@ pub(super) fn modelling_cost<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, 
 where
     DB::ErrorType: 'static,
 {
+    if results.show_modelling.is_empty() {
+        return paths(root, results);
+    }
     let (families_area, show_area) = root.split_horizontally(1240);
     paths(&families_area, results)?;
     show(&show_area, results)

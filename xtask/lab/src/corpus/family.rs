@@ -21,14 +21,17 @@ pub enum Group {
     Stress,
     /// Shapes no one here drew: a real font's glyphs, a real icon set.
     Real,
+    /// The polygons of a scene the user gave (`lab --scene`), in place of
+    /// the corpus.
+    UserScene,
 }
 
 impl Group {
-    /// The demo scenes, random polygons, tilings and real shapes: the work
-    /// a program does every day, where speed and accuracy are weighed
-    /// together.
+    /// The demo scenes, random polygons, tilings, real shapes and the
+    /// user's: the work a program does every day, where speed and accuracy
+    /// are weighed together.
     pub const fn is_everyday(self) -> bool {
-        matches!(self, Group::Scene | Group::Random | Group::Tiling | Group::Real)
+        matches!(self, Group::Scene | Group::Random | Group::Tiling | Group::Real | Group::UserScene)
     }
 }
 

@@ -23,19 +23,27 @@ use format::{count, duration, ratio};
 /// The whole report.
 pub fn markdown(results: &Results) -> String {
     let mut out = String::new();
-    let mode = if results.quick { "quick (`--quick`, a small corpus)" } else { "full" };
+    let measured = match (&results.scene, results.quick) {
+        (None, true) => format!("quick (`--quick`, a small corpus); corpus seed `{:#x}`", results.seed),
+        (None, false) => format!("full; corpus seed `{:#x}`", results.seed),
+        (Some(scene), quick) => format!(
+            "{}; the polygons of your scene `{}` ({}), in place of the corpus",
+            if quick { "quick (`--quick`, short timing)" } else { "full" },
+            scene.name,
+            scene.from
+        ),
+    };
     let _ = writeln!(out, "# Polygon-fill lab\n");
     let timing = &results.timing;
     let load = |l: Option<f64>| l.map_or("unknown".to_string(), |l| format!("{l:.2}"));
     let _ = writeln!(
         out,
-        "Run: {mode}; corpus seed `{:#x}`. Host wall-clock times in release, filling into a 320x200 framebuffer: \
+        "Run: {measured}. Host wall-clock times in release, filling into a 320x200 framebuffer: \
          every contender, bound and lane of a family timed in turn in each of {} repeats (each at least {} ms), in \
          each of {} run{} of the whole timing; a time is the median of those repeats, with the least and the most \
          of them, and a ratio of two times is the geometric mean of the repeats' ratios with its {:.0}% interval \
          (Student's t on their logarithms). Processor: {}. Load average {} when the timing started, {} when it ended. \
          Accuracy against `raster::reference`. Charts: {} (.svg and .png beside this file).\n",
-        results.seed,
         timing.repeats,
         timing.min_repeat_ms,
         timing.runs,
@@ -44,7 +52,7 @@ pub fn markdown(results: &Results) -> String {
         timing.cpu.as_deref().unwrap_or("unknown"),
         load(timing.load_average.0),
         load(timing.load_average.1),
-        crate::charts::Chart::ALL.map(|c| c.name()).join(", "),
+        crate::charts::Chart::drawn(results).map(|c| c.name()).collect::<Vec<_>>().join(", "),
     );
     corpus_table(&mut out, results);
     contender_table(&mut out, results);
@@ -95,7 +103,13 @@ pub fn markdown(results: &Results) -> String {
 }
 
 fn corpus_table(out: &mut String, results: &Results) {
-    let _ = writeln!(out, "## Corpus\n\n| family | group | polygons | exact pixels | what |\n|---|---|---:|---:|---|");
+    match results.scene {
+        None => out.push_str("## Corpus\n\n"),
+        Some(_) => {
+            let _ = writeln!(out, "## Families\n\n{}\n", crate::corpus::user::FAMILIES_FORMED);
+        }
+    }
+    let _ = writeln!(out, "| family | group | polygons | exact pixels | what |\n|---|---|---:|---:|---|");
     for f in &results.families {
         let _ = writeln!(
             out,
@@ -134,7 +148,8 @@ fn exact_goals(out: &mut String, results: &Results) {
     let sum = |pick: fn(&Row) -> Option<u64>| rows.iter().filter_map(|r| pick(r)).sum::<u64>();
     let _ = writeln!(
         out,
-        "- Whole corpus: {} wrong pixels, {} overdrawn, {} gaps, {} failures, {} declined polygons.\n",
+        "- {}: {} wrong pixels, {} overdrawn, {} gaps, {} failures, {} declined polygons.\n",
+        if results.scene.is_some() { "Your whole scene" } else { "Whole corpus" },
         count(sum(|r| r.wrong_pixels)),
         count(sum(|r| r.overdraw)),
         count(sum(|r| r.gaps)),
@@ -160,8 +175,9 @@ fn exact_goals(out: &mut String, results: &Results) {
 fn classic_failures(out: &mut String, results: &Results) {
     let _ = writeln!(
         out,
-        "## Where each classic method fails\n\nTotals over the whole corpus; \"own convention\" samples where the method \
-         does (see Contenders); declined polygons draw nothing and are not counted as wrong.\n"
+        "## Where each classic method fails\n\nTotals over {}; \"own convention\" samples where the method does (see \
+         Contenders); declined polygons draw nothing and are not counted as wrong.\n",
+        if results.scene.is_some() { "your whole scene" } else { "the whole corpus" }
     );
     for c in results.contenders.iter().filter(|c| c.kind == Kind::Method && c.name != EXACT) {
         let rows: Vec<&Row> = results.rows_of(c.name).collect();
@@ -263,5 +279,6 @@ fn group(g: Group) -> &'static str {
         Group::Tiling => "tiling",
         Group::Stress => "stress",
         Group::Real => "real",
+        Group::UserScene => "your scene",
     }
 }

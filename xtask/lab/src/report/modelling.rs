@@ -9,7 +9,8 @@ use crate::lane::Lane;
 use crate::results::{Results, EXACT};
 
 /// What modelling costs: each family through each of exact's paths, fill_auto
-/// and classification alone; then the show's shaded entries.
+/// and classification alone; then the show's shaded entries, where the run
+/// timed them (not on the user's scene).
 pub(super) fn modelling_tables(out: &mut String, results: &Results) {
     let _ = writeln!(
         out,
@@ -66,6 +67,9 @@ pub(super) fn modelling_tables(out: &mut String, results: &Results) {
     } else {
         let _ =
             writeln!(out, "\n`fill_auto` is more than 5% slower than the cheapest path on: {}.\n", slower.join(", "));
+    }
+    if results.show_modelling.is_empty() {
+        return;
     }
     let _ = writeln!(
         out,
