@@ -264,6 +264,15 @@ mod tests {
     }
 
     #[test]
+    fn every_page_written_as_a_scene_file_parses_back_to_its_operations() {
+        for page in ALL {
+            let scene = page.scene();
+            let written = crate::file::write(&scene);
+            assert_eq!(crate::file::parse(page.name, &written).unwrap().ops, scene.ops, "{}", page.name);
+        }
+    }
+
+    #[test]
     fn pages_are_cumulative() {
         let counts = op_counts(0..3);
         // 2 shapes; 5x10 pairs of triangles and 4x(15+15) more; 16 hexagons.
