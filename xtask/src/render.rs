@@ -32,9 +32,12 @@ mod tests {
         }
     }
 
+    /// A pixel, x and y, and its colour at 6 bits a channel.
+    type Pixel = (u32, u32, [u8; 3]);
+
     /// Pixels of each drawing, worked out from its SVG (the import's
-    /// tests tell how), as 6-bit colours: the PNG holds each at 8 bits.
-    const PIXELS: [(&str, &[(u32, u32, [u8; 3])]); 5] = [
+    /// tests tell how): the PNG holds each colour at 8 bits.
+    const PIXELS: [(&str, &[Pixel]); 5] = [
         ("transforms.svg", &[(35, 20, [63, 0, 0]), (101, 21, [0; 3]), (120, 14, [0, 63, 0]), (255, 58, [0, 0, 63])]),
         ("holes.svg", &[(100, 30, [55, 40, 8]), (100, 70, [0; 3]), (215, 60, [8, 24, 47]), (240, 60, [0; 3])]),
         ("rules.svg", &[(80, 100, [0; 3]), (240, 100, [63, 63, 0]), (80, 40, [63, 63, 63])]),
