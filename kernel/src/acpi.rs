@@ -110,30 +110,46 @@ pub struct IoApicEntry {
     pub first_interrupt: u32,
 }
 
-/// The I/O APICs the MADT under `rsdp` lists, and the global system
+/// The I/O APICs every MADT under `rsdp` lists, and the global system
 /// interrupt ISA IRQ `irq` reaches (the IRQ's own number unless an
-/// override says otherwise).
+/// override says otherwise; the first MADT's override counts). A firmware
+/// gives one MADT; each one there is is read all the same, so that every
+/// I/O APIC address the tables hand over is checked (`ioapic::init`), one
+/// added by QEMU's `-acpitable` (the tests' hostile table) among them.
 pub fn io_apics(rsdp: u64, irq: u8) -> Option<(Vec<IoApicEntry>, u32)> {
-    let madt = table(rsdp, b"APIC")?;
+    let madts = tables(rsdp, b"APIC")?;
     let mut io_apics = Vec::new();
-    let mut interrupt = u32::from(irq);
-    let mut at = MADT_ENTRIES;
-    while let [kind, len, ..] = *madt.get(at..)? {
-        let entry = madt.get(at..at + usize::from(len).max(2))?;
-        match kind {
-            MADT_IO_APIC => {
-                io_apics.push(IoApicEntry { address: u64::from(u32_at(entry, 4)?), first_interrupt: u32_at(entry, 8)? })
+    let mut interrupt = None;
+    for madt in &madts {
+        let mut at = MADT_ENTRIES;
+        while let [kind, len, ..] = *madt.get(at..).unwrap_or_default() {
+            let Some(entry) = madt.get(at..at + usize::from(len).max(2)) else { break };
+            match (kind, u32_at(entry, 4)) {
+                (MADT_IO_APIC, Some(address)) => {
+                    if let Some(first_interrupt) = u32_at(entry, 8) {
+                        io_apics.push(IoApicEntry { address: u64::from(address), first_interrupt });
+                    }
+                }
+                (MADT_OVERRIDE, Some(to)) if entry.get(3) == Some(&irq) => {
+                    interrupt.get_or_insert(to);
+                }
+                _ => {}
             }
-            MADT_OVERRIDE if entry.get(3) == Some(&irq) => interrupt = u32_at(entry, 4)?,
-            _ => {}
+            at += entry.len();
         }
-        at += entry.len();
     }
-    Some((io_apics, interrupt))
+    (!madts.is_empty()).then(|| (io_apics, interrupt.unwrap_or(u32::from(irq))))
 }
 
-/// The table with `signature` the root table under `rsdp` lists, checked.
+/// The first table with `signature` the root table under `rsdp` lists,
+/// checked.
 fn table(rsdp: u64, signature: &[u8; 4]) -> Option<Vec<u8>> {
+    tables(rsdp, signature)?.into_iter().next()
+}
+
+/// Every table with `signature` the root table under `rsdp` lists that
+/// checks, in its order; `None` without a root table.
+fn tables(rsdp: u64, signature: &[u8; 4]) -> Option<Vec<Vec<u8>>> {
     let (root, entry_len) = root_table(rsdp)?;
     let entries = root.get(HEADER_LEN..)?.chunks_exact(entry_len).filter_map(entry_address);
     let is_it = |&address: &u64| {
@@ -142,7 +158,7 @@ fn table(rsdp: u64, signature: &[u8; 4]) -> Option<Vec<u8>> {
             && paging::read_physical(address, &mut found).is_some()
             && found == *signature
     };
-    entries.filter(is_it).find_map(read_table)
+    Some(entries.filter(is_it).filter_map(read_table).collect())
 }
 
 /// The XSDT (8-byte entries) or, where there is none, the RSDT (4-byte

@@ -15,11 +15,12 @@
 
 use alloc::vec::Vec;
 
-use protocol::MemoryType;
+use protocol::{IoApicRefusal, MemoryType};
 use spin::Once;
 use x86_64::instructions::interrupts;
 use x86_64::VirtAddr;
 
+use crate::memory_map::{self, Misplaced};
 use crate::{acpi, paging};
 
 const SELECT: u64 = 0x00;
@@ -27,6 +28,9 @@ const WINDOW: u64 = 0x10;
 const VERSION: u32 = 0x01;
 const FIRST_ENTRY: u32 = 0x10;
 const REGISTERS_LEN: u64 = 0x20;
+/// The boundary the registers start on: IOREGSEL and IOWIN are 16 bytes
+/// apart, each on its own 16-byte boundary.
+const REGISTERS_BOUNDARY: u64 = 0x10;
 /// An entry's low half: its vector (bits 0-7), level-triggered (bit 15),
 /// masked (bit 16); the high half's top byte is the destination APIC ID.
 const VECTOR: u32 = 0xFF;
@@ -69,25 +73,76 @@ impl IoApic {
 }
 
 static IO_APICS: Once<Vec<IoApic>> = Once::new();
+/// The I/O APICs the MADTs named that were not used, and why.
+static REFUSED: Once<Vec<(u64, IoApicRefusal)>> = Once::new();
 /// The global system interrupt the RTC's IRQ reaches.
 static RTC_INTERRUPT: Once<u32> = Once::new();
 
 /// Finds the I/O APICs the ACPI tables under `rsdp` list and maps their
-/// registers uncacheable. Call once, after `paging::init`.
+/// registers uncacheable. Each address is checked before anything is
+/// mapped (`memory_map::device_registers`: on a 16-byte boundary, in no
+/// RAM of the memory map), and what answers there before anything is
+/// written (IOREGSEL must not read all ones) and before it is used (its
+/// version register must give a version other than 0 and 0xFF); a
+/// refused one is kept for [`refused`] to tell. Call once, after
+/// `paging::init`.
 pub fn init(rsdp: Option<u64>) {
     let found = rsdp.and_then(|rsdp| acpi::io_apics(rsdp, RTC_IRQ));
     let (entries, rtc) = found.unwrap_or_default();
     RTC_INTERRUPT.call_once(|| rtc);
-    IO_APICS.call_once(|| {
-        let map = |entry: acpi::IoApicEntry| {
-            let registers = paging::physical(entry.address)?;
-            paging::set_memory_type(registers, REGISTERS_LEN, MemoryType::Uncacheable).ok()?;
-            let mut io_apic = IoApic { registers, first_interrupt: entry.first_interrupt, pins: 0 };
-            io_apic.pins = interrupts::without_interrupts(|| (io_apic.read(VERSION) >> 16 & 0xFF) + 1);
-            Some(io_apic)
-        };
-        entries.into_iter().filter_map(map).collect()
-    });
+    let mut refused = Vec::new();
+    let mut io_apics = Vec::new();
+    for entry in entries {
+        match IoApic::at(entry) {
+            Ok(Some(io_apic)) => io_apics.push(io_apic),
+            Ok(None) => {}
+            Err(why) => refused.push((entry.address, why)),
+        }
+    }
+    IO_APICS.call_once(|| io_apics);
+    REFUSED.call_once(|| refused);
+}
+
+/// The I/O APICs the MADTs named that the kernel did not use, and why:
+/// for a `LOG` frame each at boot.
+pub fn refused() -> &'static [(u64, IoApicRefusal)] {
+    REFUSED.get().map_or(&[], Vec::as_slice)
+}
+
+impl IoApic {
+    /// The I/O APIC `entry` names, its registers mapped uncacheable; a
+    /// refusal where the address or what answers there is wrong; `None`
+    /// where the map does not reach the address or its page cannot be
+    /// made uncacheable (nothing was written).
+    fn at(entry: acpi::IoApicEntry) -> Result<Option<Self>, IoApicRefusal> {
+        memory_map::device_registers(entry.address, REGISTERS_LEN, REGISTERS_BOUNDARY).map_err(|misplaced| {
+            match misplaced {
+                Misplaced::Misaligned => IoApicRefusal::Misaligned,
+                Misplaced::InRam => IoApicRefusal::InRam,
+            }
+        })?;
+        // Not RAM, as the check above found: an uncacheable mapping of it
+        // makes no Rust object or page table uncacheable.
+        let Some(registers) = paging::physical(entry.address) else { return Ok(None) };
+        if paging::set_memory_type(registers, REGISTERS_LEN, MemoryType::Uncacheable).is_err() {
+            return Ok(None);
+        }
+        // SAFETY: `registers` is the block the MADT names, device memory
+        // (or nothing) outside RAM, mapped uncacheable just above; IOREGSEL
+        // is its 32-bit register at offset 0, and reading it changes
+        // nothing. All ones is what a read where nothing answers gives.
+        let select = unsafe { paging::register(registers, SELECT) }.read();
+        if select == u32::MAX {
+            return Err(IoApicRefusal::NothingThere);
+        }
+        let mut io_apic = IoApic { registers, first_interrupt: entry.first_interrupt, pins: 0 };
+        let version = interrupts::without_interrupts(|| io_apic.read(VERSION));
+        if matches!(version & 0xFF, 0 | 0xFF) {
+            return Err(IoApicRefusal::NotAnIoApic { version });
+        }
+        io_apic.pins = (version >> 16 & 0xFF) + 1;
+        Ok(Some(io_apic))
+    }
 }
 
 /// Masks every unmasked entry that sends `vector`; the global system

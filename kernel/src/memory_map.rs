@@ -60,9 +60,33 @@ pub fn holds_firmware_tables(start: u64, len: u64) -> bool {
     true
 }
 
+/// What is wrong with where the firmware places a device's registers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Misplaced {
+    /// Off the boundary the device's registers start on.
+    Misaligned,
+    /// In RAM the map gives the kernel or its loader.
+    InRam,
+}
+
+/// Checks an address the firmware hands over for a device's `len` bytes
+/// of registers, which start on a `boundary` (a power of two), before
+/// anything is mapped or written there: the one check every such address
+/// gets (the HPET's, each I/O APIC's), so that a wrong or hostile table
+/// cannot have the kernel make a RAM page uncacheable or write into it.
+pub fn device_registers(address: u64, len: u64, boundary: u64) -> Result<(), Misplaced> {
+    if !address.is_multiple_of(boundary) {
+        return Err(Misplaced::Misaligned);
+    }
+    if overlaps_ram(address, len) {
+        return Err(Misplaced::InRam);
+    }
+    Ok(())
+}
+
 /// Whether any of the `len` bytes from `start` lies in RAM the map gives
 /// the kernel or its loader (usable, or the bootloader's own).
-pub fn overlaps_ram(start: u64, len: u64) -> bool {
+fn overlaps_ram(start: u64, len: u64) -> bool {
     let end = start.saturating_add(len.max(1));
     regions().iter().any(|&(from, to, kind)| {
         matches!(kind, MemoryRegionKind::Usable | MemoryRegionKind::Bootloader) && from < end && start < to

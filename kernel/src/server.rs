@@ -22,7 +22,7 @@ use scenes::{builtin, file, Op, Scene};
 use crate::line::{Complete, PendingLine};
 use crate::machine::Identity;
 use crate::video::{Drawn, Screen};
-use crate::{bench, clock, demo, exit, fault, heap, interrupts, machine, pic, player, serial};
+use crate::{bench, clock, demo, exit, fault, heap, interrupts, ioapic, machine, pic, player, serial};
 
 /// What `announce` found at boot (the firmware, the machine, the display
 /// controller and where it sits), for the `READY` command to say again.
@@ -48,6 +48,9 @@ pub fn announce(screen: &Screen, firmware: Firmware, identity: &Identity) {
     }
     if let Some((address, why)) = clock::hpet_refused() {
         serial::send_log(LogEvent::HpetRefused { address, why });
+    }
+    for &(address, why) in ioapic::refused() {
+        serial::send_log(LogEvent::IoApicRefused { address, why });
     }
     for &finding in screen.findings() {
         serial::send_log(finding);

@@ -8,6 +8,7 @@
 use protocol::{HpetRefusal, MemoryType};
 use volatile::VolatilePtr;
 
+use crate::memory_map::Misplaced;
 use crate::pit::{self, Stopwatch};
 use crate::port::{self, IoPort};
 use crate::{acpi, memory_map, paging};
@@ -107,12 +108,12 @@ impl Hpet {
     }
 
     fn at(address: u64) -> Result<Self, HpetRefusal> {
-        if !address.is_multiple_of(HPET_REGISTERS_LEN) {
-            return Err(HpetRefusal::Misaligned);
-        }
-        if memory_map::overlaps_ram(address, HPET_REGISTERS_LEN) {
-            return Err(HpetRefusal::InRam);
-        }
+        memory_map::device_registers(address, HPET_REGISTERS_LEN, HPET_REGISTERS_LEN).map_err(|misplaced| {
+            match misplaced {
+                Misplaced::Misaligned => HpetRefusal::Misaligned,
+                Misplaced::InRam => HpetRefusal::InRam,
+            }
+        })?;
         // Not RAM, as the checks above found: an uncacheable mapping of it
         // makes no Rust object or page table uncacheable. (Where the map
         // does not reach it, there is nothing to use.)

@@ -166,3 +166,56 @@ fn a_storming_vector_is_masked_at_its_source_and_the_kernel_serves_on() -> Resul
     ensure!(stopped, "no LOG says the storm was masked at the I/O APIC: {:?}", qemu.console.logs());
     Ok(())
 }
+
+/// Which refusal an I/O APIC's address must meet.
+type RefusedAs = fn(&protocol::IoApicRefusal) -> bool;
+
+/// A firmware's MADT naming an I/O APIC where none can be, played by one
+/// more MADT of the test's own beside QEMU's: in RAM (16 MiB, which the
+/// memory map gives the kernel or its loader), off the 16-byte boundary
+/// its registers start on (QEMU's I/O APIC plus 4), and where nothing
+/// answers (QEMU reads 0 there, a version of 0). The kernel must refuse
+/// the first two before it maps or writes anything there, the third before
+/// it uses it, say why in a `LOG` frame each, and carry on: it draws, and
+/// the storm of interrupts is still masked at QEMU's own I/O APIC. The
+/// control, QEMU's own I/O APIC's address in the extra table, is taken
+/// and logs nothing.
+#[test]
+fn an_io_apic_a_madt_places_in_ram_off_its_boundary_or_where_nothing_answers_is_refused() -> Result<()> {
+    use harness::checks::dump_matches_host_render;
+    use protocol::IoApicRefusal;
+    let not_an_io_apic = |why: &IoApicRefusal| matches!(why, IoApicRefusal::NotAnIoApic { version: 0 });
+    let cases: [(u32, Option<RefusedAs>); 4] = [
+        (0x100_0000, Some(|why| *why == IoApicRefusal::InRam)),
+        (0xfec0_0004, Some(|why| *why == IoApicRefusal::Misaligned)),
+        (0xfeb0_0000, Some(not_an_io_apic)),
+        (0xfec0_0000, None),
+    ];
+    for (address, expected) in cases {
+        let on = format!("a MADT with an I/O APIC at {address:#x}");
+        let mut qemu = Qemu::boot(QemuOptions { io_apic_table_at: Some(address), ..QemuOptions::default() })?;
+        let refusals: Vec<&IoApicRefusal> = qemu
+            .console
+            .logs()
+            .iter()
+            .filter_map(|log| match log {
+                LogEvent::IoApicRefused { address: at, why } if *at == u64::from(address) => Some(why),
+                _ => None,
+            })
+            .collect();
+        match expected {
+            Some(expected) => ensure!(
+                refusals.len() == 1 && expected(refusals[0]),
+                "{on}: the LOG frames do not refuse it as expected: {:?}",
+                qemu.console.logs()
+            ),
+            None => ensure!(refusals.is_empty(), "{on}: QEMU's own I/O APIC was refused: {refusals:?}"),
+        }
+        dump_matches_host_render(&mut qemu.console, "abrash38-1", raster::MethodId::Exact)
+            .with_context(|| format!("{on}: the kernel does not draw"))?;
+        let raised = StrayRaised::parse(&qemu.console.ok(&Command::Fault(FaultKind::InterruptStorm))?)?;
+        ensure!(raised.raised == Raised::IoApicLevel, "{on}: the storm was raised {raised:?}");
+        ensure!((1000..2000).contains(&raised.taken), "{on}: {} interrupts came in the storm", raised.taken);
+    }
+    Ok(())
+}

@@ -30,7 +30,7 @@ mod upload;
 
 pub use commands::{Command, CommandError, FaultKind, FIRST_INTERRUPT_VECTOR, STORM_VECTOR, STRAY_VECTOR};
 pub use events::{
-    EndedAt, ErrorReply, FatalReport, HpetRefusal, LogEvent, MachineEvidence, MaskedAt, PageFaultCode,
+    EndedAt, ErrorReply, FatalReport, HpetRefusal, IoApicRefusal, LogEvent, MachineEvidence, MaskedAt, PageFaultCode,
     DOUBLE_FAULT_VECTOR, EXCEPTION_NAMES, PAGE_FAULT_VECTOR,
 };
 pub use frames::{FrameHeader, FrameKind};

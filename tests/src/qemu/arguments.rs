@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use protocol::Firmware;
 
-use super::board::HPET_TABLE_FILE;
+use super::board::{HPET_TABLE_FILE, MADT_FILE};
 use super::options::{Clock, Cpu, Display, ExitDevice, Medium, QemuOptions, SerialLine};
 use install::emulators::{ovmf_code, ovmf_secure_boot_code};
 
@@ -53,6 +53,12 @@ pub(super) fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions)
         // the firmware: the HPET table, its body from the run's folder.
         let table = run_dir.join(HPET_TABLE_FILE);
         flag(&mut args, "-acpitable", with_path("sig=HPET,rev=1,oem_id=POLYLB,data=", &table, ""));
+    }
+    if options.io_apic_table_at.is_some() {
+        // One more MADT beside the one QEMU builds: an I/O APIC of the
+        // run's choosing, its body from the run's folder.
+        let table = run_dir.join(MADT_FILE);
+        flag(&mut args, "-acpitable", with_path("sig=APIC,rev=4,oem_id=POLYLB,data=", &table, ""));
     }
     if options.firmware == Firmware::Uefi && !options.secure_boot {
         // OVMF instead, as a UEFI PC's flash: its code read-only, and its
@@ -325,6 +331,18 @@ mod tests {
         };
         let ramfb = arguments(options);
         assert!(has_pair(&ramfb, "-device", "ramfb") && !ramfb.iter().any(|a| a.contains("bochs-display")));
+    }
+
+    #[test]
+    fn a_madt_of_the_runs_own_is_one_more_acpi_table_from_its_folder() {
+        let args = arguments(QemuOptions { io_apic_table_at: Some(0x100_0000), ..QemuOptions::default() });
+        let at = args.iter().position(|a| a == "-acpitable").expect("an -acpitable flag");
+        assert!(args[at + 1].starts_with("sig=APIC,rev=4,oem_id=POLYLB,data="), "{args:?}");
+        assert!(args[at + 1].ends_with("madt.bin"), "{args:?}");
+        let body = super::super::board::madt_body(0x1234_5678);
+        assert_eq!(body.len(), 20, "the MADT's body after its header: 8 bytes, one 12-byte entry");
+        assert_eq!((body[8], body[9]), (1, 12), "an I/O APIC entry");
+        assert_eq!(u32::from_le_bytes(body[12..16].try_into().unwrap()), 0x1234_5678);
     }
 
     #[test]

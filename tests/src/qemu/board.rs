@@ -76,3 +76,22 @@ pub(super) fn hpet_table_body(address: u64) -> Vec<u8> {
 
 /// The file [`hpet_table_body`] is written to for a run.
 pub(super) const HPET_TABLE_FILE: &str = "hpet-table.bin";
+
+/// The body of an ACPI MADT (what follows the 36-byte header QEMU's
+/// `-acpitable` writes) that lists one I/O APIC with its registers at
+/// `address`: the local APIC's address (QEMU's, 0xFEE00000) and no flags,
+/// then one I/O APIC entry (type 1, 12 bytes: I/O APIC ID 9, a reserved
+/// byte, the address, global system interrupt base 24, past the 24 that
+/// QEMU's own I/O APIC takes) (the ACPI specification, "Multiple APIC
+/// Description Table").
+pub(super) fn madt_body(address: u32) -> Vec<u8> {
+    let mut body = 0xFEE0_0000u32.to_le_bytes().to_vec();
+    body.extend(0u32.to_le_bytes());
+    body.extend([1, 12, 9, 0]);
+    body.extend(address.to_le_bytes());
+    body.extend(24u32.to_le_bytes());
+    body
+}
+
+/// The file [`madt_body`] is written to for a run.
+pub(super) const MADT_FILE: &str = "madt.bin";

@@ -247,6 +247,10 @@ pub struct QemuOptions {
     /// table it would stand beside): how a firmware's wrong table is
     /// played.
     pub hpet_table_at: Option<u64>,
+    /// An ACPI MADT of the run's own, one more beside QEMU's, listing one
+    /// I/O APIC with its registers at this physical address: how a
+    /// firmware's wrong or hostile table is played.
+    pub io_apic_table_at: Option<u32>,
 }
 
 impl QemuOptions {

@@ -14,7 +14,7 @@ use install::process::command_line;
 use protocol::{Firmware, Ready};
 
 use super::arguments::{qemu_arguments, qmp_socket, uefi_variables, CARD_BEHIND_ID};
-use super::board::{hpet_table_body, AHEAD_ID, HPET_TABLE_FILE};
+use super::board::{hpet_table_body, madt_body, AHEAD_ID, HPET_TABLE_FILE, MADT_FILE};
 use super::options::{QemuOptions, SerialLine};
 use super::qmp::{Qmp, QMP_TIMEOUT};
 use crate::client::{forward_bytes, Console, FrameReader};
@@ -100,6 +100,11 @@ impl Qemu {
         if let Some(address) = options.hpet_table_at {
             let table = run_dir.join(HPET_TABLE_FILE);
             std::fs::write(&table, hpet_table_body(address))
+                .with_context(|| format!("failed to write {}", table.display()))?;
+        }
+        if let Some(address) = options.io_apic_table_at {
+            let table = run_dir.join(MADT_FILE);
+            std::fs::write(&table, madt_body(address))
                 .with_context(|| format!("failed to write {}", table.display()))?;
         }
         let mut command = Command::new(QEMU);

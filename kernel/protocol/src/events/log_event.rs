@@ -45,6 +45,28 @@ pub enum LogEvent {
     /// for `why`: nothing of it was mapped or written where the address
     /// itself was wrong.
     HpetRefused { address: u64, why: HpetRefusal },
+    /// At boot, an I/O APIC an ACPI MADT places at `address` was not used,
+    /// for `why`: nothing of it was mapped or written where the address
+    /// itself was wrong, nothing written where nothing answered.
+    IoApicRefused { address: u64, why: IoApicRefusal },
+}
+
+/// Why the kernel did not use an I/O APIC a MADT names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IoApicRefusal {
+    /// The address is not on a 16-byte boundary, as the I/O APIC's
+    /// registers (IOREGSEL at 0x00, IOWIN at 0x10) are.
+    Misaligned,
+    /// The registers would lie in RAM the memory map gives the kernel or
+    /// its loader.
+    InRam,
+    /// IOREGSEL, read before anything is written, read all ones: nothing
+    /// answers there.
+    NothingThere,
+    /// The version register (index 1) read `version`, whose version (bits
+    /// 0-7) is 0 or 0xFF: no I/O APIC answers there (QEMU reads 0 where
+    /// nothing is; a PC's bus all ones).
+    NotAnIoApic { version: u32 },
 }
 
 /// Why the kernel did not use the HPET its ACPI table names.
@@ -137,6 +159,10 @@ const MISALIGNED: &str = ", not on a 1 KiB boundary; not used";
 const IN_RAM: &str = ", in RAM the memory map gives the kernel or its loader; not used";
 const NOT_AN_HPET: &str = ": no HPET there; not used";
 const BAD_PERIOD: &str = ", outside 100000 fs to 100000000 fs; not used";
+const IO_APIC_AT: &str = "I/O APIC: its ACPI table places it at ";
+const MISALIGNED_16: &str = ", not on a 16-byte boundary; not used";
+const NOTHING_THERE: &str = ", where its index register reads 0xffffffff: no I/O APIC there; not used";
+const NOT_AN_IO_APIC: &str = ": no I/O APIC there; not used";
 const NOWHERE: &str = "no entry sends it, so nothing was masked";
 const SERR: [&str; 2] = ["no SERR#", "SERR# (a PCI system error)"];
 const IOCHK: [&str; 2] = ["no IOCHK#", "IOCHK# (an I/O channel check)"];
@@ -193,6 +219,17 @@ impl fmt::Display for LogEvent {
                     }
                     HpetRefusal::Period { femtoseconds } => {
                         write!(f, ", where its period reads {femtoseconds} fs{BAD_PERIOD}")
+                    }
+                }
+            }
+            LogEvent::IoApicRefused { address, why } => {
+                write!(f, "{IO_APIC_AT}{address:#x}")?;
+                match why {
+                    IoApicRefusal::Misaligned => write!(f, "{MISALIGNED_16}"),
+                    IoApicRefusal::InRam => write!(f, "{IN_RAM}"),
+                    IoApicRefusal::NothingThere => write!(f, "{NOTHING_THERE}"),
+                    IoApicRefusal::NotAnIoApic { version } => {
+                        write!(f, ", where its version register reads {version:#010x}{NOT_AN_IO_APIC}")
                     }
                 }
             }
@@ -282,6 +319,21 @@ impl LogEvent {
                 HpetRefusal::Period { femtoseconds }
             };
             LogEvent::HpetRefused { address, why }
+        } else if prose.next_is(IO_APIC_AT) {
+            let address = prose.hex("I/O APIC address")?;
+            let why = if prose.next_is(MISALIGNED_16) {
+                IoApicRefusal::Misaligned
+            } else if prose.next_is(IN_RAM) {
+                IoApicRefusal::InRam
+            } else if prose.next_is(NOTHING_THERE) {
+                IoApicRefusal::NothingThere
+            } else {
+                prose.expect(", where its version register reads ", "why the I/O APIC was not used")?;
+                let version = prose.hex_of("version")?;
+                prose.expect(NOT_AN_IO_APIC, "`no I/O APIC there`")?;
+                IoApicRefusal::NotAnIoApic { version }
+            };
+            LogEvent::IoApicRefused { address, why }
         } else {
             LogEvent::VgaMismatch(Mismatch::parse(text).map_err(|_| prose.malformed(Expected::Shape("a LOG text")))?)
         };
@@ -332,7 +384,7 @@ mod tests {
     use crate::replies::RegisterGroup;
     use std::string::ToString;
 
-    fn events() -> [LogEvent; 21] {
+    fn events() -> [LogEvent; 25] {
         let qemu = MachineEvidence {
             machine: Machine::Qemu,
             hypervisor: Some(*b"TCGTCGTCGTCG"),
@@ -368,6 +420,10 @@ mod tests {
             LogEvent::HpetRefused { address: 0xfed0_0004, why: HpetRefusal::Misaligned },
             LogEvent::HpetRefused { address: 0xfed0_0000, why: HpetRefusal::NotAnHpet { capabilities: u32::MAX } },
             LogEvent::HpetRefused { address: 0xfed0_0000, why: HpetRefusal::Period { femtoseconds: 99_999 } },
+            LogEvent::IoApicRefused { address: 0x100_0000, why: IoApicRefusal::InRam },
+            LogEvent::IoApicRefused { address: 0xfec0_0004, why: IoApicRefusal::Misaligned },
+            LogEvent::IoApicRefused { address: 0xfeb0_0000, why: IoApicRefusal::NothingThere },
+            LogEvent::IoApicRefused { address: 0xfeb0_0000, why: IoApicRefusal::NotAnIoApic { version: 0 } },
         ]
     }
 

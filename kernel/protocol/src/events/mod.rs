@@ -11,4 +11,4 @@ mod log_event;
 
 pub use error_reply::ErrorReply;
 pub use fatal_report::{FatalReport, PageFaultCode, DOUBLE_FAULT_VECTOR, EXCEPTION_NAMES, PAGE_FAULT_VECTOR};
-pub use log_event::{EndedAt, HpetRefusal, LogEvent, MachineEvidence, MaskedAt};
+pub use log_event::{EndedAt, HpetRefusal, IoApicRefusal, LogEvent, MachineEvidence, MaskedAt};
