@@ -219,7 +219,15 @@ impl Qemu {
     pub fn quit(mut self) -> Result<ExitStatus> {
         self.qmp()?;
         let quit = self.qmp.take().expect("connected above").quit();
-        quit.map_err(|error| self.explain(error))?;
+        if let Err(error) = quit {
+            // QMP closed under the command: say whether QEMU had gone, and
+            // how, rather than only that the socket broke.
+            let error = match self.process.child().try_wait() {
+                Ok(Some(status)) => error.context(format!("QEMU had already exited ({status}) when asked to quit")),
+                _ => error,
+            };
+            return Err(self.explain(error));
+        }
         self.wait_exit(QUIT_TIMEOUT)
     }
 
