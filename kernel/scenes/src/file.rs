@@ -111,10 +111,15 @@ impl LineError {
                 })?,
             },
         };
-        let mut written = String::new();
-        write!(written, "{error}").ok()?;
-        (written == text).then_some(error)
+        writes(&error, text).then_some(error)
     }
+}
+
+/// Whether `value`'s `Display` writes exactly `text`: how an error read
+/// back from its text is held to the text it was read from.
+pub(crate) fn writes(value: &impl fmt::Display, text: &str) -> bool {
+    let mut written = String::new();
+    write!(written, "{value}").is_ok() && written == text
 }
 
 /// A [`LineError`] with its 1-based line number.

@@ -26,6 +26,7 @@ use core::mem::size_of;
 
 use raster::{FillRule, MethodId, Point, Polygon};
 
+use crate::file::writes;
 use crate::palette::MAX_LEVEL;
 use crate::scene::{Op, PaletteEntry, Scene};
 
@@ -106,19 +107,6 @@ impl UnpackError {
         })?;
         writes(&error, text).then_some(error)
     }
-}
-
-/// Whether `error`'s `Display` writes exactly `text`.
-fn writes(error: &UnpackError, text: &str) -> bool {
-    struct Compare<'a>(&'a str);
-    impl fmt::Write for Compare<'_> {
-        fn write_str(&mut self, s: &str) -> fmt::Result {
-            self.0 = self.0.strip_prefix(s).ok_or(fmt::Error)?;
-            Ok(())
-        }
-    }
-    let mut rest = Compare(text);
-    fmt::write(&mut rest, format_args!("{error}")).is_ok() && rest.0.is_empty()
 }
 
 /// Bytes of memory the unpacked `scene` holds: what [`unpack`] counts
