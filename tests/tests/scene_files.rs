@@ -11,7 +11,7 @@ use harness::render::{SceneFile, SceneSource};
 use harness::{Qemu, QemuOptions};
 use protocol::{ChunkReply, Command, ErrorReply, UPLOAD_BUDGET};
 use raster::MethodId;
-use scenes::{packed, Op};
+use scenes::packed;
 
 /// Holes (a second contour), both fill rules (a self-overlapping star under
 /// non-zero, the same star under even-odd), subpixel vertices, a comment
@@ -33,7 +33,7 @@ fn a_scene_file_with_holes_both_rules_and_subpixel_vertices_dumps_what_the_host_
     let source = SceneSource::find(path.to_str().expect("a UTF-8 temporary path"));
     std::fs::remove_file(&path)?;
     let source = source?;
-    let polygons = source.scene().ops.iter().filter(|op| matches!(op, Op::Fill(_))).count();
+    let polygons = source.scene().polygons().count();
     ensure!(polygons == 4, "the scene has {polygons} polygons, not 4");
 
     let mut qemu = Qemu::boot(QemuOptions::default())?;

@@ -6,7 +6,7 @@ use std::os::unix::fs::PermissionsExt;
 use std::path::Path;
 
 use anyhow::{Context, Result};
-use scenes::{file, Op, Scene};
+use scenes::{file, Scene};
 
 use crate::opt::ConvertOpt;
 
@@ -41,8 +41,7 @@ fn write_atomically(path: &Path, text: &str) -> Result<()> {
 /// The scene's size: polygons, their contours and vertices, the
 /// palette's entries.
 fn summary(scene: &Scene) -> String {
-    let polygons: Vec<&raster::Polygon> =
-        scene.ops.iter().filter_map(|op| if let Op::Fill(polygon) = op { Some(polygon) } else { None }).collect();
+    let polygons: Vec<&raster::Polygon> = scene.polygons().collect();
     let contours: usize = polygons.iter().map(|polygon| polygon.contours.len()).sum();
     let vertices: usize = polygons.iter().map(|polygon| polygon.vertex_count()).sum();
     format!(

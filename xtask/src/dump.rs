@@ -45,8 +45,7 @@ pub fn dump(opt: &DumpOpt) -> Result<()> {
 /// command line per operation (the way a person can type it, a polygon
 /// that fits in one line).
 fn upload_cost(uploaded: &Uploaded, scene: &Scene) -> String {
-    let vertices: usize =
-        scene.ops.iter().map(|op| if let Op::Fill(polygon) = op { polygon.vertex_count() } else { 0 }).sum();
+    let vertices: usize = scene.polygons().map(raster::Polygon::vertex_count).sum();
     let as_text: usize = scene
         .ops
         .iter()

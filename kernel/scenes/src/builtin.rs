@@ -255,8 +255,7 @@ mod tests {
         let parsed = crate::file::parse("world", text).expect("art/world.scene parses");
         assert_eq!(WORLD.scene().ops, parsed.ops);
         assert!(parsed.palette.is_empty(), "the world is in the VGA default palette");
-        let polygons: Vec<&Polygon> =
-            parsed.ops.iter().filter_map(|op| if let Op::Fill(p) = op { Some(p) } else { None }).collect();
+        let polygons: Vec<&Polygon> = parsed.polygons().collect();
         let vertices: usize = polygons.iter().map(|polygon| polygon.vertex_count()).sum();
         let largest = polygons.iter().map(|polygon| polygon.vertex_count()).max();
         assert_eq!((polygons.len(), vertices, largest), (129, 6384, Some(1370)));

@@ -67,6 +67,14 @@ impl Scene {
         Self { name, ops, method, palette: Vec::new() }
     }
 
+    /// The polygons the scene fills, in order.
+    pub fn polygons(&self) -> impl Iterator<Item = &Polygon> {
+        self.ops.iter().filter_map(|op| match op {
+            Op::Fill(polygon) => Some(polygon),
+            Op::Clear(_) => None,
+        })
+    }
+
     /// The 256 entries the scene is shown in: the VGA default palette with
     /// the scene's own entries set over it.
     pub fn dac(&self) -> Palette {

@@ -239,7 +239,7 @@ impl Console {
         let uploaded = self.upload(scene)?;
         self.clear(0)?;
         let drawn = self.draw_uploaded(&uploaded.name, method)?;
-        let polygons = scene.ops.iter().filter(|op| matches!(op, scenes::Op::Fill(_))).count();
+        let polygons = scene.polygons().count();
         ensure!(
             drawn.polygons == polygons,
             "the kernel drew {} polygons of {}, not {polygons}",

@@ -52,7 +52,7 @@ const WHITE: [u8; 3] = [63, 63, 63];
 const MAGENTA: [u8; 3] = [63, 0, 63];
 
 fn polygons(scene: &Scene) -> Vec<&raster::Polygon> {
-    scene.ops.iter().filter_map(|op| if let Op::Fill(polygon) = op { Some(polygon) } else { None }).collect()
+    scene.polygons().collect()
 }
 
 #[test]

@@ -10,7 +10,6 @@ use std::path::Path;
 
 use anyhow::{bail, Context, Result};
 use install::lab_art::{FLAGS_DIR, FLAGS_PACKAGE};
-use scenes::Op;
 
 use super::family::{Family, Group};
 
@@ -39,10 +38,7 @@ fn flags_in(dir: &Path, codes: &[&str]) -> Result<Vec<raster::Polygon>> {
         }
         let imported = svg_import::import_file(&path, &svg_import::Options::default())
             .with_context(|| format!("the lab's flag {code} was not imported"))?;
-        polygons.extend(imported.scene.ops.into_iter().filter_map(|op| match op {
-            Op::Fill(polygon) => Some(polygon),
-            Op::Clear(_) => None,
-        }));
+        polygons.extend(imported.scene.polygons().cloned());
     }
     Ok(polygons)
 }

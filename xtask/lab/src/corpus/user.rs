@@ -14,7 +14,7 @@
 
 use anyhow::{bail, Result};
 use raster::{classify, Class, Polygon};
-use scenes::{Op, Scene};
+use scenes::Scene;
 
 use super::family::{Family, Group};
 
@@ -39,14 +39,7 @@ const CLASSES: [(Class, &str, &str); 5] = [
 /// The families of `scene`'s polygons, one per class it holds; an error
 /// when it holds no polygon.
 pub fn families(scene: &Scene) -> Result<Vec<Family>> {
-    let polygons: Vec<&Polygon> = scene
-        .ops
-        .iter()
-        .filter_map(|op| match op {
-            Op::Fill(polygon) => Some(polygon),
-            Op::Clear(_) => None,
-        })
-        .collect();
+    let polygons: Vec<&Polygon> = scene.polygons().collect();
     if polygons.is_empty() {
         bail!("scene `{}` has no polygon to measure (no `poly` line)", scene.name);
     }
