@@ -20,7 +20,7 @@ use spin::Once;
 use x86_64::instructions::interrupts;
 use x86_64::VirtAddr;
 
-use crate::memory_map::{self, Misplaced};
+use crate::memory_map;
 use crate::{acpi, paging};
 
 const SELECT: u64 = 0x00;
@@ -115,12 +115,7 @@ impl IoApic {
     /// where the map does not reach the address or its page cannot be
     /// made uncacheable (nothing was written).
     fn at(entry: acpi::IoApicEntry) -> Result<Option<Self>, IoApicRefusal> {
-        memory_map::device_registers(entry.address, REGISTERS_LEN, REGISTERS_BOUNDARY).map_err(|misplaced| {
-            match misplaced {
-                Misplaced::Misaligned => IoApicRefusal::Misaligned,
-                Misplaced::InRam => IoApicRefusal::InRam,
-            }
-        })?;
+        memory_map::device_registers(entry.address, REGISTERS_LEN, REGISTERS_BOUNDARY)?;
         // Not RAM, as the check above found: an uncacheable mapping of it
         // makes no Rust object or page table uncacheable.
         let Some(registers) = paging::physical(entry.address) else { return Ok(None) };

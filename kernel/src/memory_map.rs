@@ -16,6 +16,7 @@ use alloc::vec::Vec;
 
 use bootloader_api::info::MemoryRegionKind;
 use bootloader_api::BootInfo;
+use protocol::{HpetRefusal, IoApicRefusal};
 use spin::Once;
 
 /// The E820 types of the firmware's own memory: reserved, ACPI tables
@@ -67,6 +68,24 @@ pub enum Misplaced {
     Misaligned,
     /// In RAM the map gives the kernel or its loader.
     InRam,
+}
+
+impl From<Misplaced> for HpetRefusal {
+    fn from(misplaced: Misplaced) -> Self {
+        match misplaced {
+            Misplaced::Misaligned => HpetRefusal::Misaligned,
+            Misplaced::InRam => HpetRefusal::InRam,
+        }
+    }
+}
+
+impl From<Misplaced> for IoApicRefusal {
+    fn from(misplaced: Misplaced) -> Self {
+        match misplaced {
+            Misplaced::Misaligned => IoApicRefusal::Misaligned,
+            Misplaced::InRam => IoApicRefusal::InRam,
+        }
+    }
 }
 
 /// Checks an address the firmware hands over for a device's `len` bytes

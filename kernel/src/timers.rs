@@ -8,7 +8,6 @@
 use protocol::{HpetRefusal, MemoryType};
 use volatile::VolatilePtr;
 
-use crate::memory_map::Misplaced;
 use crate::pit::{self, Stopwatch};
 use crate::port::{self, IoPort};
 use crate::{acpi, memory_map, paging};
@@ -108,12 +107,7 @@ impl Hpet {
     }
 
     fn at(address: u64) -> Result<Self, HpetRefusal> {
-        memory_map::device_registers(address, HPET_REGISTERS_LEN, HPET_REGISTERS_LEN).map_err(|misplaced| {
-            match misplaced {
-                Misplaced::Misaligned => HpetRefusal::Misaligned,
-                Misplaced::InRam => HpetRefusal::InRam,
-            }
-        })?;
+        memory_map::device_registers(address, HPET_REGISTERS_LEN, HPET_REGISTERS_LEN)?;
         // Not RAM, as the checks above found: an uncacheable mapping of it
         // makes no Rust object or page table uncacheable. (Where the map
         // does not reach it, there is nothing to use.)
