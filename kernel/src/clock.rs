@@ -36,6 +36,7 @@
 use core::arch::x86_64::__cpuid;
 use core::sync::atomic::{compiler_fence, AtomicU64, AtomicU8, Ordering};
 
+use firmware_tables::PmTimerRefusal;
 use protocol::{ClockReadings, ClockSource, HpetRefusal, TscRate};
 use spin::Once;
 
@@ -81,6 +82,8 @@ static READINGS: Once<ClockReadings> = Once::new();
 static RSDP: Once<Option<u64>> = Once::new();
 /// The HPET the ACPI tables named and the kernel did not use, and why.
 static HPET_REFUSED: Once<(u64, HpetRefusal)> = Once::new();
+/// The PM timer port the FADT named and the kernel did not use.
+static PM_TIMER_REFUSED: Once<PmTimerRefusal> = Once::new();
 
 /// Measures the TSC's rate against every timer there is, `rsdp` (the
 /// bootloader's ACPI root pointer) leading to those the ACPI tables
@@ -115,7 +118,13 @@ fn rate_of(source: ClockSource, stalls: Stalls) -> Option<u64> {
     let rsdp = RSDP.get().copied().flatten();
     match source {
         ClockSource::Pit => rate_against(Stopwatch::start(), stalls),
-        ClockSource::PmTimer => rsdp.and_then(PmTimer::find).and_then(|timer| rate_against(timer, stalls)),
+        ClockSource::PmTimer => match rsdp.and_then(PmTimer::find)? {
+            Ok(timer) => rate_against(timer, stalls),
+            Err(refused) => {
+                PM_TIMER_REFUSED.call_once(|| refused);
+                None
+            }
+        },
         ClockSource::Hpet => match rsdp.and_then(Hpet::find)? {
             Ok(timer) => rate_against(timer, stalls),
             Err(refused) => {
@@ -131,6 +140,12 @@ fn rate_of(source: ClockSource, stalls: Stalls) -> Option<u64> {
 /// use it, if it did not: for a `LOG` frame at boot.
 pub fn hpet_refused() -> Option<(u64, HpetRefusal)> {
     HPET_REFUSED.get().copied()
+}
+
+/// The port the FADT placed the PM timer at, if the kernel did not use it
+/// there: for a `LOG` frame at boot.
+pub fn pm_timer_refused() -> Option<u16> {
+    PM_TIMER_REFUSED.get().map(|refused| refused.port)
 }
 
 /// Test only (`CLOCK SOURCE [stalled]`, on QEMU): measures the TSC against

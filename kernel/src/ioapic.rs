@@ -15,6 +15,7 @@
 
 use alloc::vec::Vec;
 
+use firmware_tables::IoApicEntry;
 use protocol::{IoApicRefusal, MemoryType};
 use spin::Once;
 use x86_64::instructions::interrupts;
@@ -87,7 +88,7 @@ static RTC_INTERRUPT: Once<u32> = Once::new();
 /// refused one is kept for [`refused`] to tell. Call once, after
 /// `paging::init`.
 pub fn init(rsdp: Option<u64>) {
-    let found = rsdp.and_then(|rsdp| acpi::io_apics(rsdp, RTC_IRQ));
+    let found = rsdp.and_then(|rsdp| acpi::tables(rsdp).io_apics(RTC_IRQ));
     let (entries, rtc) = found.unwrap_or_default();
     RTC_INTERRUPT.call_once(|| rtc);
     let mut refused = Vec::new();
@@ -114,7 +115,7 @@ impl IoApic {
     /// refusal where the address or what answers there is wrong; `None`
     /// where the map does not reach the address or its page cannot be
     /// made uncacheable (nothing was written).
-    fn at(entry: acpi::IoApicEntry) -> Result<Option<Self>, IoApicRefusal> {
+    fn at(entry: IoApicEntry) -> Result<Option<Self>, IoApicRefusal> {
         memory_map::device_registers(entry.address, REGISTERS_LEN, REGISTERS_BOUNDARY)?;
         // Not RAM, as the check above found: an uncacheable mapping of it
         // makes no Rust object or page table uncacheable.

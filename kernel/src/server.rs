@@ -49,6 +49,9 @@ pub fn announce(screen: &Screen, firmware: Firmware, identity: &Identity) {
     if let Some((address, why)) = clock::hpet_refused() {
         serial::send_log(LogEvent::HpetRefused { address, why });
     }
+    if let Some(port) = clock::pm_timer_refused() {
+        serial::send_log(LogEvent::PmTimerRefused { port });
+    }
     for &(address, why) in ioapic::refused() {
         serial::send_log(LogEvent::IoApicRefused { address, why });
     }

@@ -5,6 +5,7 @@
 //! than its counter wraps (the PIT every 55 ms, the PM timer's 24 bits
 //! every 4.7 s, the HPET's low 32 bits every 7 minutes at 10 MHz).
 
+use firmware_tables::{PmTimerBlock, PmTimerRefusal};
 use protocol::{HpetRefusal, MemoryType};
 use volatile::VolatilePtr;
 
@@ -43,12 +44,15 @@ pub struct PmTimer {
 const PM_TIMER_HZ: u64 = 3_579_545;
 
 impl PmTimer {
-    /// The PM timer the ACPI tables under `rsdp` describe, started.
-    pub fn find(rsdp: u64) -> Option<Self> {
-        let acpi::PmTimer { port, wide } = acpi::pm_timer(rsdp)?;
-        let port = port::acpi_pm_timer(port);
-        let mask = if wide { u32::MAX } else { 0x00FF_FFFF };
-        Some(Self { port, mask, last: port.read() & mask, elapsed: 0 })
+    /// The PM timer the ACPI tables under `rsdp` describe, started;
+    /// `None` with none, the port refused (and nothing read there) where
+    /// it is a fixed device's (`firmware_tables::Tables::pm_timer`).
+    pub fn find(rsdp: u64) -> Option<Result<Self, PmTimerRefusal>> {
+        Some(acpi::tables(rsdp).pm_timer()?.map(|PmTimerBlock { port, wide }| {
+            let port = port::acpi_pm_timer(port);
+            let mask = if wide { u32::MAX } else { 0x00FF_FFFF };
+            Self { port, mask, last: port.read() & mask, elapsed: 0 }
+        }))
     }
 }
 
@@ -102,7 +106,7 @@ impl Hpet {
     /// written), and what answers there before anything is written (a
     /// revision, a period of 100 ps to 100 ns); a refusal says why.
     pub fn find(rsdp: u64) -> Option<Result<Self, (u64, HpetRefusal)>> {
-        let address = acpi::hpet(rsdp)?;
+        let address = acpi::tables(rsdp).hpet()?;
         Some(Self::at(address).map_err(|why| (address, why)))
     }
 

@@ -207,6 +207,36 @@ fn an_hpet_table_placing_it_in_ram_or_off_its_boundary_is_refused() -> Result<()
     Ok(())
 }
 
+/// An HPET table naming memory where something other than an HPET
+/// answers and a write would show: the VGA's window at 0xA0000 (outside
+/// RAM, on a 1 KiB boundary, so the address itself passes), whose bytes
+/// are mode 13h's pixels. The kernel must read what answers there before
+/// it writes anything: a black screen reads a revision of 0, so it is
+/// refused, and `CLOCK hpet` (test only), which probes again, must leave
+/// the screen as it was; an HPET's configuration register lies at offset
+/// 0x10, pixel (16, 0), which the enable bit would turn from colour 0 to 1.
+/// QEMU's screendump judges the screen.
+#[test]
+fn an_hpet_table_naming_the_vgas_memory_is_refused_before_anything_is_written_there() -> Result<()> {
+    let address = 0xA_0000;
+    let options = QemuOptions { board: Board::PcWithoutHpet, hpet_table_at: Some(address), ..QemuOptions::default() };
+    let mut qemu = Qemu::boot(options)?;
+    qemu.console.clear(0)?;
+    let before = qemu.screendump()?;
+    let refusal = qemu.console.refusal(&Command::ForceClock { source: ClockSource::Hpet, stalled: false })?;
+    ensure!(
+        ErrorReply::parse(&refusal) == Ok(ErrorReply::NoTimer(ClockSource::Hpet)),
+        "CLOCK hpet answered ERR \"{refusal}\", not that there is no HPET"
+    );
+    let after = qemu.screendump()?;
+    ensure!(before == after, "probing an HPET in the VGA's memory changed the screen");
+    let refused = qemu.console.logs().iter().any(|log| {
+        matches!(log, LogEvent::HpetRefused { address: at, why: HpetRefusal::NotAnHpet { .. } | HpetRefusal::Period { .. } } if *at == address)
+    });
+    ensure!(refused, "no LOG refuses the HPET at {address:#x} for what answered there: {:?}", qemu.console.logs());
+    Ok(())
+}
+
 /// The show's still pages' time on QEMU's screen, from the boot's first
 /// pages: the mean time between [`CHANGES`] page changes. A change is a
 /// screen unlike the one before after a second of none (a page drawn

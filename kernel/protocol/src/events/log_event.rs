@@ -5,6 +5,8 @@
 
 use core::fmt;
 
+use firmware_tables::Misplaced;
+
 use crate::replies::{Expected, Machine, Malformed, Mismatch, PciAddress, PciId, Prose};
 
 /// One `LOG` frame's text.
@@ -49,6 +51,10 @@ pub enum LogEvent {
     /// for `why`: nothing of it was mapped or written where the address
     /// itself was wrong, nothing written where nothing answered.
     IoApicRefused { address: u64, why: IoApicRefusal },
+    /// At boot, the PM timer the FADT places at `port` was not used: the
+    /// port is one of a PC's fixed devices' (a serial port's, the VGA's,
+    /// ...), which the clock's reads would disturb; nothing was read there.
+    PmTimerRefused { port: u16 },
 }
 
 /// Why the kernel did not use an I/O APIC a MADT names.
@@ -57,8 +63,8 @@ pub enum IoApicRefusal {
     /// The address is not on a 16-byte boundary, as the I/O APIC's
     /// registers (IOREGSEL at 0x00, IOWIN at 0x10) are.
     Misaligned,
-    /// The registers would lie in RAM the memory map gives the kernel or
-    /// its loader.
+    /// The registers would lie in RAM of any kind the memory map names
+    /// (usable, the loader's, ACPI tables, runtime services', ...).
     InRam,
     /// IOREGSEL, read before anything is written, read all ones: nothing
     /// answers there.
@@ -154,11 +160,34 @@ const BESIDE_THE_VGA: [&str; 2] = [
     "video: the firmware's framebuffer is not in the memory of the VGA at ",
     ": the frame goes to the framebuffer, where the firmware showed its screen",
 ];
+// The firmware's address checks (`firmware_tables::MemoryMap::
+// device_registers`) say what is wrong with an address; each device's
+// refusal says it in its own words.
+impl From<Misplaced> for HpetRefusal {
+    fn from(misplaced: Misplaced) -> Self {
+        match misplaced {
+            Misplaced::Misaligned => HpetRefusal::Misaligned,
+            Misplaced::InRam => HpetRefusal::InRam,
+        }
+    }
+}
+
+impl From<Misplaced> for IoApicRefusal {
+    fn from(misplaced: Misplaced) -> Self {
+        match misplaced {
+            Misplaced::Misaligned => IoApicRefusal::Misaligned,
+            Misplaced::InRam => IoApicRefusal::InRam,
+        }
+    }
+}
+
 const HPET_AT: &str = "HPET: its ACPI table places it at ";
 const MISALIGNED: &str = ", not on a 1 KiB boundary; not used";
-const IN_RAM: &str = ", in RAM the memory map gives the kernel or its loader; not used";
+const IN_RAM: &str = ", in RAM the memory map names; not used";
 const NOT_AN_HPET: &str = ": no HPET there; not used";
 const BAD_PERIOD: &str = ", outside 100000 fs to 100000000 fs; not used";
+const PM_TIMER_AT: &str = "PM timer: the FADT places it at port ";
+const ON_A_DEVICE: &str = ", a fixed device's; not used";
 const IO_APIC_AT: &str = "I/O APIC: its ACPI table places it at ";
 const MISALIGNED_16: &str = ", not on a 16-byte boundary; not used";
 const NOTHING_THERE: &str = ", where its index register reads 0xffffffff: no I/O APIC there; not used";
@@ -233,6 +262,7 @@ impl fmt::Display for LogEvent {
                     }
                 }
             }
+            LogEvent::PmTimerRefused { port } => write!(f, "{PM_TIMER_AT}{port:#x}{ON_A_DEVICE}"),
         }
     }
 }
@@ -334,6 +364,10 @@ impl LogEvent {
                 IoApicRefusal::NotAnIoApic { version }
             };
             LogEvent::IoApicRefused { address, why }
+        } else if prose.next_is(PM_TIMER_AT) {
+            let port = prose.hex_of("port")?;
+            prose.expect(ON_A_DEVICE, "`a fixed device's`")?;
+            LogEvent::PmTimerRefused { port }
         } else {
             LogEvent::VgaMismatch(Mismatch::parse(text).map_err(|_| prose.malformed(Expected::Shape("a LOG text")))?)
         };
@@ -384,7 +418,7 @@ mod tests {
     use crate::replies::RegisterGroup;
     use std::string::ToString;
 
-    fn events() -> [LogEvent; 25] {
+    fn events() -> [LogEvent; 26] {
         let qemu = MachineEvidence {
             machine: Machine::Qemu,
             hypervisor: Some(*b"TCGTCGTCGTCG"),
@@ -424,6 +458,7 @@ mod tests {
             LogEvent::IoApicRefused { address: 0xfec0_0004, why: IoApicRefusal::Misaligned },
             LogEvent::IoApicRefused { address: 0xfeb0_0000, why: IoApicRefusal::NothingThere },
             LogEvent::IoApicRefused { address: 0xfeb0_0000, why: IoApicRefusal::NotAnIoApic { version: 0 } },
+            LogEvent::PmTimerRefused { port: 0x3f8 },
         ]
     }
 
