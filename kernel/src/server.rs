@@ -159,7 +159,7 @@ impl Server<'_> {
             Command::List => Ok((FrameKind::List, listing().to_string().into_bytes())),
             Command::Draw { scene, method } => {
                 let scene = find_scene(&self.upload, scene)?;
-                let method = method.unwrap_or(scene.method);
+                let method = scene.method_or(method);
                 ok(draw_reply(self.screen.draw(&scene, method)))
             }
             Command::Show { entry, frame, method } => {

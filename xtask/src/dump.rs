@@ -6,8 +6,7 @@ use harness::client::{pack_for_upload, transfer_time, Uploaded, BAUD};
 use harness::render::SceneSource;
 use harness::{Qemu, QemuOptions};
 use protocol::Command;
-use raster::MethodId;
-use scenes::{file, Op, Scene};
+use scenes::{file, Op, Scene, FILE_METHOD};
 
 use crate::opt::DumpOpt;
 
@@ -15,7 +14,7 @@ pub fn dump(opt: &DumpOpt) -> Result<()> {
     // Check the scene (a whole scene file, every line, or a whole SVG)
     // before spending a boot.
     let source = opt.drawing.source()?;
-    let method = opt.method.unwrap_or(source.scene().method);
+    let method = source.scene().method_or(opt.method);
     if let SceneSource::File(file) = &source {
         pack_for_upload(&file.scene)?;
     }
@@ -54,7 +53,7 @@ fn upload_cost(uploaded: &Uploaded, scene: &Scene) -> String {
             Op::Fill(polygon) => {
                 let line = file::poly_line(polygon);
                 let spec = line.strip_prefix("poly ").unwrap_or(&line);
-                Command::Poly { method: MethodId::Exact, spec }.to_string().len() + 1
+                Command::Poly { method: FILE_METHOD, spec }.to_string().len() + 1
             }
         })
         .sum();

@@ -7,7 +7,7 @@ use crate::opt::RenderOpt;
 
 pub fn render(opt: &RenderOpt) -> Result<()> {
     let scene = opt.drawing.source()?.scene();
-    let method = opt.method.unwrap_or(scene.method);
+    let method = scene.method_or(opt.method);
     render_scene(&scene, method).write_png(&opt.out)?;
     println!("{}", opt.out.display());
     Ok(())

@@ -95,7 +95,7 @@ fn in_a_window(shown: &OnScreen, method: Option<MethodId>, options: QemuOptions)
         }
         (OnScreen::File(file), method) => {
             let mut qemu = Qemu::boot(options)?;
-            qemu.console.draw_scene(&file.scene, method.unwrap_or(file.scene.method))?;
+            qemu.console.draw_scene(&file.scene, file.scene.method_or(method))?;
             qemu
         }
     };
@@ -133,7 +133,7 @@ fn headless(shown: &OnScreen, method: Option<MethodId>, options: QemuOptions, ou
             }
         }
         OnScreen::File(file) => {
-            let method = method.unwrap_or(file.scene.method);
+            let method = file.scene.method_or(method);
             let source = SceneSource::File(file.clone());
             let dump = source_matches_host_render(&mut qemu.console, &source, method)?;
             screen_matches_dump(source.name(), &dump, &qemu.screendump()?, &qemu.ready.video)?;

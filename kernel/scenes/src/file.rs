@@ -19,10 +19,10 @@ use alloc::string::String;
 use alloc::vec::Vec;
 use core::fmt::{self, Write};
 
-use raster::{FillRule, MethodId, Point, Polygon, SUBPIXEL_BITS, SUBPIXEL_ONE};
+use raster::{FillRule, Point, Polygon, SUBPIXEL_BITS, SUBPIXEL_ONE};
 
 use crate::palette::{ENTRIES, MAX_LEVEL};
-use crate::scene::{Op, PaletteEntry, Scene};
+use crate::scene::{Op, PaletteEntry, Scene, FILE_METHOD};
 
 /// What is wrong with one line.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -137,7 +137,7 @@ impl fmt::Display for SceneFileError {
 
 /// Parses a whole scene file.
 pub fn parse(name: &str, text: &str) -> Result<Scene, SceneFileError> {
-    let mut scene = Scene::new(String::from(name), Vec::new(), MethodId::Exact);
+    let mut scene = Scene::new(String::from(name), Vec::new(), FILE_METHOD);
     for (i, line) in text.lines().enumerate() {
         match parse_line(line).map_err(|error| SceneFileError { line: i + 1, error })? {
             Some(Statement::Op(op)) => scene.ops.push(op),
@@ -419,7 +419,7 @@ mod tests {
     #[test]
     fn a_palette_is_written_in_runs_that_read_back_in_order() {
         let entry = |index: u8, rgb| PaletteEntry { index, rgb };
-        let mut scene = Scene::new(String::from("t"), alloc::vec![Op::Clear(3)], MethodId::Exact);
+        let mut scene = Scene::new(String::from("t"), alloc::vec![Op::Clear(3)], FILE_METHOD);
         scene.palette = (250..=255).map(|i| entry(i, [i - 250; 3])).collect();
         scene.palette.extend((0..10).map(|i| entry(i, [i, 63 - i, 7])));
         scene.palette.push(entry(3, [9, 9, 9]));

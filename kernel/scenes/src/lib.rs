@@ -20,4 +20,4 @@ pub mod palette;
 pub mod scene;
 pub mod show;
 
-pub use scene::{DrawReport, Op, PaletteEntry, Scene};
+pub use scene::{DrawReport, Op, PaletteEntry, Scene, FILE_METHOD};

@@ -24,11 +24,11 @@ use alloc::vec::Vec;
 use core::fmt;
 use core::mem::size_of;
 
-use raster::{FillRule, MethodId, Point, Polygon};
+use raster::{FillRule, Point, Polygon};
 
 use crate::file::writes;
 use crate::palette::MAX_LEVEL;
-use crate::scene::{Op, PaletteEntry, Scene};
+use crate::scene::{Op, PaletteEntry, Scene, FILE_METHOD};
 
 /// The first bytes of every packed scene.
 pub const MAGIC: [u8; 4] = *b"PLS1";
@@ -184,7 +184,7 @@ pub fn unpack(name: String, bytes: &[u8], budget: usize) -> Result<Scene, Unpack
     if reader.take(MAGIC.len())? != MAGIC {
         return Err(UnpackError::NotPacked);
     }
-    let mut scene = Scene::new(name, Vec::new(), MethodId::Exact);
+    let mut scene = Scene::new(name, Vec::new(), FILE_METHOD);
     // Each palette entry takes 4 bytes, each op at least 2: a count larger
     // than the bytes left could hold is truncated, whatever it claims.
     let entries = reader.count(4)?;
@@ -316,7 +316,7 @@ mod tests {
     use alloc::vec;
 
     fn scene(ops: Vec<Op>) -> Scene {
-        Scene::new(String::from("t"), ops, MethodId::Exact)
+        Scene::new(String::from("t"), ops, FILE_METHOD)
     }
 
     fn square(at: i32, side: i32) -> Vec<Point> {
@@ -327,7 +327,7 @@ mod tests {
     fn every_built_in_page_unpacks_to_itself_within_its_own_memory() {
         for page in builtin::ALL {
             let mut scene = page.scene();
-            scene.method = MethodId::Exact;
+            scene.method = FILE_METHOD;
             let bytes = pack(&scene);
             let back = unpack(scene.name.clone(), &bytes, memory(&scene)).unwrap();
             assert_eq!(back, scene, "{}", page.name);

@@ -25,6 +25,11 @@ pub struct PaletteEntry {
     pub rgb: [u8; 3],
 }
 
+/// The method a scene with no source of its own (a scene file, an SVG
+/// converted, an uploaded scene) is drawn with when none is named: the one
+/// home of that default, on both sides of the wire.
+pub const FILE_METHOD: MethodId = MethodId::Exact;
+
 /// A named list of operations. Nothing is cleared implicitly: like the
 /// book's programs, each operation draws over what the previous ones left.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -33,7 +38,7 @@ pub struct Scene {
     pub ops: Vec<Op>,
     /// The method the scene is drawn with when none is named: its source's
     /// (Listing 38.3 uses Listing 38.1, Listing 40.4 the edge-table filler),
-    /// `exact` for scene files.
+    /// [`FILE_METHOD`] for scene files.
     pub method: MethodId,
     /// The DAC entries the scene sets over the VGA default palette, in
     /// order (a later one for the same index wins); empty for a scene in
@@ -65,6 +70,11 @@ impl Scene {
     /// A scene in the VGA default palette.
     pub fn new(name: String, ops: Vec<Op>, method: MethodId) -> Self {
         Self { name, ops, method, palette: Vec::new() }
+    }
+
+    /// The method to draw the scene with: the one `named`, else its own.
+    pub fn method_or(&self, named: Option<MethodId>) -> MethodId {
+        named.unwrap_or(self.method)
     }
 
     /// The polygons the scene fills, in order.

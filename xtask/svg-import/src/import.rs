@@ -5,8 +5,8 @@ use std::path::Path;
 
 use anyhow::{anyhow, bail, Context, Result};
 use kurbo::{Affine, BezPath};
-use raster::{FillRule, MethodId, Point, Polygon};
-use scenes::{Op, Scene};
+use raster::{FillRule, Point, Polygon};
+use scenes::{Op, Scene, FILE_METHOD};
 use usvg::roxmltree::{Document, ParsingOptions};
 use usvg::{Group, Node, Opacity, Paint, PaintOrder};
 
@@ -64,7 +64,7 @@ pub fn import(name: &str, svg: &[u8], options: &Options) -> Result<Imported> {
     for (fill, &color) in drawing.fills.into_iter().zip(&indexed.indices) {
         ops.push(Op::Fill(Polygon { contours: fill.contours, color, rule: fill.rule }));
     }
-    let mut scene = Scene::new(name.to_string(), ops, MethodId::Exact);
+    let mut scene = Scene::new(name.to_string(), ops, FILE_METHOD);
     scene.palette = indexed.palette;
     let mut notes = drawing.notes.lines();
     notes.extend(indexed.notes);
