@@ -74,6 +74,7 @@
 #![no_std]
 #![forbid(unsafe_code)]
 
+#[cfg(feature = "alloc")]
 extern crate alloc;
 
 // Every item has one path: the modules are private, and what a caller
@@ -82,22 +83,36 @@ extern crate alloc;
 // type, `methods::Exact`), `reference` (`reference::fill`, the judge) and `sink`
 // (`sink::clear`, `sink::set_bytes`, the stores).
 mod classify;
+#[cfg(feature = "alloc")]
 mod coverage;
+#[cfg(feature = "alloc")]
 mod framebuffer;
 mod geometry;
 pub mod methods;
+#[cfg(feature = "alloc")]
 pub mod reference;
 pub mod sink;
 mod target;
 #[cfg(test)]
 mod test_rng;
 
+#[cfg(feature = "alloc")]
 pub use classify::{classify, Class};
+#[cfg(feature = "alloc")]
 pub use coverage::{CoverageReport, CoverageSink};
+#[cfg(feature = "alloc")]
 pub use framebuffer::Framebuffer;
-pub use geometry::{FillRule, PixelPoint, Point, Polygon, SUBPIXEL_BITS, SUBPIXEL_ONE};
-pub use methods::exact::{fill_auto, fill_auto_with, ExactPath, Scratch};
-pub use methods::info::{Heap, MethodInfo, Refusal};
+#[cfg(feature = "alloc")]
+pub use geometry::Polygon;
+pub use geometry::{FillRule, PixelPoint, Point, PolygonRef, SUBPIXEL_BITS, SUBPIXEL_ONE};
+#[cfg(feature = "alloc")]
+pub use methods::exact::Scratch;
+pub use methods::exact::{fill_auto, fill_auto_with, ExactPath, FixedScratch, ScratchMut};
+pub use methods::info::Refusal;
+#[cfg(feature = "alloc")]
+pub use methods::info::{Heap, MethodInfo};
+#[cfg(feature = "alloc")]
 pub use methods::interface::Method;
+#[cfg(feature = "alloc")]
 pub use methods::method_id::{MethodId, UnknownMethod};
 pub use target::{Size, SpanSink, SCREEN};
