@@ -155,16 +155,6 @@ fn a_polygon_beyond_the_room_is_refused_whole_and_drawn_with_more() {
     display.assert_eq(&MockDisplay::from_points(expected.iter().copied(), BinaryColor::On));
 }
 
-/// Whether embedded-graphics' `Triangle` of these corners panics when drawn
-/// on a MockDisplay (an overflow in its arithmetic, in a debug build, or
-/// the display's own panic at a pixel drawn twice or out of bounds).
-fn triangle_panics(corners: [Point; 3]) -> bool {
-    let mut display = MockDisplay::<BinaryColor>::new();
-    let triangle = Triangle::new(corners[0], corners[1], corners[2]);
-    let style = PrimitiveStyle::with_fill(BinaryColor::On);
-    catch_unwind(AssertUnwindSafe(|| triangle.into_styled(style).draw(&mut display))).is_err()
-}
-
 #[test]
 fn triangles_embedded_graphics_panics_on_draw_exactly_through_the_adapter() {
     // Far corners: its cross products overflow i32 in a debug build (its
