@@ -19,7 +19,7 @@ use install::missing::ensure_all;
 use install::process::run_streaming;
 use install::toolchain::ensure_cxx;
 use install::toolchain::ensure_toolchain;
-use install::toolchain::{host, pinned, KERNEL_TARGET};
+use install::toolchain::{ensure_thumb_target, host, pinned, KERNEL_TARGET, THUMB_TARGET};
 use install::workspace;
 
 pub fn lint() -> Result<()> {
@@ -38,7 +38,12 @@ pub fn lint() -> Result<()> {
     for mut command in [host_clippy(), kernel_clippy(), fuzz_targets_clippy()] {
         run_streaming(&mut command)?;
     }
-    eprintln!("xtask: formatted, and clippy finds nothing in the host crates or the kernel");
+    ensure_thumb_target()?;
+    run_streaming(&mut no_alloc_build())?;
+    eprintln!(
+        "xtask: formatted, clippy finds nothing in the host crates or the kernel, and raster builds for {THUMB_TARGET} \
+         with no allocator"
+    );
     Ok(())
 }
 
@@ -64,6 +69,17 @@ fn fuzz_targets_clippy() -> Command {
     command.args(["clippy", "--all-targets", "--manifest-path"]).arg(fuzz_targets_manifest());
     command.arg("--target-dir").arg(workspace::target_dir().join("fuzz"));
     command.args(["--", "-D", "warnings"]);
+    command
+}
+
+/// `raster` (without its `alloc` feature) and `raster-eg` for a
+/// microcontroller with no allocator, on the host toolchain, in a target
+/// directory of their own, warnings denied.
+fn no_alloc_build() -> Command {
+    let mut command = host();
+    command.args(["build", "--package", "raster", "--package", "raster-eg", "--no-default-features"]);
+    command.args(["--target", THUMB_TARGET]).arg("--target-dir").arg(workspace::target_dir().join("thumb"));
+    command.env("RUSTFLAGS", "-D warnings");
     command
 }
 
@@ -120,6 +136,13 @@ mod tests {
         assert!(clippy.starts_with("cargo +nightly-2026-10-01 clippy --all-targets --manifest-path "), "{clippy}");
         assert!(clippy.contains("tests/fuzz/targets/Cargo.toml --target-dir "), "{clippy}");
         assert!(clippy.ends_with(" -- -D warnings"), "{clippy}");
+    }
+
+    #[test]
+    fn raster_is_built_for_a_microcontroller_with_no_allocator() {
+        let line = command_line(&no_alloc_build());
+        assert!(line.contains(" build --package raster --package raster-eg --no-default-features"), "{line}");
+        assert!(line.contains("--target thumbv7em-none-eabihf --target-dir "), "{line}");
     }
 
     #[test]

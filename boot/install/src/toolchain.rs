@@ -1,7 +1,8 @@
 //! The Rust toolchains and tools the commands build with: the cargo that
 //! runs us (stable, for the host crates), the pinned nightly the kernel
 //! and the boot stages build with, the wasm32 target the explorer's engine
-//! is built for, and cargo-fuzz; each installed with rustup or cargo when
+//! is built for, the thumbv7em target `raster` is checked on, and
+//! cargo-fuzz; each installed with rustup or cargo when
 //! missing. Machines here set `RUSTUP_AUTO_INSTALL=0`, so nothing installs
 //! itself.
 
@@ -130,23 +131,36 @@ fn install_commands(installed: Option<&str>) -> Vec<Command> {
 
 /// The target the explorer's engine is built for.
 pub const WASM_TARGET: &str = "wasm32-unknown-unknown";
+/// The microcontroller target `raster` and `raster-eg` are built for with
+/// no allocator (`cargo xtask lint`), so that they stay `no_std`.
+pub const THUMB_TARGET: &str = "thumbv7em-none-eabihf";
 
 /// Makes sure the toolchain that runs us (the one `cargo xtask` or `cargo
 /// test` was started with, the one [`host`] builds with) has the
 /// `wasm32-unknown-unknown` target, adding it with rustup when missing.
 pub fn ensure_wasm_target() -> Result<()> {
     static DONE: OnceLock<Result<(), Failure>> = OnceLock::new();
-    once_per_process(&DONE, || {
-        let toolchain = host_toolchain()?;
-        let installed =
-            output_of(Command::new("rustup").args(["target", "list", "--installed", "--toolchain"]).arg(&toolchain))
-                .context("rustup is needed to add the wasm32 target (see https://rustup.rs)")?;
-        if installed.lines().any(|line| line.trim() == WASM_TARGET) {
-            return Ok(());
-        }
-        eprintln!("install: adding target {WASM_TARGET} to Rust toolchain {toolchain} for the explorer page");
-        run_streaming(&mut wasm_target_command(&toolchain)).context("failed to add the wasm32 target")
-    })
+    once_per_process(&DONE, || ensure_host_target(WASM_TARGET, "the explorer page"))
+}
+
+/// [`ensure_wasm_target`] for [`THUMB_TARGET`].
+pub fn ensure_thumb_target() -> Result<()> {
+    static DONE: OnceLock<Result<(), Failure>> = OnceLock::new();
+    once_per_process(&DONE, || ensure_host_target(THUMB_TARGET, "raster's no_std build"))
+}
+
+/// Adds `target` to the toolchain that runs us when it is missing, saying
+/// it is for `purpose`.
+fn ensure_host_target(target: &str, purpose: &str) -> Result<()> {
+    let toolchain = host_toolchain()?;
+    let installed =
+        output_of(Command::new("rustup").args(["target", "list", "--installed", "--toolchain"]).arg(&toolchain))
+            .with_context(|| format!("rustup is needed to add the {target} target (see https://rustup.rs)"))?;
+    if installed.lines().any(|line| line.trim() == target) {
+        return Ok(());
+    }
+    eprintln!("install: adding target {target} to Rust toolchain {toolchain} for {purpose}");
+    run_streaming(&mut target_command(&toolchain, target)).with_context(|| format!("failed to add the {target} target"))
 }
 
 /// The rustup toolchain that runs us: rustup's proxies name it in
@@ -157,13 +171,13 @@ fn host_toolchain() -> Result<String> {
         return Ok(toolchain.to_string_lossy().into_owned());
     }
     let active = output_of(Command::new("rustup").args(["show", "active-toolchain"]))
-        .context("rustup is needed to add the wasm32 target (see https://rustup.rs)")?;
+        .context("rustup is needed to add a target (see https://rustup.rs)")?;
     active.split_whitespace().next().map(str::to_string).context("rustup named no active toolchain")
 }
 
-fn wasm_target_command(toolchain: &str) -> Command {
+fn target_command(toolchain: &str, target: &str) -> Command {
     let mut add = Command::new("rustup");
-    add.args(["target", "add", "--toolchain", toolchain, WASM_TARGET]);
+    add.args(["target", "add", "--toolchain", toolchain, target]);
     add
 }
 
@@ -261,9 +275,9 @@ mod tests {
     }
 
     #[test]
-    fn the_wasm_target_is_added_to_the_named_toolchain() {
+    fn a_target_is_added_to_the_named_toolchain() {
         assert_eq!(
-            command_line(&wasm_target_command("stable-x86_64-unknown-linux-gnu")),
+            command_line(&target_command("stable-x86_64-unknown-linux-gnu", WASM_TARGET)),
             "rustup target add --toolchain stable-x86_64-unknown-linux-gnu wasm32-unknown-unknown"
         );
     }

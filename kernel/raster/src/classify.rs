@@ -2,6 +2,8 @@
 //! The exact method's automatic fill ([`fill_auto`](crate::fill_auto))
 //! asks `Shape` (the linear-time part of [`classify`]) which path to take.
 //!
+//! Without the `alloc` feature only the tests `exact` asks are here.
+//!
 //! Contours whose vertices all lie on one line enclose nothing and are left
 //! out of every class: walking such a contour, a scan line is crossed as often
 //! downward as upward and always at the same point, so it adds nothing to
@@ -9,10 +11,16 @@
 
 use core::cmp::Ordering;
 
+#[cfg(feature = "alloc")]
 use alloc::vec::Vec;
 
-use crate::geometry::{Point, Polygon};
+use crate::geometry::Point;
+#[cfg(feature = "alloc")]
+use crate::geometry::Polygon;
+#[cfg(any(feature = "alloc", target_os = "none"))]
+use crate::geometry::PolygonRef;
 
+#[cfg(feature = "alloc")]
 /// Polygon classes, from cheapest to most general (Abrash ch. 41 naming in
 /// brackets).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -30,6 +38,7 @@ pub enum Class {
     Complex,
 }
 
+#[cfg(feature = "alloc")]
 impl Class {
     pub const fn name(self) -> &'static str {
         match self {
@@ -67,8 +76,9 @@ impl Class {
 /// assert_eq!(class(&[(0, 0), (9, 0), (9, 9), (5, 4), (0, 9)]), Class::Simple);
 /// assert_eq!(class(&[(0, 0), (9, 9), (9, 0), (0, 9)]), Class::Complex);
 /// ```
+#[cfg(feature = "alloc")]
 pub fn classify(polygon: &Polygon) -> Class {
-    match Shape::of(polygon) {
+    match Shape::of(PolygonRef::from(polygon)) {
         Shape::Empty => Class::Degenerate,
         Shape::Monotone(contour) if distinct_vertices(contour).len() == 3 => Class::Triangle,
         Shape::Monotone(_) => Class::Convex,
@@ -77,6 +87,7 @@ pub fn classify(polygon: &Polygon) -> Class {
     }
 }
 
+#[cfg(any(feature = "alloc", target_os = "none"))]
 /// The linear-time part of [`classify`]: which of a polygon's contours
 /// enclose anything, and whether the one that does is monotone (what the
 /// kernel's `fill_auto` asks of a polygon of several contours).
@@ -85,15 +96,17 @@ pub(crate) enum Shape<'a> {
     Empty,
     /// One enclosing contour, monotone in y.
     Monotone(&'a [Point]),
-    /// One enclosing contour, not monotone.
+    /// One enclosing contour, not monotone (which only [`classify`] reads).
+    #[cfg_attr(not(feature = "alloc"), allow(dead_code))]
     Contour(&'a [Point]),
     /// Several enclosing contours.
     Contours,
 }
 
+#[cfg(any(feature = "alloc", target_os = "none"))]
 impl<'a> Shape<'a> {
-    pub(crate) fn of(polygon: &'a Polygon) -> Self {
-        let mut enclosing = polygon.contours.iter().filter(|contour| !is_collinear(contour));
+    pub(crate) fn of<C: AsRef<[Point]>>(polygon: PolygonRef<'a, C>) -> Self {
+        let mut enclosing = polygon.contours.iter().map(AsRef::as_ref).filter(|contour| !is_collinear(contour));
         match (enclosing.next(), enclosing.next()) {
             (None, _) => Shape::Empty,
             (Some(contour), None) if is_monotone(contour) => Shape::Monotone(contour),
@@ -103,6 +116,7 @@ impl<'a> Shape<'a> {
     }
 }
 
+#[cfg(any(feature = "alloc", target_os = "none"))]
 /// Whether every vertex lies on one line (fewer than three distinct
 /// vertices included).
 fn is_collinear(contour: &[Point]) -> bool {
@@ -143,6 +157,7 @@ pub(crate) fn is_monotone(contour: &[Point]) -> bool {
     first != Ordering::Equal && reversals == 2
 }
 
+#[cfg(feature = "alloc")]
 /// The contour without vertices equal to the one before them (the last
 /// compared with the first too), so that every edge has length.
 fn distinct_vertices(contour: &[Point]) -> Vec<Point> {
@@ -158,6 +173,7 @@ fn distinct_vertices(contour: &[Point]) -> Vec<Point> {
     vertices
 }
 
+#[cfg(feature = "alloc")]
 /// Whether no two edges of a contour without repeated neighbours meet,
 /// except neighbouring edges at their shared vertex. Neighbours need no
 /// test of their own: if one folds back over the other, the fold's end
@@ -175,6 +191,7 @@ fn is_simple(vertices: &[Point]) -> bool {
     })
 }
 
+#[cfg(feature = "alloc")]
 /// Whether the closed segments `a-b` and `c-d` share a point.
 fn segments_meet(a: Point, b: Point, c: Point, d: Point) -> bool {
     let (abc, abd) = (orientation(a, b, c), orientation(a, b, d));
@@ -194,11 +211,13 @@ fn segments_meet(a: Point, b: Point, c: Point, d: Point) -> bool {
         || (cdb == Ordering::Equal && within_box(c, d, b))
 }
 
+#[cfg(feature = "alloc")]
 /// Whether `p`, collinear with `a-b`, lies on that segment.
 fn within_box(a: Point, b: Point, p: Point) -> bool {
     (a.x.min(b.x)..=a.x.max(b.x)).contains(&p.x) && (a.y.min(b.y)..=a.y.max(b.y)).contains(&p.y)
 }
 
+#[cfg(any(feature = "alloc", target_os = "none"))]
 /// The turn from `a-b` to `a-c`: the sign of their cross product, exact for
 /// any `i32` coordinates (differences need 33 bits, products 66).
 fn orientation(a: Point, b: Point, c: Point) -> Ordering {

@@ -1,5 +1,6 @@
 //! Points, polygons and fill rules.
 
+#[cfg(feature = "alloc")]
 use alloc::vec::Vec;
 
 /// Fractional bits of a [`Point`] coordinate: 8, so 1/256 of a pixel.
@@ -79,6 +80,8 @@ impl FillRule {
 /// A filled polygon: one or more closed contours (the last vertex of each
 /// joins its first), one colour, one fill rule. Holes are contours of their
 /// own, or bridge edges within one contour as in Abrash's Listing 40.4.
+/// It owns its vertices (feature `alloc`); [`PolygonRef`] borrows them.
+#[cfg(feature = "alloc")]
 #[derive(Clone, Debug, PartialEq, Eq, Default)]
 pub struct Polygon {
     pub contours: Vec<Vec<Point>>,
@@ -86,6 +89,7 @@ pub struct Polygon {
     pub rule: FillRule,
 }
 
+#[cfg(feature = "alloc")]
 impl Polygon {
     /// A single-contour polygon with the even-odd rule.
     pub fn new(vertices: Vec<Point>, color: u8) -> Self {
@@ -104,7 +108,7 @@ impl Polygon {
 
     /// Total vertex count over all contours.
     pub fn vertex_count(&self) -> usize {
-        self.contours.iter().map(Vec::len).sum()
+        PolygonRef::from(self).vertex_count()
     }
 
     /// The only contour, or `None` when the polygon has several (for the
@@ -114,6 +118,50 @@ impl Polygon {
             [only] => Some(only),
             _ => None,
         }
+    }
+}
+
+/// A polygon as `exact` reads it, borrowed: its closed contours, each a
+/// slice of [`Point`]s or anything that lends one (`&[Point]`,
+/// `[Point; N]`, `Vec<Point>`), one colour, one fill rule. It needs no
+/// allocator; a [`Polygon`] lends one (`PolygonRef::from(&polygon)`).
+///
+/// ```
+/// use raster::{FillRule, Point, PolygonRef};
+///
+/// let square = [(0, 0), (6, 0), (6, 6), (0, 6)].map(|(x, y)| Point::from_pixels(x, y));
+/// let hole = [(2, 2), (2, 4), (4, 4), (4, 2)].map(|(x, y)| Point::from_pixels(x, y));
+/// let framed = PolygonRef { contours: &[square, hole], color: 1, rule: FillRule::NonZero };
+/// assert_eq!(framed.vertex_count(), 8);
+/// ```
+#[derive(Debug)]
+pub struct PolygonRef<'a, C = &'a [Point]> {
+    pub contours: &'a [C],
+    pub color: u8,
+    pub rule: FillRule,
+}
+
+// By hand, for every `C`: a derived `Clone` would ask `C: Clone`, and a
+// borrowed polygon copies whatever its contours are.
+impl<C> Clone for PolygonRef<'_, C> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<C> Copy for PolygonRef<'_, C> {}
+
+impl<C: AsRef<[Point]>> PolygonRef<'_, C> {
+    /// Total vertex count over all contours: its number of edges.
+    pub fn vertex_count(&self) -> usize {
+        self.contours.iter().map(|contour| contour.as_ref().len()).sum()
+    }
+}
+
+#[cfg(feature = "alloc")]
+impl<'a> From<&'a Polygon> for PolygonRef<'a, Vec<Point>> {
+    fn from(polygon: &'a Polygon) -> Self {
+        PolygonRef { contours: &polygon.contours, color: polygon.color, rule: polygon.rule }
     }
 }
 

@@ -68,12 +68,43 @@
 //! interface over all of them, and [`classify()`] tells a polygon's class,
 //! the most general one a method must handle to fill it.
 //!
-//! What is drawn in polylab (the book pages, scene files, the show) lives
-//! in its `scenes` crate; `kernel/raster/examples/png.rs` fills a few polygons and
-//! writes them as a PNG (`cargo run -p raster --example png -- OUT.png`).
+//! `examples/png.rs` fills a few polygons and writes them as a PNG
+//! (`cargo run -p raster --example png -- OUT.png`).
+//!
+//! # Without an allocator
+//!
+//! The `alloc` feature, on by default, brings [`Polygon`], the classic
+//! methods, the reference, [`Framebuffer`] and the heap [`Scratch`].
+//! Without it `exact` alone is here: it fills a [`PolygonRef`], whose
+//! contours are any slices of points, with its tables on the stack, or
+//! for a polygon of more edges in a [`FixedScratch`] the caller lends; a
+//! polygon of more edges than that holds is refused
+//! ([`Refusal::TooManyVertices`]), never drawn in part:
+//!
+//! ```
+//! use raster::{fill_auto_with, FillRule, FixedScratch, Point, PolygonRef, Size, SpanSink};
+//!
+//! struct Rows([i32; 16]);
+//! impl SpanSink for Rows {
+//!     fn size(&self) -> Size {
+//!         Size { width: 16, height: 16 }
+//!     }
+//!     fn span(&mut self, y: i32, x_start: i32, x_end: i32, _color: u8) {
+//!         self.0[y as usize] += x_end - x_start;
+//!     }
+//! }
+//!
+//! let square = [(2, 2), (14, 2), (14, 14), (2, 14)].map(|(x, y)| Point::from_pixels(x, y));
+//! let hole = [(6, 6), (6, 10), (10, 10), (10, 6)].map(|(x, y)| Point::from_pixels(x, y));
+//! let framed = PolygonRef { contours: &[square, hole], color: 1, rule: FillRule::NonZero };
+//! let (mut rows, mut scratch) = (Rows([0; 16]), FixedScratch::<512>::new());
+//! fill_auto_with(framed, &mut rows, &mut scratch).unwrap();
+//! assert_eq!(rows.0[..8], [0, 0, 12, 12, 12, 12, 8, 8]);
+//! ```
 #![no_std]
 #![forbid(unsafe_code)]
 
+#[cfg(feature = "alloc")]
 extern crate alloc;
 
 // Every item has one path: the modules are private, and what a caller
@@ -82,22 +113,36 @@ extern crate alloc;
 // type, `methods::Exact`), `reference` (`reference::fill`, the judge) and `sink`
 // (`sink::clear`, `sink::set_bytes`, the stores).
 mod classify;
+#[cfg(feature = "alloc")]
 mod coverage;
+#[cfg(feature = "alloc")]
 mod framebuffer;
 mod geometry;
 pub mod methods;
+#[cfg(feature = "alloc")]
 pub mod reference;
 pub mod sink;
 mod target;
 #[cfg(test)]
 mod test_rng;
 
+#[cfg(feature = "alloc")]
 pub use classify::{classify, Class};
+#[cfg(feature = "alloc")]
 pub use coverage::{CoverageReport, CoverageSink};
+#[cfg(feature = "alloc")]
 pub use framebuffer::Framebuffer;
-pub use geometry::{FillRule, PixelPoint, Point, Polygon, SUBPIXEL_BITS, SUBPIXEL_ONE};
-pub use methods::exact::{fill_auto, fill_auto_with, ExactPath, Scratch};
-pub use methods::info::{Heap, MethodInfo, Refusal};
+#[cfg(feature = "alloc")]
+pub use geometry::Polygon;
+pub use geometry::{FillRule, PixelPoint, Point, PolygonRef, SUBPIXEL_BITS, SUBPIXEL_ONE};
+#[cfg(feature = "alloc")]
+pub use methods::exact::Scratch;
+pub use methods::exact::{fill_auto, fill_auto_with, ExactPath, FixedScratch, ScratchMut};
+pub use methods::info::Refusal;
+#[cfg(feature = "alloc")]
+pub use methods::info::{Heap, MethodInfo};
+#[cfg(feature = "alloc")]
 pub use methods::interface::Method;
+#[cfg(feature = "alloc")]
 pub use methods::method_id::{MethodId, UnknownMethod};
 pub use target::{Size, SpanSink, SCREEN};

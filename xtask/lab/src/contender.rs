@@ -140,7 +140,7 @@ impl Contender {
                 let polygons = polygons.to_vec();
                 let (mut screen, mut scratch) = (Framebuffer::new(SCREEN), Scratch::new());
                 Box::new(move || {
-                    for polygon in &polygons {
+                    for &polygon in &polygons {
                         let _ =
                             ExactPath::alone(which, polygon).and_then(|path| path.fill_with(&mut screen, &mut scratch));
                     }
@@ -151,7 +151,7 @@ impl Contender {
                 let polygons = polygons.to_vec();
                 let (mut screen, mut scratch) = (Framebuffer::new(SCREEN), Scratch::new());
                 Box::new(move || {
-                    for polygon in &polygons {
+                    for &polygon in &polygons {
                         let _ = fill_auto_with(polygon, &mut screen, &mut scratch);
                     }
                     black_box(&mut screen);

@@ -66,7 +66,7 @@ impl Lane {
         let polygons = polygons.to_vec();
         match self {
             Lane::Dispatch => Box::new(move || {
-                for polygon in &polygons {
+                for &polygon in &polygons {
                     black_box(ExactPath::choose(black_box(polygon)));
                 }
             }),
@@ -78,7 +78,7 @@ impl Lane {
             Lane::Walk => {
                 let (mut lengths, mut scratch) = (SpanLengths(0), Scratch::new());
                 Box::new(move || {
-                    for polygon in &polygons {
+                    for &polygon in &polygons {
                         let _ = fill_auto_with(polygon, &mut lengths, &mut scratch);
                     }
                     black_box(&mut lengths);

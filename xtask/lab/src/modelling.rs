@@ -77,7 +77,7 @@ pub fn judge(family: &Family, progress: &(dyn Fn() + Sync)) -> Judgement {
     let judged = measure::quietly(|| measure::judge(family, &contenders, progress));
     let polygons: Vec<&Polygon> = family.polygons.iter().collect();
     let mut chosen = vec![0u64; ExactPath::NAMES.len()];
-    for path in polygons.iter().filter_map(|p| ExactPath::choose(p)) {
+    for path in polygons.iter().filter_map(|&p| ExactPath::choose(p)) {
         chosen[path.index()] += 1;
     }
     let tallies: Vec<Option<Tally>> = lanes

@@ -7,10 +7,14 @@
 //!
 //! [`Method`]: crate::methods::Method
 
+#[cfg(feature = "alloc")]
 use crate::classify::Class;
+#[cfg(feature = "alloc")]
 use crate::geometry::FillRule;
+#[cfg(feature = "alloc")]
 use crate::reference::Convention;
 
+#[cfg(feature = "alloc")]
 /// When a method takes memory from the heap while it fills.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Heap {
@@ -26,6 +30,7 @@ pub enum Heap {
     EveryPolygon,
 }
 
+#[cfg(feature = "alloc")]
 impl Heap {
     pub const fn name(self) -> &'static str {
         match self {
@@ -36,6 +41,7 @@ impl Heap {
     }
 }
 
+#[cfg(feature = "alloc")]
 /// What a method is, where it comes from and what it accepts.
 #[derive(Clone, Copy, Debug)]
 pub struct MethodInfo {
@@ -64,7 +70,10 @@ pub enum Refusal {
     /// Coordinates beyond the range where the method's arithmetic is exact
     /// or safe.
     OutOfRange,
-    /// More vertices than the method's fixed tables hold.
+    /// More vertices than the method's fixed tables hold (for `exact`,
+    /// than the tables on the stack and a caller's
+    /// [`FixedScratch`](crate::FixedScratch) hold, or without the `alloc`
+    /// feature the stack's alone).
     TooManyVertices,
     /// Memory for the method's tables could not be had (Abrash's `malloc`
     /// failure path).

@@ -2,7 +2,7 @@
 //! between the two general paths by it, and handed to the one chosen,
 //! which clips and sizes its work by it.
 
-use crate::geometry::{FillRule, Point, Polygon};
+use crate::geometry::{FillRule, Point, PolygonRef};
 
 /// The widest a polygon the edge flags take may be, in subpixels (512
 /// px, a `ShortEdge`'s width).
@@ -19,8 +19,8 @@ impl Bounds {
     /// The box of `polygon`'s vertices (an empty one at the origin for a
     /// polygon without any, which meets no row).
     #[inline(always)]
-    pub(super) fn of(polygon: &Polygon) -> Self {
-        let mut vertices = polygon.contours.iter().flatten();
+    pub(super) fn of<C: AsRef<[Point]>>(polygon: PolygonRef<'_, C>) -> Self {
+        let mut vertices = polygon.contours.iter().flat_map(AsRef::as_ref);
         let Some(&first) = vertices.next() else { return Self { min: Point::new(0, 0), max: Point::new(0, 0) } };
         let (mut min, mut max) = (first, first);
         // On the host, contour by contour (the first vertex again), each a
@@ -30,8 +30,8 @@ impl Bounds {
         // has no vector unit to use, and `cargo xtask kbench` counted 26
         // to 708 more instructions a page with the host's loops.
         #[cfg(not(target_os = "none"))]
-        for contour in &polygon.contours {
-            for p in contour {
+        for contour in polygon.contours {
+            for p in contour.as_ref() {
                 (min.x, min.y, max.x, max.y) = (min.x.min(p.x), min.y.min(p.y), max.x.max(p.x), max.y.max(p.y));
             }
         }

@@ -24,8 +24,10 @@
 //!   `i64`).
 //! - Range: exact for every `i32` vertex coordinate and every target
 //!   [`Size`], so nothing is refused as out of range; the only
-//!   refusal is [`Refusal::OutOfMemory`] when the edge tables of a polygon
-//!   too large for the stack cannot be allocated.
+//!   refusals are [`Refusal::OutOfMemory`] when the edge tables of a
+//!   polygon too large for the stack cannot be allocated, and
+//!   [`Refusal::TooManyVertices`] when they do not fit a caller's
+//!   [`FixedScratch`] (or, without the `alloc` feature, there is none).
 //! - Classes: all ([`Class::Complex`]): several contours, holes,
 //!   self-intersections, both fill rules.
 //! - Work: rows are clipped to the target before any is visited, so a
@@ -41,7 +43,8 @@
 //!   summing them per column instead).
 //! - Memory: nothing is allocated for a polygon of up to 256 edges (64
 //!   when they may be 512 px or longer); a larger one takes its tables from
-//!   a [`Scratch`], which the caller may keep ([`fill_auto_with`]).
+//!   a [`Scratch`] on the heap (feature `alloc`) or a [`FixedScratch`],
+//!   which the caller may keep ([`fill_auto_with`]).
 //!
 //! Every fill goes one way through its stages, no file calling back into
 //! one it was called from: [`fill_auto`] chooses an [`ExactPath`] (the one
@@ -62,20 +65,33 @@ mod edge_flags;
 mod monotone;
 mod spans;
 
+#[cfg(feature = "alloc")]
 pub use active_edges::Scratch;
+pub use active_edges::{FixedScratch, ScratchMut};
 pub use bounds::Bounds;
 use monotone::{fill_monotone, fill_triangle};
 
+use crate::classify::is_monotone;
+#[cfg(feature = "alloc")]
+use crate::classify::Class;
 #[cfg(target_os = "none")]
 use crate::classify::Shape;
-use crate::classify::{is_monotone, Class};
-use crate::geometry::{FillRule, Point, Polygon};
-use crate::methods::info::{Heap, MethodInfo, Refusal};
+#[cfg(not(target_os = "none"))]
+use crate::geometry::FillRule;
+#[cfg(feature = "alloc")]
+use crate::geometry::Polygon;
+use crate::geometry::{Point, PolygonRef};
+use crate::methods::info::Refusal;
+#[cfg(feature = "alloc")]
+use crate::methods::info::{Heap, MethodInfo};
+#[cfg(feature = "alloc")]
 use crate::methods::interface::Builtin;
+#[cfg(feature = "alloc")]
 use crate::reference::Convention;
 use crate::target::{Size, SpanSink};
 
-/// The exact method.
+/// The exact method, as one of the crate's [`Method`](crate::Method)s.
+#[cfg(feature = "alloc")]
 pub struct Exact;
 
 /// Whether the edge flags fill `polygon`, of this box and `edges` edges,
@@ -96,7 +112,7 @@ pub struct Exact;
 /// chosen).
 #[cfg(not(target_os = "none"))]
 #[inline(always)]
-fn flags_pay(bounds: &Bounds, edges: i64, polygon: &Polygon) -> bool {
+fn flags_pay<C>(bounds: &Bounds, edges: i64, polygon: PolygonRef<'_, C>) -> bool {
     let per_edge = match (polygon.rule, polygon.contours.len()) {
         (FillRule::NonZero, 1) => 8,
         _ => 64,
@@ -111,10 +127,11 @@ fn flags_pay(bounds: &Bounds, edges: i64, polygon: &Polygon) -> bool {
 /// took 8% more instructions with the host's bound.
 #[cfg(target_os = "none")]
 #[inline(always)]
-fn flags_pay(bounds: &Bounds, edges: i64, _polygon: &Polygon) -> bool {
+fn flags_pay<C>(bounds: &Bounds, edges: i64, _polygon: PolygonRef<'_, C>) -> bool {
     bounds.rows() <= 2 * edges
 }
 
+#[cfg(feature = "alloc")]
 static INFO: MethodInfo = MethodInfo {
     name: "exact",
     source: "ours",
@@ -126,10 +143,11 @@ static INFO: MethodInfo = MethodInfo {
     numeric:
         "i32 vertices in 1/256 px; i64 edge setup (i128 for edges over 2^23 px), i64 error-term stepping (exact fixed point for polygons under 512 px, its step's quotient estimated in f64 where there is an FPU and corrected in i64)",
     handles: Class::Complex,
-    rules: &[FillRule::EvenOdd, FillRule::NonZero],
+    rules: &[crate::FillRule::EvenOdd, crate::FillRule::NonZero],
     heap: Heap::ManyEdges,
 };
 
+#[cfg(feature = "alloc")]
 impl Builtin for Exact {
     const INFO: &'static MethodInfo = &INFO;
 
@@ -147,6 +165,10 @@ impl Builtin for Exact {
 /// class; [`ExactPath::fill`] fills by it. Only those two make one, so a
 /// path never holds a polygon outside its class.
 ///
+/// It reads the polygon through a [`PolygonRef`], whose contours are of
+/// any type `C` that lends a slice of points (a [`Polygon`](crate::Polygon)'s
+/// are `Vec<Point>`s).
+///
 /// ```
 /// use raster::{CoverageSink, ExactPath, Polygon, Refusal, Size};
 ///
@@ -158,32 +180,46 @@ impl Builtin for Exact {
 /// assert_eq!(monotone.fill(&mut drawn), Ok(()));
 /// assert_eq!(drawn.ascii(), "###.\n###.\n###.\n....\n");
 /// ```
-#[derive(Clone, Copy, Debug)]
-pub enum ExactPath<'a> {
+#[derive(Debug)]
+pub enum ExactPath<'a, C = &'a [Point]> {
     /// One contour of three vertices, its `corners`: its long edge and
     /// the short edge meeting each row, one span per row, no allocation.
     #[non_exhaustive]
-    Triangle { corners: [Point; 3], polygon: &'a Polygon },
+    Triangle { corners: [Point; 3], polygon: PolygonRef<'a, C> },
     /// The one contour of `polygon` that encloses anything, monotone in y:
     /// two sides from the top vertex down, one span per row, no allocation.
     #[non_exhaustive]
-    Monotone { contour: &'a [Point], polygon: &'a Polygon },
+    Monotone { contour: &'a [Point], polygon: PolygonRef<'a, C> },
     /// Any polygon, with the box of its vertices: the active edge table,
-    /// on the stack or in a [`Scratch`].
+    /// on the stack or in a caller's scratch ([`ScratchMut`]).
     #[non_exhaustive]
-    ActiveEdges { polygon: &'a Polygon, bounds: Bounds },
+    ActiveEdges { polygon: PolygonRef<'a, C>, bounds: Bounds },
     /// A polygon within 512 px across (of under 256 edges under the
     /// non-zero rule), with the box of its vertices: the edge flags, on
     /// the stack.
     #[non_exhaustive]
-    EdgeFlags { polygon: &'a Polygon, bounds: Bounds },
+    EdgeFlags { polygon: PolygonRef<'a, C>, bounds: Bounds },
 }
 
-impl<'a> ExactPath<'a> {
+// By hand, for every `C`, as the polygon's.
+impl<C> Clone for ExactPath<'_, C> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<C> Copy for ExactPath<'_, C> {}
+
+impl ExactPath<'_> {
     /// The paths' names, from the narrowest class to the widest: the
     /// places [`ExactPath::alone`] asks for them by.
-    pub const NAMES: [&'static str; 4] = ["triangle", "monotone", "active edges", "edge flags"];
+    pub const NAMES: [&'static str; 4] = NAMES;
+}
 
+/// [`ExactPath::NAMES`], for paths of any kind of contour.
+const NAMES: [&str; 4] = ["triangle", "monotone", "active edges", "edge flags"];
+
+impl<'a, C: AsRef<[Point]>> ExactPath<'a, C> {
     /// The path [`fill_auto`] fills `polygon` by, or `None` when it has
     /// no contour: in linear time, with no classification.
     ///
@@ -201,9 +237,11 @@ impl<'a> ExactPath<'a> {
     /// cost the glyphs 4% of their time, and the families of several
     /// contours have none (`docs/lab.md`, "This round's fourth change").
     #[inline]
-    pub fn choose(polygon: &'a Polygon) -> Option<Self> {
-        if let [contour] = polygon.contours.as_slice() {
-            return Some(match contour.as_slice() {
+    pub fn choose(polygon: impl Into<PolygonRef<'a, C>>) -> Option<Self> {
+        let polygon = polygon.into();
+        if let [contour] = polygon.contours {
+            let contour = contour.as_ref();
+            return Some(match contour {
                 &[a, b, c] => ExactPath::Triangle { corners: [a, b, c], polygon },
                 _ if is_monotone(contour) => ExactPath::Monotone { contour, polygon },
                 _ => Self::general(polygon),
@@ -216,7 +254,7 @@ impl<'a> ExactPath<'a> {
     /// the host: a path that takes any polygon, with no test.
     #[cfg(not(target_os = "none"))]
     #[inline(always)]
-    fn several(polygon: &'a Polygon) -> Option<Self> {
+    fn several(polygon: PolygonRef<'a, C>) -> Option<Self> {
         (!polygon.contours.is_empty()).then(|| Self::general(polygon))
     }
 
@@ -228,7 +266,7 @@ impl<'a> ExactPath<'a> {
     /// though no demo page has a polygon of several contours.
     #[cfg(target_os = "none")]
     #[inline(always)]
-    fn several(polygon: &'a Polygon) -> Option<Self> {
+    fn several(polygon: PolygonRef<'a, C>) -> Option<Self> {
         match Shape::of(polygon) {
             Shape::Empty => None,
             Shape::Monotone(contour) => Some(ExactPath::Monotone { contour, polygon }),
@@ -241,7 +279,7 @@ impl<'a> ExactPath<'a> {
     /// holds few words of flags for its edges, the active edge table
     /// otherwise.
     #[inline(always)]
-    fn general(polygon: &'a Polygon) -> Self {
+    fn general(polygon: PolygonRef<'a, C>) -> Self {
         let (bounds, edges) = (Bounds::of(polygon), polygon.vertex_count());
         if flags_pay(&bounds, edges as i64, polygon) && bounds.takes(edges, polygon.rule) {
             ExactPath::EdgeFlags { polygon, bounds }
@@ -253,13 +291,15 @@ impl<'a> ExactPath<'a> {
     /// The path named `NAMES[which]`, asked for alone: `polygon` as it
     /// takes it, or [`Refusal::OutsideClass`] when the polygon is not of
     /// its class (or `which` names no path).
-    pub fn alone(which: usize, polygon: &'a Polygon) -> Result<Self, Refusal> {
-        match (which, polygon.contours.as_slice()) {
-            (0, [contour]) if contour.len() == 3 => {
+    pub fn alone(which: usize, polygon: impl Into<PolygonRef<'a, C>>) -> Result<Self, Refusal> {
+        let polygon = polygon.into();
+        match (which, polygon.contours) {
+            (0, [contour]) if contour.as_ref().len() == 3 => {
+                let contour = contour.as_ref();
                 Ok(ExactPath::Triangle { corners: [contour[0], contour[1], contour[2]], polygon })
             }
-            (1, [contour]) if contour.len() == 3 || is_monotone(contour) => {
-                Ok(ExactPath::Monotone { contour, polygon })
+            (1, [contour]) if contour.as_ref().len() == 3 || is_monotone(contour.as_ref()) => {
+                Ok(ExactPath::Monotone { contour: contour.as_ref(), polygon })
             }
             (2, _) => Ok(ExactPath::ActiveEdges { polygon, bounds: Bounds::of(polygon) }),
             (3, _) => {
@@ -273,8 +313,9 @@ impl<'a> ExactPath<'a> {
 
     /// Every path that takes `polygon` alone ([`ExactPath::alone`]),
     /// narrowest first.
-    pub fn every(polygon: &'a Polygon) -> impl Iterator<Item = Self> + 'a {
-        (0..Self::NAMES.len()).filter_map(move |which| Self::alone(which, polygon).ok())
+    pub fn every(polygon: impl Into<PolygonRef<'a, C>>) -> impl Iterator<Item = Self> + 'a {
+        let polygon = polygon.into();
+        (0..NAMES.len()).filter_map(move |which| Self::alone(which, polygon).ok())
     }
 
     /// Its place in [`ExactPath::NAMES`].
@@ -288,25 +329,32 @@ impl<'a> ExactPath<'a> {
     }
 
     pub const fn name(&self) -> &'static str {
-        Self::NAMES[self.index()]
+        NAMES[self.index()]
     }
 
     /// Fills what the path holds exactly into `sink`. Only the active edge
-    /// table may refuse, and only when a polygon too large for the stack
-    /// meets a failed allocation ([`Refusal::OutOfMemory`]).
+    /// table may refuse, and only for a polygon too large for the stack:
+    /// when allocating its tables fails ([`Refusal::OutOfMemory`]), or
+    /// without the `alloc` feature ([`Refusal::TooManyVertices`]).
     pub fn fill<S: SpanSink + ?Sized>(self, sink: &mut S) -> Result<(), Refusal> {
         self.fill_in(sink, None)
     }
 
-    /// [`ExactPath::fill`] with the caller's [`Scratch`] for polygons too
-    /// large for the tables the active-edge path keeps on the stack.
-    pub fn fill_with<S: SpanSink + ?Sized>(self, sink: &mut S, scratch: &mut Scratch) -> Result<(), Refusal> {
-        self.fill_in(sink, Some(scratch))
+    /// [`ExactPath::fill`] with the caller's scratch (a
+    /// [`Scratch`](crate::Scratch) or a [`FixedScratch`], `&mut scratch`)
+    /// for polygons too large for the tables the active-edge path keeps
+    /// on the stack.
+    pub fn fill_with<'s, S: SpanSink + ?Sized>(
+        self,
+        sink: &mut S,
+        scratch: impl Into<ScratchMut<'s>>,
+    ) -> Result<(), Refusal> {
+        self.fill_in(sink, Some(scratch.into()))
     }
 
     /// [`ExactPath::fill_with`], with or without a caller's scratch.
     #[inline(always)]
-    fn fill_in<S: SpanSink + ?Sized>(self, sink: &mut S, scratch: Option<&mut Scratch>) -> Result<(), Refusal> {
+    fn fill_in<S: SpanSink + ?Sized>(self, sink: &mut S, scratch: Option<ScratchMut<'_>>) -> Result<(), Refusal> {
         match drawable(sink) {
             Some(size) => self.dispatch(size, sink, scratch),
             None => Ok(()),
@@ -320,7 +368,7 @@ impl<'a> ExactPath<'a> {
         self,
         size: Size,
         sink: &mut S,
-        scratch: Option<&mut Scratch>,
+        scratch: Option<ScratchMut<'_>>,
     ) -> Result<(), Refusal> {
         match self {
             ExactPath::Triangle { corners, polygon } => {
@@ -356,6 +404,13 @@ fn drawable<S: SpanSink + ?Sized>(sink: &S) -> Option<Size> {
 /// complex polygons share those paths, so telling them apart would cost
 /// without saving anything.
 ///
+/// It takes a [`Polygon`](crate::Polygon) (`&polygon`) or any
+/// [`PolygonRef`]. A polygon too large for the tables on the stack (over
+/// 256 edges, or over 64 when they may be 512 px or longer) takes its
+/// tables from a new [`Scratch`](crate::Scratch) on the heap, or without
+/// the `alloc` feature is refused ([`Refusal::TooManyVertices`]; lend it a
+/// [`FixedScratch`] through [`fill_auto_with`]).
+///
 /// # Examples
 ///
 /// A square with a square hole, one contour each: the even-odd rule leaves
@@ -386,16 +441,22 @@ fn drawable<S: SpanSink + ?Sized>(sink: &S) -> Option<Size> {
 /// assert_eq!(path(&Polygon::from_pixels(&[(0, 0), (4, 1), (1, 4)], (0, 0), 1)), Some("triangle"));
 /// assert_eq!(path(&Polygon::new(square(0, 3), 1)), Some("monotone"));
 /// ```
-pub fn fill_auto<S: SpanSink + ?Sized>(polygon: &Polygon, sink: &mut S) -> Result<(), Refusal> {
-    fill_auto_in(polygon, sink, None)
+pub fn fill_auto<'a, C: AsRef<[Point]> + 'a, S: SpanSink + ?Sized>(
+    polygon: impl Into<PolygonRef<'a, C>>,
+    sink: &mut S,
+) -> Result<(), Refusal> {
+    fill_auto_in(polygon.into(), sink, None)
 }
 
-/// [`fill_auto`] with the caller's [`Scratch`], for polygons too large
-/// for the tables the active-edge path keeps on the stack (over 256 edges,
-/// or over 64 when they may be 512 px or longer): kept from fill to fill,
-/// it allocates only when a polygon needs more room than every one before
-/// it, so a caller drawing frame after frame allocates nothing once it has
-/// drawn the largest polygon.
+/// [`fill_auto`] with the caller's scratch, for polygons too large for
+/// the tables the active-edge path keeps on the stack (over 256 edges, or
+/// over 64 when they may be 512 px or longer): a [`Scratch`](crate::Scratch)
+/// (feature `alloc`) or a [`FixedScratch`], as `&mut scratch`. Kept from
+/// fill to fill, a `Scratch` allocates only when a polygon needs more room
+/// than every one before it, so a caller drawing frame after frame
+/// allocates nothing once it has drawn the largest polygon; a
+/// `FixedScratch` never allocates, and refuses a polygon of more edges than
+/// it holds ([`Refusal::TooManyVertices`]).
 ///
 /// # Examples
 ///
@@ -420,21 +481,21 @@ pub fn fill_auto<S: SpanSink + ?Sized>(polygon: &Polygon, sink: &mut S) -> Resul
 /// }
 /// assert_eq!((screen.get(1, 25), screen.get(0, 75), screen.get(1, 75)), (Some(9), Some(9), Some(0)));
 /// ```
-pub fn fill_auto_with<S: SpanSink + ?Sized>(
-    polygon: &Polygon,
+pub fn fill_auto_with<'a, 's, C: AsRef<[Point]> + 'a, S: SpanSink + ?Sized>(
+    polygon: impl Into<PolygonRef<'a, C>>,
     sink: &mut S,
-    scratch: &mut Scratch,
+    scratch: impl Into<ScratchMut<'s>>,
 ) -> Result<(), Refusal> {
-    fill_auto_in(polygon, sink, Some(scratch))
+    fill_auto_in(polygon.into(), sink, Some(scratch.into()))
 }
 
 /// [`fill_auto_with`], with or without a caller's scratch. The target is
 /// looked at first, so that the path chosen goes straight to its fill.
 #[inline(always)]
-fn fill_auto_in<S: SpanSink + ?Sized>(
-    polygon: &Polygon,
+fn fill_auto_in<C: AsRef<[Point]>, S: SpanSink + ?Sized>(
+    polygon: PolygonRef<'_, C>,
     sink: &mut S,
-    scratch: Option<&mut Scratch>,
+    scratch: Option<ScratchMut<'_>>,
 ) -> Result<(), Refusal> {
     let Some(size) = drawable(sink) else { return Ok(()) };
     match ExactPath::choose(polygon) {

@@ -5,7 +5,7 @@
 
 use core::ops::Range;
 
-use crate::geometry::Polygon;
+use crate::geometry::{Point, PolygonRef};
 use crate::target::Size;
 
 use super::super::clip::{right_of_target, visible_rows};
@@ -22,10 +22,15 @@ use super::tables::{start_key, Chain, Edge, EdgeRoom, EdgeTable};
 /// on. Each contour is walked from its top vertex, where a chain breaks,
 /// so that no chain runs over the contour's end (breaking a chain
 /// anywhere else too would only cost the walk an event).
-pub(super) fn build<'a, E: Crossing>(polygon: &Polygon, size: Size, room: EdgeRoom<'a, E>) -> EdgeTable<'a, E> {
+pub(super) fn build<'a, E: Crossing, C: AsRef<[Point]>>(
+    polygon: PolygonRef<'_, C>,
+    size: Size,
+    room: EdgeRoom<'a, E>,
+) -> EdgeTable<'a, E> {
     let EdgeRoom { edges: table, chains: chain_table, starts } = room;
     let (mut edges, mut chains) = (0, 0);
-    for contour in &polygon.contours {
+    for contour in polygon.contours {
+        let contour = contour.as_ref();
         let Some(top) = contour.iter().enumerate().min_by_key(|(_, p)| p.y).map(|(i, _)| i) else { continue };
         let (mut from, mut last) = (contour[top], None::<(i8, Range<i64>)>);
         for &to in contour[top + 1..].iter().chain(&contour[..=top]) {

@@ -8,7 +8,8 @@
 //! A fill goes one way through its stages, each handing its data to the
 //! next and none calling back: this driver finds the polygon's box, the
 //! kind of edge that steps it exactly and where its tables live (on the
-//! stack for up to 256 edges, else in a [`Scratch`]); `build.rs` turns the
+//! stack for up to 256 edges, else in the room a caller lends, a
+//! [`Scratch`] or a [`FixedScratch`], `lent.rs`); `build.rs` turns the
 //! polygon into the edge table (`tables.rs`); `walk.rs` walks it row by
 //! row, with the crossings kept in order (`order.rs`), paired into runs
 //! (`runs.rs`) or summed per column (`columns.rs`), into spans
@@ -16,17 +17,23 @@
 
 mod build;
 mod columns;
+mod fixed;
+mod lent;
 mod order;
 mod runs;
+#[cfg(feature = "alloc")]
 mod scratch;
 mod tables;
 mod walk;
 
 use core::mem::size_of;
 
+pub use fixed::FixedScratch;
+pub use lent::ScratchMut;
+#[cfg(feature = "alloc")]
 pub use scratch::Scratch;
 
-use crate::geometry::{FillRule, Polygon};
+use crate::geometry::{FillRule, Point, PolygonRef};
 use crate::methods::info::Refusal;
 use crate::target::{Size, SpanSink};
 
@@ -35,20 +42,20 @@ use super::clip::columns_fit;
 use super::edge::{Crossing, EdgeStepper, ShortEdge};
 use super::spans::Target;
 use build::build;
-use scratch::Stepper;
+use lent::Stepper;
 use tables::{Active, Chain, Crossings, Edge, EdgeRoom, Run};
 use walk::walk;
 
 /// Fills `polygon`, whose vertices lie in `bounds`, by its fill rule,
-/// with tables on the stack or in `scratch` (a new one when there is
-/// none). Refuses only when the scratch must grow and memory cannot be
-/// had.
-pub(super) fn fill<S: SpanSink + ?Sized>(
-    polygon: &Polygon,
+/// with tables on the stack or in `scratch` (with `alloc`, a new
+/// [`Scratch`] when there is none). Refuses only when the scratch must
+/// grow and memory cannot be had, or holds too few edges.
+pub(super) fn fill<C: AsRef<[Point]>, S: SpanSink + ?Sized>(
+    polygon: PolygonRef<'_, C>,
     bounds: Bounds,
     size: Size,
     sink: &mut S,
-    scratch: Option<&mut Scratch>,
+    scratch: Option<ScratchMut<'_>>,
 ) -> Result<(), Refusal> {
     // The box says whether columns may leave the target, and whether
     // every edge may be a `ShortEdge`.
@@ -63,21 +70,29 @@ pub(super) fn fill<S: SpanSink + ?Sized>(
 
 /// One fill of the general path: the polygon, whether its columns need
 /// clamping, and the target's size.
-#[derive(Clone, Copy)]
-struct Fill<'a> {
-    polygon: &'a Polygon,
+struct Fill<'a, C> {
+    polygon: PolygonRef<'a, C>,
     clip: bool,
     size: Size,
 }
 
-impl Fill<'_> {
+// By hand, for every `C`, as the polygon's.
+impl<C> Clone for Fill<'_, C> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<C> Copy for Fill<'_, C> {}
+
+impl<C: AsRef<[Point]>> Fill<'_, C> {
     /// Fills on tables for the polygon's edges: on the stack when they
-    /// fit ([`Fill::on_stack`]), else in `scratch` (a new one when there
-    /// is none).
+    /// fit ([`Fill::on_stack`]), else in `scratch` (with `alloc`, a new
+    /// [`Scratch`] when there is none; without, a refusal).
     fn with_tables<E: Stepper, S: SpanSink + ?Sized>(
         self,
         sink: &mut S,
-        scratch: Option<&mut Scratch>,
+        scratch: Option<ScratchMut<'_>>,
     ) -> Result<(), Refusal> {
         let edges = self.polygon.vertex_count();
         // The wide stepper's tables are three times the size: fewer fit.
@@ -90,8 +105,12 @@ impl Fill<'_> {
             _ if edges <= most.min(128) => self.on_stack::<128, E, S>(sink),
             _ if edges <= most => self.on_stack::<256, E, S>(sink),
             _ => {
+                #[cfg(feature = "alloc")]
                 let mut fresh = Scratch::new();
-                let (room, crossings) = E::in_scratch(scratch.unwrap_or(&mut fresh), edges, self.size.width)?;
+                #[cfg(feature = "alloc")]
+                let scratch = Some(scratch.unwrap_or_else(|| ScratchMut::from(&mut fresh)));
+                let Some(scratch) = scratch else { return Err(Refusal::TooManyVertices) };
+                let (room, crossings) = E::lent(scratch, edges, self.size.width)?;
                 self.run(room, crossings, sink);
             }
         }

@@ -4,13 +4,16 @@
 //! ([`fill_auto_with`](crate::fill_auto_with)), so that it allocates only
 //! when a polygon needs more room than every one before it. Only such
 //! polygons can have so many crossings on a row that they are better
-//! counted per column than sorted ([`Wide`]).
+//! counted per column than sorted ([`Wide`]). Feature `alloc`; a
+//! [`FixedScratch`](super::FixedScratch) (`fixed.rs`) is the room without
+//! a heap.
 
 use alloc::vec::Vec;
 
 use crate::methods::info::Refusal;
 
-use super::super::edge::{Crossing, EdgeStepper, ShortEdge};
+use super::super::edge::{EdgeStepper, ShortEdge};
+use super::lent::Stepper;
 use super::tables::{Active, Chain, Crossings, Edge, EdgeRoom, Run, Wide};
 
 /// Room for `exact`'s general path, for polygons with too many edges for
@@ -21,9 +24,9 @@ use super::tables::{Active, Chain, Crossings, Edge, EdgeRoom, Run, Wide};
 /// nothing from the heap.
 #[derive(Debug, Default)]
 pub struct Scratch {
-    short: Room<ShortEdge>,
-    long: Room<EdgeStepper>,
-    shared: Shared,
+    pub(super) short: Room<ShortEdge>,
+    pub(super) long: Room<EdgeStepper>,
+    pub(super) shared: Shared,
 }
 
 impl Scratch {
@@ -83,52 +86,36 @@ fn room<T: Clone + Default>(table: &mut Vec<T>, len: usize) -> Result<&mut [T], 
     Ok(&mut table[..len])
 }
 
-/// An edge stepper with its own room in a [`Scratch`].
-pub(super) trait Stepper: Crossing {
-    fn room(scratch: &mut Scratch) -> (&mut Room<Self>, &mut Shared);
-
-    /// Tables for `edges` edges in `scratch`, with room to sort or count
-    /// their crossings on a target `width` wide.
-    #[allow(clippy::type_complexity)]
-    fn in_scratch(
-        scratch: &mut Scratch,
-        edges: usize,
-        width: i32,
-    ) -> Result<(EdgeRoom<'_, Self>, Crossings<'_, Self>), Refusal> {
-        let (own, shared) = Self::room(scratch);
-        // Counted per column when there are at most four columns per edge;
-        // every winding sum stays within `±edges`, an `i32`.
-        let columns = width.max(0) as usize + 1;
-        let per_column = columns / 4 <= edges && i32::try_from(edges).is_ok();
-        let wide = Wide {
-            counts: room(&mut shared.counts, if per_column { columns } else { 0 })?,
-            windings: room(&mut shared.windings, if per_column { columns } else { 0 })?,
-            keys: room(&mut shared.keys, if per_column { 0 } else { edges })?,
-            spare: room(&mut own.spare, edges)?,
-        };
-        let table = EdgeRoom {
-            edges: room(&mut own.edges, edges)?,
-            chains: room(&mut shared.chains, edges)?,
-            starts: room(&mut shared.starts, edges)?,
-        };
-        let crossings = Crossings {
-            active: room(&mut own.active, edges)?,
-            columns: room(&mut shared.columns, edges + 1)?,
-            runs: room(&mut shared.runs, edges + 1)?,
-            wide: Some(wide),
-        };
-        Ok((table, crossings))
-    }
-}
-
-impl Stepper for ShortEdge {
-    fn room(scratch: &mut Scratch) -> (&mut Room<Self>, &mut Shared) {
-        (&mut scratch.short, &mut scratch.shared)
-    }
-}
-
-impl Stepper for EdgeStepper {
-    fn room(scratch: &mut Scratch) -> (&mut Room<Self>, &mut Shared) {
-        (&mut scratch.long, &mut scratch.shared)
-    }
+/// Tables for `edges` edges of the kind `E` in `scratch`, grown to hold
+/// them if they must, with room to sort or count their crossings on a
+/// target `width` wide.
+#[allow(clippy::type_complexity)]
+pub(super) fn tables<E: Stepper>(
+    scratch: &mut Scratch,
+    edges: usize,
+    width: i32,
+) -> Result<(EdgeRoom<'_, E>, Crossings<'_, E>), Refusal> {
+    let (own, shared) = E::room(scratch);
+    // Counted per column when there are at most four columns per edge;
+    // every winding sum stays within `±edges`, an `i32`.
+    let columns = width.max(0) as usize + 1;
+    let per_column = columns / 4 <= edges && i32::try_from(edges).is_ok();
+    let wide = Wide {
+        counts: room(&mut shared.counts, if per_column { columns } else { 0 })?,
+        windings: room(&mut shared.windings, if per_column { columns } else { 0 })?,
+        keys: room(&mut shared.keys, if per_column { 0 } else { edges })?,
+        spare: room(&mut own.spare, edges)?,
+    };
+    let table = EdgeRoom {
+        edges: room(&mut own.edges, edges)?,
+        chains: room(&mut shared.chains, edges)?,
+        starts: room(&mut shared.starts, edges)?,
+    };
+    let crossings = Crossings {
+        active: room(&mut own.active, edges)?,
+        columns: room(&mut shared.columns, edges + 1)?,
+        runs: room(&mut shared.runs, edges + 1)?,
+        wide: Some(wide),
+    };
+    Ok((table, crossings))
 }

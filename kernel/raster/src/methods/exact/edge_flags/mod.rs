@@ -37,7 +37,7 @@ mod scatter;
 
 use core::ops::Range;
 
-use crate::geometry::{FillRule, Polygon};
+use crate::geometry::{FillRule, Point, PolygonRef};
 use crate::target::{Size, SpanSink};
 
 use super::bounds::Bounds;
@@ -56,7 +56,12 @@ const LARGE: (usize, usize) = (512, 16384);
 
 /// Fills `polygon`, whose box is `bounds` and which the path takes
 /// ([`Bounds::takes`]), by its fill rule.
-pub(super) fn fill<S: SpanSink + ?Sized>(polygon: &Polygon, bounds: Bounds, size: Size, sink: &mut S) {
+pub(super) fn fill<C: AsRef<[Point]>, S: SpanSink + ?Sized>(
+    polygon: PolygonRef<'_, C>,
+    bounds: Bounds,
+    size: Size,
+    sink: &mut S,
+) {
     let Some(fill) = Fill::new(polygon, bounds, size) else { return };
     let Bounds { min, max } = bounds;
     let short = ShortEdge::fits((min.x, max.x), (min.y, max.y));
@@ -70,19 +75,25 @@ pub(super) fn fill<S: SpanSink + ?Sized>(polygon: &Polygon, bounds: Bounds, size
 }
 
 /// One fill of the path.
-#[derive(Clone)]
-struct Fill<'a> {
-    polygon: &'a Polygon,
+struct Fill<'a, C> {
+    polygon: PolygonRef<'a, C>,
     rows: Range<i64>,
     grid: Grid,
     size: Size,
     target: Target,
 }
 
-impl<'a> Fill<'a> {
+// By hand, for every `C`, as the polygon's.
+impl<C> Clone for Fill<'_, C> {
+    fn clone(&self) -> Self {
+        Fill { polygon: self.polygon, rows: self.rows.clone(), grid: self.grid, size: self.size, target: self.target }
+    }
+}
+
+impl<'a, C: AsRef<[Point]>> Fill<'a, C> {
     /// The fill of `polygon`, whose box is `bounds`, on a target of
     /// `size`, or `None` when the box has no visible pixel.
-    fn new(polygon: &'a Polygon, bounds: Bounds, size: Size) -> Option<Self> {
+    fn new(polygon: PolygonRef<'a, C>, bounds: Bounds, size: Size) -> Option<Self> {
         let Bounds { min, max } = bounds;
         let rows = first_sample_at_or_after(min.y.into()).max(0)
             ..first_sample_at_or_after(max.y.into()).min(size.height.into());
@@ -198,7 +209,7 @@ mod tests {
 
     use super::*;
     use crate::coverage::CoverageSink;
-    use crate::geometry::Point;
+    use crate::geometry::Polygon;
     use crate::reference::{self, SampleOffset};
 
     const SIZE: Size = Size { width: 24, height: 20 };
@@ -226,11 +237,12 @@ mod tests {
         ];
         for (contours, planes) in cases {
             let polygon = Polygon { contours, color: 1, rule: FillRule::NonZero };
-            let fill = Fill::new(&polygon, Bounds::of(&polygon), SIZE).unwrap();
+            let borrowed = PolygonRef::from(&polygon);
+            let fill = Fill::new(borrowed, Bounds::of(borrowed), SIZE).unwrap();
             let mut on_planes = CoverageSink::new(SIZE);
             assert_eq!(fill.planes::<{ LARGE.0 }, false, EdgeStepper, _>(&mut on_planes), planes, "{polygon:?}");
             let mut flags = CoverageSink::new(SIZE);
-            super::fill(&polygon, Bounds::of(&polygon), SIZE, &mut flags);
+            super::fill(borrowed, Bounds::of(borrowed), SIZE, &mut flags);
             let mut judge = CoverageSink::new(SIZE);
             reference::fill(&polygon, SampleOffset::CENTRE, &mut judge);
             assert_eq!(flags.ascii(), judge.ascii(), "{polygon:?}");

@@ -3,7 +3,7 @@
 
 use core::ops::Range;
 
-use crate::geometry::Polygon;
+use crate::geometry::{Point, PolygonRef};
 use crate::target::Size;
 
 use super::super::clip::{right_of_target, visible, visible_rows};
@@ -16,7 +16,7 @@ use super::grid::Grid;
 /// crossing column's bit; non-zero sets it and adds the edge's winding to
 /// the column's counter.
 pub(super) fn scatter<const NON_ZERO: bool, const CLIP: bool, E: Crossing, const WORDS: usize, const CELLS: usize>(
-    polygon: &Polygon,
+    polygon: PolygonRef<'_, impl AsRef<[Point]>>,
     band: Range<i64>,
     (grid, size): (Grid, Size),
     flags: &mut [u64; WORDS],
@@ -42,7 +42,7 @@ pub(super) fn scatter<const NON_ZERO: bool, const CLIP: bool, E: Crossing, const
 /// at the first crossing that meets another of its direction in one cell,
 /// which the planes cannot count (the counters must then be used).
 pub(super) fn scatter_planes<const CLIP: bool, E: Crossing, const WORDS: usize>(
-    polygon: &Polygon,
+    polygon: PolygonRef<'_, impl AsRef<[Point]>>,
     band: Range<i64>,
     (grid, size): (Grid, Size),
     down: &mut [u64; WORDS],
@@ -64,12 +64,13 @@ pub(super) fn scatter_planes<const CLIP: bool, E: Crossing, const WORDS: usize>(
 /// up on its first row in the band.
 #[inline(always)]
 fn crossings<const CLIP: bool, E: Crossing>(
-    polygon: &Polygon,
+    polygon: PolygonRef<'_, impl AsRef<[Point]>>,
     band: Range<i64>,
     (grid, size): (Grid, Size),
     mut flag: impl FnMut(bool, usize, usize, usize) -> bool,
 ) -> bool {
-    for contour in &polygon.contours {
+    for contour in polygon.contours {
+        let contour = contour.as_ref();
         let Some(&last) = contour.last() else { continue };
         let mut from = last;
         for &to in contour {
