@@ -38,7 +38,7 @@ fn main() -> Result<()> {
                 (EnrollOpt::Hash, None, None) => Enrollment::Hash,
                 (EnrollOpt::Hash, _, _) => anyhow::bail!("--key and --cert sign the loader: add --enroll key"),
             };
-            let image = build_image_with(&enrollment, &debian_packages(), &image_path())?;
+            let image = build_image_with(&enrollment, &debian_packages()?, &image_path())?;
             // The path is the last line, for scripts: `dd if="$(cargo xtask image | tail -1)" ...`.
             println!("{}", image.display());
             Ok(())

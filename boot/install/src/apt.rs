@@ -10,7 +10,7 @@
 //! machine's sources lack it (with lists in a fresh folder only root can
 //! write, which it then installs from).
 
-use std::os::unix::fs::{MetadataExt, PermissionsExt};
+use std::os::unix::fs::MetadataExt;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -240,6 +240,8 @@ fn candidate_in_policy(policy: &str) -> Option<String> {
 
 #[cfg(test)]
 mod tests {
+    use std::os::unix::fs::PermissionsExt;
+
     use super::*;
     use crate::process::command_line;
 
@@ -268,7 +270,8 @@ mod tests {
         let folder = dir.path().join("apt");
         let apt = PrivateApt::with_suite(folder.clone(), "bookworm-backports");
         let f = folder.display();
-        let lists = format!("-o Dir::Etc::sourcelist={f}/sources.list -o Dir::State::Lists={f}/lists -o Dir::Cache={f}/cache");
+        let lists =
+            format!("-o Dir::Etc::sourcelist={f}/sources.list -o Dir::State::Lists={f}/lists -o Dir::Cache={f}/cache");
         assert_eq!(command_line(&apt.command_as("apt-get", false)), format!("apt-get {lists}"));
         std::fs::set_permissions(dir.path(), std::fs::Permissions::from_mode(0o700)).unwrap();
         assert_eq!(
@@ -294,7 +297,10 @@ mod tests {
         assert!(format!("{error:#}").contains("apt-get could not fetch every list"), "{error:#}");
         assert!(!dir.path().join("apt/lists-fetched").exists(), "an update that fetched nothing made the lists fresh");
         let error = apt.refresh().unwrap_err();
-        assert!(format!("{error:#}").contains("apt-get could not fetch every list"), "the next build did not try again");
+        assert!(
+            format!("{error:#}").contains("apt-get could not fetch every list"),
+            "the next build did not try again"
+        );
         let nothing = PrivateApt::sources_only(dir.path().join("none"), &[]);
         let error = nothing.refresh().unwrap_err();
         assert!(error.to_string().contains("apt-get update left no Release file"), "{error:#}");
