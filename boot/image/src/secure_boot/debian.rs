@@ -500,6 +500,40 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&tool).unwrap(), "the packaged tool\n", "a later build trusted it");
     }
 
+    /// Set, to the test's folder, in the copy of this test binary the test
+    /// below starts.
+    const CHILD_DIR: &str = "POLYLAB_UNPACK_TEST_DIR";
+
+    #[test]
+    fn a_process_unpacks_only_when_no_other_holds_the_folders_turn() {
+        if let Some(dir) = std::env::var_os(CHILD_DIR) {
+            let dir = Path::new(&dir);
+            let sha256 = std::fs::read_to_string(dir.join("sha256")).unwrap();
+            let deb = dir.join("polylab-test-tool_1.0_all.deb");
+            let pinned = PinnedDeb { package: TOOL.package, deb, sha256: Box::leak(sha256.into_boxed_str()) };
+            Unpacked::pinned(dir.join("unpacked"), vec![pinned]).get(TOOL).unwrap();
+            std::fs::write(dir.join("done"), "").unwrap();
+            return;
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let pinned = test_deb(dir.path());
+        std::fs::write(dir.path().join("sha256"), pinned.sha256).unwrap();
+        let held = turn_in(&dir.path().join("unpacked"), "unpack").unwrap();
+        let name = "secure_boot::debian::tests::a_process_unpacks_only_when_no_other_holds_the_folders_turn";
+        let mut child = Command::new(std::env::current_exe().unwrap())
+            .args(["--exact", name, "--test-threads=1"])
+            .env(CHILD_DIR, dir.path())
+            .stdout(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(1500));
+        let done = dir.path().join("done").exists();
+        drop(held);
+        let status = child.wait().unwrap();
+        assert!(!done, "another process unpacked while this one held the folder's turn");
+        assert!(status.success() && dir.path().join("done").exists(), "the other process never unpacked");
+    }
+
     #[test]
     fn a_package_that_is_not_its_pin_is_refused() {
         let dir = tempfile::tempdir().unwrap();
