@@ -101,16 +101,17 @@ pub fn stage_builds_with(patched: &PatchedBootloader) -> Result<Vec<Command>> {
     Ok(vec![NightlyBuild::KERNEL.command(), writer])
 }
 
-/// The key `--enroll key` signs with ([`SigningKey::users`]).
-pub fn users_signing_key() -> Result<SigningKey> {
-    SigningKey::users(&own_key_dir())
+/// The key `--enroll key` signs with ([`SigningKey::users`]), unlocked
+/// with `passphrase` if given, else asked for.
+pub fn users_signing_key(passphrase: Option<String>) -> Result<SigningKey> {
+    SigningKey::users(&own_key_dir(), passphrase)
 }
 
 /// A key of one's own (`cargo xtask image --key --cert`): `key` (PEM,
-/// encrypted) and `cert` (PEM or DER); the passphrase from
-/// [`key::PASSPHRASE_ENV`] if set ([`key::take_passphrase`]), else asked for.
-pub fn own_signing_key(key: &Path, cert: &Path) -> Result<SigningKey> {
-    SigningKey::own(key, cert, key::take_passphrase(), &own_key_dir())
+/// encrypted) and `cert` (PEM or DER), unlocked with `passphrase` if
+/// given, else asked for.
+pub fn own_signing_key(key: &Path, cert: &Path, passphrase: Option<String>) -> Result<SigningKey> {
+    SigningKey::own(key, cert, passphrase, &own_key_dir())
 }
 
 /// Where a certificate of one's own given in DER is converted to PEM.
