@@ -113,7 +113,7 @@ mod tests {
 
     /// Set, to the lock's folder, in the copy of this test binary the
     /// test below starts.
-    const CHILD_DIR: &str = "POLYLAB_TURN_TEST_DIR";
+    const CHILD_DIR: &str = "TURN_TEST_CHILD_DIR";
     const NAME: &str = "once::tests::a_turn_held_by_one_process_makes_another_wait";
 
     #[test]

@@ -502,7 +502,7 @@ mod tests {
 
     /// Set, to the test's folder, in the copy of this test binary the test
     /// below starts.
-    const CHILD_DIR: &str = "POLYLAB_UNPACK_TEST_DIR";
+    const CHILD_DIR: &str = "UNPACK_TEST_CHILD_DIR";
 
     #[test]
     fn a_process_unpacks_only_when_no_other_holds_the_folders_turn() {
