@@ -38,7 +38,7 @@ fn key_signed_image() -> Result<PathBuf> {
         }
         let key = SigningKey::in_folder(&dir.join("key"), Some(PASSPHRASE.into()))?;
         let image = dir.join("polylab-key-signed.img");
-        boot_image::build_image_with(&Enrollment::Key(key), &boot_image::debian_packages(), &image)
+        boot_image::build_image_with(&Enrollment::Key(key), &boot_image::debian_packages()?, &image)
     })
 }
 
@@ -78,7 +78,7 @@ fn a_loader_without_its_signature_is_refused_by_shim() -> Result<()> {
     let signed = fat.read(LOADER_PATH)?;
     std::fs::write(&loader, &signed)?;
     // sbattach strips the signature in place.
-    let sbattach = boot_image::debian_packages().get(debian::SBATTACH)?;
+    let sbattach = boot_image::debian_packages()?.get(debian::SBATTACH)?;
     output_of(Command::new(sbattach).arg("--remove").arg(&loader))?;
     let unsigned = std::fs::read(&loader)?;
     ensure!(unsigned.len() < signed.len(), "sbattach --remove left the loader's {} bytes", signed.len());

@@ -18,7 +18,7 @@ mod source;
 mod test;
 
 use anyhow::Result;
-use boot_image::secure_boot::Enrollment;
+use boot_image::secure_boot::{key, Enrollment};
 use boot_image::{build_image_with, debian_packages, image_path, own_signing_key, users_signing_key};
 use clap::Parser;
 
@@ -27,18 +27,27 @@ use crate::opt::{Action, Cli, EnrollOpt};
 fn main() -> Result<()> {
     // The Secure Boot key's passphrase leaves the environment before any
     // thread or child starts: only the openssl that needs it gets it, on
-    // a pipe.
-    boot_image::secure_boot::key::take_passphrase();
+    // a pipe (xtask/tests/passphrase.rs).
+    let passphrase_in_environment = key::take_passphrase();
     match Cli::parse().action {
         Action::Run(opt) => run::run(&opt),
         Action::Image(opt) => {
-            let enrollment = match (opt.enroll, &opt.key, &opt.cert) {
-                (EnrollOpt::Key, Some(key), Some(cert)) => Enrollment::Key(own_signing_key(key, cert)?),
-                (EnrollOpt::Key, _, _) => Enrollment::Key(users_signing_key()?),
-                (EnrollOpt::Hash, None, None) => Enrollment::Hash,
-                (EnrollOpt::Hash, _, _) => anyhow::bail!("--key and --cert sign the loader: add --enroll key"),
+            let passphrase = match (&opt.passphrase_file, passphrase_in_environment) {
+                (Some(_), Some(_)) => {
+                    anyhow::bail!("--passphrase-file and {} both give the passphrase: give one", key::PASSPHRASE_ENV)
+                }
+                (Some(file), None) => Some(key::passphrase_from_file(file)?),
+                (None, given) => given,
             };
-            let image = build_image_with(&enrollment, &debian_packages(), &image_path())?;
+            let enrollment = match (opt.enroll, &opt.key, &opt.cert) {
+                (EnrollOpt::Key, Some(key), Some(cert)) => Enrollment::Key(own_signing_key(key, cert, passphrase)?),
+                (EnrollOpt::Key, _, _) => Enrollment::Key(users_signing_key(passphrase)?),
+                (EnrollOpt::Hash, None, None) if opt.passphrase_file.is_none() => Enrollment::Hash,
+                (EnrollOpt::Hash, _, _) => {
+                    anyhow::bail!("--key, --cert and --passphrase-file sign the loader: add --enroll key")
+                }
+            };
+            let image = build_image_with(&enrollment, &debian_packages()?, &image_path())?;
             // The path is the last line, for scripts: `dd if="$(cargo xtask image | tail -1)" ...`.
             println!("{}", image.display());
             Ok(())

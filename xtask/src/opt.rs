@@ -201,6 +201,12 @@ pub struct ImageOpt {
     /// The key's certificate, PEM or DER (or set POLYLAB_SECURE_BOOT_CERT).
     #[arg(long, requires = "key")]
     pub cert: Option<PathBuf>,
+    /// With `--enroll key`: the key's passphrase, the one line of this
+    /// file, which must be yours and mode 0600 (else the build asks on
+    /// the terminal, or takes POLYLAB_SECURE_BOOT_PASSPHRASE, which stays
+    /// in the environment of the processes above this one).
+    #[arg(long)]
+    pub passphrase_file: Option<PathBuf>,
 }
 
 /// `cargo xtask image --enroll`.

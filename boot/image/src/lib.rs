@@ -53,7 +53,7 @@ pub fn build_image() -> Result<PathBuf> {
         if let Some(image) = given {
             return Ok(image);
         }
-        build_image_with(&Enrollment::Hash, &debian_packages(), &image_path())
+        build_image_with(&Enrollment::Hash, &debian_packages()?, &image_path())
     })
 }
 
@@ -101,16 +101,17 @@ pub fn stage_builds_with(patched: &PatchedBootloader) -> Result<Vec<Command>> {
     Ok(vec![NightlyBuild::KERNEL.command(), writer])
 }
 
-/// The key `--enroll key` signs with ([`SigningKey::users`]).
-pub fn users_signing_key() -> Result<SigningKey> {
-    SigningKey::users(&own_key_dir())
+/// The key `--enroll key` signs with ([`SigningKey::users`]), unlocked
+/// with `passphrase` if given, else asked for.
+pub fn users_signing_key(passphrase: Option<String>) -> Result<SigningKey> {
+    SigningKey::users(&own_key_dir(), passphrase)
 }
 
 /// A key of one's own (`cargo xtask image --key --cert`): `key` (PEM,
-/// encrypted) and `cert` (PEM or DER); the passphrase from
-/// [`key::PASSPHRASE_ENV`] if set ([`key::take_passphrase`]), else asked for.
-pub fn own_signing_key(key: &Path, cert: &Path) -> Result<SigningKey> {
-    SigningKey::own(key, cert, key::take_passphrase(), &own_key_dir())
+/// encrypted) and `cert` (PEM or DER), unlocked with `passphrase` if
+/// given, else asked for.
+pub fn own_signing_key(key: &Path, cert: &Path, passphrase: Option<String>) -> Result<SigningKey> {
+    SigningKey::own(key, cert, passphrase, &own_key_dir())
 }
 
 /// Where a certificate of one's own given in DER is converted to PEM.
@@ -123,18 +124,16 @@ fn secure_boot_dir() -> PathBuf {
     workspace::nightly_target_dir().join("secure-boot")
 }
 
-/// Debian's packages the image takes shim, MokManager and sbsign from.
-pub fn debian_packages() -> Unpacked {
-    Unpacked::in_dir(secure_boot_dir().join("debian"))
+/// Debian's packages the image takes shim, MokManager and sbsign from, in
+/// the state folder (root runs the unpacked sbsign: [`workspace::state_dir`]).
+pub fn debian_packages() -> Result<Unpacked> {
+    Ok(Unpacked::in_dir(workspace::state_dir()?.join("secure-boot-debian")))
 }
 
 /// Writes `image`: the loader out of the writer, checked, the digests in,
 /// then signed with the user's key or left for its hash to be enrolled;
 /// then the image with shim, MokManager, the loader and the certificate
-/// (or a copy of the loader to enroll) on its FAT. On a machine without
-/// apt (and nothing unpacked before), Debian's shim and MokManager cannot
-/// be had: the loader goes on the FAT alone, where a UEFI firmware starts
-/// it without shim, and the image boots everywhere but under Secure Boot.
+/// (or a copy of the loader to enroll) on its FAT ([`image_files`]).
 fn write_image(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Result<()> {
     std::fs::create_dir_all(secure_boot_dir())
         .with_context(|| format!("failed to create {}", secure_boot_dir().display()))?;
@@ -153,15 +152,7 @@ fn write_image(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Resu
     loader::write_digests(&mut loader_bytes, &read(&kernel)?, &read(&boot_json)?)?;
     let unsigned = work.join("grubx64-unsigned.efi");
     std::fs::write(&unsigned, &loader_bytes).with_context(|| format!("failed to write {}", unsigned.display()))?;
-    let (files, said) = if debian.obtainable() {
-        let (files, said) = secure_boot_files(enrollment, debian, work, &unsigned)?;
-        (files, format!("image: UEFI Secure Boot: {said}"))
-    } else {
-        let said = "image: no Secure Boot: this machine has no apt-get to take Debian's shim and MokManager from, \
-                    so the loader is on the image alone: it boots under a BIOS and under UEFI with Secure Boot off, \
-                    not on (build the image on a Debian or Ubuntu machine for that)";
-        (vec![(SHIM_PATH, unsigned)], said.to_string())
-    };
+    let (files, said) = image_files(enrollment, debian, work, &unsigned)?;
     let mut write = Command::new(&writer);
     write.arg("image").arg(&kernel).arg(&boot_json).arg(image);
     for (fat_path, file) in &files {
@@ -177,6 +168,42 @@ fn write_image(enrollment: &Enrollment, debian: &Unpacked, image: &Path) -> Resu
 /// The bytes of `path`.
 fn read(path: &Path) -> Result<Vec<u8>> {
     std::fs::read(path).with_context(|| format!("failed to read {}", path.display()))
+}
+
+/// The files on the image's FAT, by their paths there, and what the build
+/// says of them: those of [`secure_boot_files`]; or, where Debian's shim
+/// and MokManager cannot be had ([`debian::Unobtainable`]: no apt-get, no
+/// network, and nothing fetched before), for a loader enrolled by its hash,
+/// the `unsigned` loader alone, where a UEFI firmware starts it without
+/// shim (the image boots under a BIOS and under UEFI with Secure Boot off,
+/// and says so). A loader asked to be signed with a key is never handed
+/// out unsigned: that is an error, as is any other failure (lists or a
+/// package that fail their check, for one).
+fn image_files(
+    enrollment: &Enrollment,
+    debian: &Unpacked,
+    work: &Path,
+    unsigned: &Path,
+) -> Result<(Vec<(&'static str, PathBuf)>, String)> {
+    let error = match secure_boot_files(enrollment, debian, work, unsigned) {
+        Ok((files, said)) => return Ok((files, format!("image: UEFI Secure Boot: {said}"))),
+        Err(error) => error,
+    };
+    match (enrollment, error.downcast_ref::<debian::Unobtainable>()) {
+        (Enrollment::Hash, Some(why)) => {
+            let said = format!(
+                "image: no Secure Boot: Debian's shim and MokManager cannot be had ({why}), so the loader is on \
+                 the image alone: it boots under a BIOS and under UEFI with Secure Boot off, not on (build again \
+                 where apt-get can reach Debian's archive for that)"
+            );
+            Ok((vec![(SHIM_PATH, unsigned.to_path_buf())], said))
+        }
+        (Enrollment::Key(_), Some(_)) => Err(error.context(
+            "refusing to build the image: --enroll key asks for a loader signed with your key, and Debian's shim, \
+             MokManager and sbsign cannot be had",
+        )),
+        _ => Err(error),
+    }
 }
 
 /// The files that make the image boot under Secure Boot, by their paths
@@ -239,4 +266,28 @@ pub fn hex(bytes: &[u8]) -> String {
 /// Where [`build_image`] writes the image.
 pub fn image_path() -> PathBuf {
     workspace::nightly_target_dir().join("polylab.img")
+}
+
+#[cfg(test)]
+mod tests {
+    use install::apt::PrivateApt;
+
+    use super::*;
+
+    #[test]
+    fn without_debians_shim_an_image_enrolled_by_hash_is_built_without_secure_boot_and_one_signed_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        // Port 9 (discard) of this machine: nothing answers there.
+        let offline =
+            PrivateApt::sources_only(dir.path().join("apt"), &["deb http://127.0.0.1:9/debian bookworm main"]);
+        let debian = Unpacked::from_archive(dir.path().join("debian"), offline);
+        let unsigned = dir.path().join("grubx64-unsigned.efi");
+        std::fs::write(&unsigned, "a loader").unwrap();
+        let (files, said) = image_files(&Enrollment::Hash, &debian, dir.path(), &unsigned).unwrap();
+        assert_eq!(files, [(SHIM_PATH, unsigned.clone())]);
+        assert!(said.starts_with("image: no Secure Boot: Debian's shim and MokManager cannot be had"), "{said}");
+        let key = SigningKey::in_folder(&dir.path().join("key"), Some("a passphrase for the tests".into())).unwrap();
+        let error = image_files(&Enrollment::Key(key), &debian, dir.path(), &unsigned).unwrap_err();
+        assert!(format!("{error:#}").starts_with("refusing to build the image: --enroll key asks for"), "{error:#}");
+    }
 }

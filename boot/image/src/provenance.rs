@@ -123,6 +123,50 @@ mod tests {
     }
 
     #[test]
+    fn the_inputs_hold_every_package_the_image_is_built_from_and_the_image_builds_own_code() {
+        let root = workspace::root();
+        let mut metadata = std::process::Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
+        metadata.args(["metadata", "--no-deps", "--offline", "--format-version", "1"]).current_dir(root);
+        let metadata: serde_json::Value =
+            serde_json::from_str(&install::process::output_of(&mut metadata).unwrap()).unwrap();
+        let packages = metadata["packages"].as_array().unwrap();
+        let folder_of =
+            |manifest: &serde_json::Value| PathBuf::from(manifest.as_str().unwrap()).parent().unwrap().to_path_buf();
+        // The kernel and the image writer, which the image holds; this
+        // crate, whose loader edits (`loader/`) and patched copy make the
+        // UEFI loader; and every package of the tree they depend on.
+        let mut folders: Vec<PathBuf> = Vec::new();
+        let mut names: Vec<String> = [crate::cargo::NIGHTLY_ONLY.as_slice(), &["boot-image"]]
+            .concat()
+            .iter()
+            .map(|name| name.to_string())
+            .collect();
+        while let Some(name) = names.pop() {
+            let package = packages.iter().find(|package| package["name"] == name.as_str()).unwrap();
+            let folder = folder_of(&package["manifest_path"]);
+            if folders.contains(&folder) {
+                continue;
+            }
+            folders.push(folder);
+            for dependency in package["dependencies"].as_array().unwrap() {
+                if dependency["path"].is_string() {
+                    names.push(dependency["name"].as_str().unwrap().to_string());
+                }
+            }
+        }
+        assert!(folders.len() >= 4, "{folders:?}");
+        for folder in folders {
+            let relative = folder.strip_prefix(root).unwrap();
+            assert!(
+                INPUTS.iter().any(|input| relative.starts_with(input)),
+                "{} goes into the image or makes its loader, and no input of the digest holds it: an image built before a change \
+                 there would pass as this tree's",
+                relative.display()
+            );
+        }
+    }
+
+    #[test]
     fn the_digest_follows_the_sources_and_nothing_else() {
         let (a, b, also_a) = (tree("fn main() {}"), tree("fn main() { }"), tree("fn main() {}"));
         let digest = |root: &tempfile::TempDir| sources_digest(root.path()).unwrap();

@@ -6,6 +6,7 @@
 //! who is not root, [`MissingPackages`], which `missing::ensure_all`
 //! gathers over a whole command.
 
+use std::os::unix::fs::PermissionsExt;
 use std::process::Command;
 use std::sync::{Mutex, PoisonError};
 
@@ -16,7 +17,7 @@ use crate::distribution::Distribution;
 use crate::missing::{by_hand, MissingPackages};
 use crate::once::install_turn;
 use crate::process::{command_line, find_in_path, is_root, output_of, run_streaming};
-use crate::workspace::target_dir;
+use crate::workspace::{self, target_dir};
 
 /// How long apt-get waits for another apt or dpkg (an unattended upgrade,
 /// a second test run) to release its lock before it gives up.
@@ -77,9 +78,9 @@ enum InstallFrom {
     MachinesSources(PrivateApt),
     /// The machine's sources plus Debian's `suite` (its release's
     /// backports), preferred (`-t`), with lists of their own in a fresh
-    /// folder (mode 0700, the running user's: root's when it installs):
-    /// the machine's sources and lists stay as they are, and nothing
-    /// another user can write is read by root's apt.
+    /// folder (root's, in its state folder when it installs,
+    /// [`fresh_lists`]): the machine's sources and lists stay as they are,
+    /// and nothing another user can write is read by root's apt.
     Suite { apt: PrivateApt, suite: String },
 }
 
@@ -159,14 +160,19 @@ fn plan(what: &str, packages: &[String], distribution: &Distribution, as_root: b
 }
 
 /// apt over the machine's sources and Debian's `suite`, for root to
-/// install from, with lists fetched now into a fresh folder (mode 0700,
-/// root's), which lives as long as the returned guard: nothing another
-/// user can write is read by root's apt.
+/// install from, with lists fetched now into a fresh folder in the state
+/// folder ([`workspace::state_dir`], which only root can change when root
+/// runs; not `TMPDIR`, which may be a folder a user owns), mode 0755 so
+/// that apt's `_apt` user can reach it; the folder lives as long as the
+/// returned guard. Nothing another user can write is read by root's apt.
 fn fresh_lists(suite: &str) -> Result<(tempfile::TempDir, PrivateApt)> {
+    let state = workspace::state_dir()?;
     let lists = tempfile::Builder::new()
-        .prefix("polylab-apt-")
-        .tempdir()
-        .context("failed to create a folder for apt's lists")?;
+        .prefix("apt-")
+        .tempdir_in(&state)
+        .with_context(|| format!("failed to create a folder for apt's lists in {}", state.display()))?;
+    std::fs::set_permissions(lists.path(), std::fs::Permissions::from_mode(0o755))
+        .with_context(|| format!("failed to make {} mode 755", lists.path().display()))?;
     let apt = PrivateApt::with_suite(lists.path().to_path_buf(), suite);
     fetch(&apt, suite, lists.path())?;
     Ok((lists, apt))
@@ -378,8 +384,7 @@ mod tests {
         let lists = "-o Dir::Etc::sourcelist=/t/apt/sources.list -o Dir::State::Lists=/t/apt/lists \
                      -o Dir::Cache=/t/apt/cache -o DPkg::Lock::Timeout=600 install -y --no-install-recommends \
                      -t bookworm-backports --no-remove qemu-system-x86";
-        let sandbox = if is_root() { " -o APT::Sandbox::User=root" } else { "" };
-        assert_eq!(install, format!("apt-get{sandbox} {lists}"));
+        assert_eq!(install, format!("apt-get {lists}"), "apt's _apt user can reach /t/apt: it fetches as _apt");
         let own_lists = InstallFrom::MachinesSources(PrivateApt::machines_sources("/t/apt".into()));
         let asked = command_line(&apt_install(&own_lists, &names(&["qemu-system-x86"]), Some("--simulate")));
         assert!(asked.contains(" -o Dir::State::Lists=/t/apt/lists ") && !asked.contains(" -t "), "{asked}");

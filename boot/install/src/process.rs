@@ -72,7 +72,12 @@ pub fn output_with_input(command: &mut Command, input: &[u8]) -> Result<Vec<u8>>
 
 /// Whether this process runs as root (`id -u` says 0).
 pub fn is_root() -> bool {
-    output_of(Command::new("id").arg("-u")).is_ok_and(|uid| uid.trim() == "0")
+    user_id() == Some(0)
+}
+
+/// The user this process runs as (`id -u`).
+pub fn user_id() -> Option<u32> {
+    output_of(Command::new("id").arg("-u")).ok()?.trim().parse().ok()
 }
 
 /// The first `program` on the `PATH`.

@@ -1,6 +1,8 @@
 //! virt-firmware (PyPI), whose `virt-fw-vars` writes the Secure Boot
 //! tests' MOK lists into OVMF variable stores, installed with pip into a
-//! Python virtual environment under `target/`.
+//! Python virtual environment in the state folder (`target/`, or root's
+//! own when root runs over a folder other users can change:
+//! [`workspace::state_dir`]).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -37,17 +39,17 @@ pycparser==3.12 --hash=sha256:a076f3f489b39b43ed13563a1dafe42447445bec2e294154ec
 ";
 
 /// Makes sure `virt-fw-vars` is there and returns its path: [`REQUIREMENTS`]
-/// installed from PyPI with pip into a Python virtual environment under
-/// `target/` (Python's `venv` module, Debian's `python3-venv`, installed
-/// by [`ensure_debian_packages`]), again whenever the requirements change.
+/// installed from PyPI with pip into a Python virtual environment in the
+/// state folder (Python's `venv` module, Debian's `python3-venv`,
+/// installed by [`ensure_debian_packages`]), again whenever the
+/// requirements change.
 pub fn ensure_virt_fw_vars() -> Result<PathBuf> {
     static DONE: OnceLock<Result<PathBuf, Failure>> = OnceLock::new();
     once_per_process(&DONE, || {
-        let venv = workspace::target_dir().join("virt-firmware");
+        let venv = workspace::state_dir()?.join("virt-firmware");
         let program = venv.join("bin").join("virt-fw-vars");
         let installed = venv.join("requirements.installed");
-        let up_to_date = || program.is_file() && std::fs::read_to_string(&installed).is_ok_and(|t| t == REQUIREMENTS);
-        if up_to_date() {
+        if up_to_date(&venv) {
             return Ok(program);
         }
         // Debian's python3 has the `venv` module but not `ensurepip`, which
@@ -60,7 +62,7 @@ pub fn ensure_virt_fw_vars() -> Result<PathBuf> {
         // Another test binary may be installing it at this moment (after
         // the package's install, which takes its own turn).
         let _turn = install_turn()?;
-        if up_to_date() {
+        if up_to_date(&venv) {
             return Ok(program);
         }
         eprintln!(
@@ -76,6 +78,13 @@ pub fn ensure_virt_fw_vars() -> Result<PathBuf> {
         std::fs::write(&installed, REQUIREMENTS).with_context(|| format!("failed to write {}", installed.display()))?;
         Ok(program)
     })
+}
+
+/// Whether the virtual environment `venv` has `virt-fw-vars`, installed
+/// from exactly [`REQUIREMENTS`] (a changed pin or hash installs again).
+fn up_to_date(venv: &Path) -> bool {
+    let installed = std::fs::read_to_string(venv.join("requirements.installed"));
+    venv.join("bin").join("virt-fw-vars").is_file() && installed.is_ok_and(|text| text == REQUIREMENTS)
 }
 
 /// pip installing `requirements` into `venv`: wheels only, each checked
@@ -102,6 +111,20 @@ mod tests {
             "/t/virt-firmware/bin/pip install --quiet --require-hashes --only-binary :all: \
              --requirement /t/virt-firmware/requirements.txt"
         );
+    }
+
+    #[test]
+    fn a_venv_installed_from_other_requirements_is_installed_again() {
+        let venv = tempfile::tempdir().unwrap();
+        std::fs::create_dir(venv.path().join("bin")).unwrap();
+        std::fs::write(venv.path().join("bin/virt-fw-vars"), "").unwrap();
+        let installed = venv.path().join("requirements.installed");
+        std::fs::write(&installed, REQUIREMENTS.replace("virt-firmware==24.11", "virt-firmware==24.7")).unwrap();
+        assert!(!up_to_date(venv.path()), "a venv of another pin was taken as up to date");
+        std::fs::write(&installed, REQUIREMENTS).unwrap();
+        assert!(up_to_date(venv.path()));
+        std::fs::remove_file(venv.path().join("bin/virt-fw-vars")).unwrap();
+        assert!(!up_to_date(venv.path()), "a venv without virt-fw-vars was taken as up to date");
     }
 
     #[test]

@@ -13,16 +13,24 @@
 //! package differs from the one unpacked, the new one is downloaded and
 //! unpacked in its place; offline, the kept one is used, with a warning.
 //! The downloaded `.deb` is kept, and on every use checked against the
-//! SHA-256 apt's lists give for it, and the file taken is compared with
-//! the `.deb`'s own: an unpacked folder is never trusted as found.
+//! SHA-256 Debian's archive signed for it ([`Unpacked::signed_sha256`]:
+//! gpgv, Debian's keyring, `InRelease`, `Packages`, each read anew), and
+//! the file taken is compared with the `.deb`'s own: neither the lists
+//! nor an unpacked folder is ever trusted as found.
 
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use anyhow::{bail, ensure, Context, Result};
 
-use install::apt::PrivateApt;
-use install::process::{command_line, find_in_path, output_of, run_streaming};
+use install::apt::{PrivateApt, DEBIAN_KEYRING};
+use install::once::turn_in;
+use install::process::{command_line, run_streaming};
+
+/// apt's helper, whose `cat-file` reads a list as apt stored it
+/// (compressed or not) and writes it out decompressed.
+const APT_HELPER: &str = "/usr/lib/apt/apt-helper";
 
 /// One Debian package and the file the build takes from it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,9 +48,6 @@ pub const MOK_MANAGER: DebianFile =
 /// The signing tool, and the tool that strips a signature (the tests use it).
 pub const SBSIGN: DebianFile = DebianFile { package: "sbsigntool", path: "usr/bin/sbsign" };
 pub const SBATTACH: DebianFile = DebianFile { package: "sbsigntool", path: "usr/bin/sbattach" };
-
-/// Held while the archive is asked for a package and it is unpacked.
-static FETCHING: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
 /// A `.deb` given by its path and the SHA-256 it must have.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -63,22 +68,49 @@ enum Source {
     Pinned(Vec<PinnedDeb>),
 }
 
+/// Debian's packages cannot be had: apt could not tell their current
+/// version (no apt-get, no network, or lists without them), and none was
+/// fetched before. Why, in words.
+#[derive(Debug)]
+pub struct Unobtainable(String);
+
+impl std::fmt::Display for Unobtainable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Unobtainable {}
+
 /// The unpacked packages.
 pub struct Unpacked {
     dir: PathBuf,
     source: Source,
+    /// apt with the build's own lists (over the machine's sources).
+    apt: PrivateApt,
+    /// The keys the lists' `InRelease` files must be signed by.
+    keyring: PathBuf,
 }
 
 impl Unpacked {
-    /// The packages of Debian's archive, unpacked in `dir`.
+    /// The packages of Debian's archive, unpacked in `dir`, with apt's
+    /// lists in `dir/apt`.
     pub fn in_dir(dir: PathBuf) -> Self {
-        Self { dir, source: Source::Archive }
+        let apt = PrivateApt::machines_sources(dir.join("apt"));
+        Self::from_archive(dir, apt)
+    }
+
+    /// The packages of the archive `apt` reads (its lists signed by
+    /// Debian's archive key), unpacked in `dir`.
+    pub fn from_archive(dir: PathBuf, apt: PrivateApt) -> Self {
+        Self { dir, source: Source::Archive, apt, keyring: PathBuf::from(DEBIAN_KEYRING) }
     }
 
     /// The packages `debs` give, unpacked in `dir`, never replaced by the
     /// archive's.
     pub fn pinned(dir: PathBuf, debs: Vec<PinnedDeb>) -> Self {
-        Self { dir, source: Source::Pinned(debs) }
+        let apt = PrivateApt::machines_sources(dir.join("apt"));
+        Self { dir, source: Source::Pinned(debs), apt, keyring: PathBuf::from(DEBIAN_KEYRING) }
     }
 
     /// The path of `file`, its package downloaded and unpacked first if
@@ -89,10 +121,11 @@ impl Unpacked {
     /// `.deb`, whose SHA-256 is checked first; if it does not, the
     /// package is unpacked again.
     pub fn get(&self, file: DebianFile) -> Result<PathBuf> {
-        // Tests ask for files side by side (sbsign and sbattach share a
-        // package): one asks apt, checks and unpacks at a time, and the
-        // others find its work done.
-        let _one_at_a_time = FETCHING.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        // The image build and the tests ask for files side by side, from
+        // threads and processes alike (sbsign and sbattach share a
+        // package): one refreshes the lists, checks and unpacks at a time
+        // (a file lock in the folder), and the others find its work done.
+        let _one_at_a_time = turn_in(&self.dir, "unpack")?;
         let deb = self.checked_deb(file.package)?;
         let expected = file_in_deb(&deb, file.path)?;
         let path = self.dir.join(file.package).join(file.path);
@@ -117,14 +150,6 @@ impl Unpacked {
         Ok(path)
     }
 
-    /// Whether shim and MokManager can be had: they were given, apt-get is
-    /// there to download them, or they were fetched before.
-    pub fn obtainable(&self) -> bool {
-        matches!(self.source, Source::Pinned(_))
-            || find_in_path("apt-get").is_some()
-            || [SHIM, MOK_MANAGER].iter().all(|file| self.kept_deb(file.package).is_ok_and(|deb| deb.is_file()))
-    }
-
     /// The package's version, as `apt-get download` named its file.
     pub fn version(&self, package: &str) -> Result<String> {
         let name = self.dir.join(format!("{package}.deb-name"));
@@ -134,7 +159,8 @@ impl Unpacked {
 
     /// The `.deb` of `package`, its SHA-256 checked: the given one's
     /// against its pin; the archive's, fetched if missing or outdated,
-    /// against the SHA-256 apt's lists give for its version.
+    /// against the SHA-256 Debian's archive signed for its version
+    /// ([`Self::signed_sha256`]).
     fn checked_deb(&self, package: &str) -> Result<PathBuf> {
         let (deb, sha256) = match &self.source {
             Source::Pinned(debs) => {
@@ -156,7 +182,7 @@ impl Unpacked {
                     }
                 };
                 let version = self.version(package)?;
-                (deb, self.listed_sha256(package, &version)?)
+                (deb, self.signed_sha256(package, &version)?)
             }
         };
         let bytes = std::fs::read(&deb).with_context(|| format!("failed to read {}", deb.display()))?;
@@ -169,7 +195,7 @@ impl Unpacked {
             sha256.join(" or "),
             match self.source {
                 Source::Pinned(_) => "pinned",
-                Source::Archive => "apt's package lists say",
+                Source::Archive => "Debian's archive signed",
             }
         );
         Ok(deb)
@@ -181,32 +207,69 @@ impl Unpacked {
         Ok(self.dir.join("debs").join(package).join(name.trim()))
     }
 
-    /// apt over the machine's sources with the build's own lists.
-    fn apt(&self) -> PrivateApt {
-        PrivateApt::machines_sources(self.dir.join("apt"))
-    }
-
     /// The version of `package` Debian's archive has now, from lists at
     /// most a day old.
     fn archive_version(&self, package: &str) -> Result<String> {
-        let apt = self.apt();
-        apt.refresh().context("failed to fetch apt's package lists for the image's Secure Boot files")?;
-        apt.candidate(package)?.with_context(|| {
+        self.apt.refresh().context("failed to fetch apt's package lists for the image's Secure Boot files")?;
+        self.apt.candidate(package)?.with_context(|| {
             format!(
-                "the image takes shim, MokManager and sbsign from Debian's packages, and apt's lists (sources: the \
-                 machine's, lists in {}) have no {package}",
-                self.dir.join("apt").display()
+                "the image takes shim, MokManager and sbsign from Debian's packages, and apt's lists (in {}) have \
+                 no {package}",
+                self.apt.lists_dir().display()
             )
         })
     }
 
-    /// The SHA-256 apt's lists (checked against the archive's signed
-    /// index when fetched) give for `package` at `version`.
-    fn listed_sha256(&self, package: &str, version: &str) -> Result<Vec<String>> {
-        let mut show = self.apt().command("apt-cache");
-        show.args(["show", &format!("{package}={version}")]);
-        let listed = sha256_in_apt_cache_show(&output_of(&mut show)?);
-        ensure!(!listed.is_empty(), "apt's lists give no SHA-256 for {package} {version}");
+    /// The SHA-256 Debian's archive signed for `package` at `version`,
+    /// read through the signature on every use (whoever can write the
+    /// lists can change them between two updates): each `InRelease` of
+    /// the lists verified by gpgv against the keyring (Debian's archive
+    /// keys), and only what gpgv says was signed read from it; a
+    /// `Packages` list only if its SHA-256 (decompressed, as apt's
+    /// apt-helper reads it) is one a verified `InRelease` gives; and of
+    /// that list, the `SHA256:` of the stanzas of `package` at `version`.
+    /// Lists of other archives (not signed by these keys) are left out.
+    fn signed_sha256(&self, package: &str, version: &str) -> Result<Vec<String>> {
+        let lists = self.apt.lists_dir();
+        let mut files: Vec<PathBuf> = std::fs::read_dir(&lists)
+            .with_context(|| format!("failed to list {}", lists.display()))?
+            .filter_map(|entry| entry.ok().map(|entry| entry.path()))
+            .collect();
+        files.sort();
+        let name =
+            |path: &PathBuf| path.file_name().map(|name| name.to_string_lossy().into_owned()).unwrap_or_default();
+        let mut signed = HashSet::new();
+        for release in files.iter().filter(|path| name(path).ends_with("_InRelease")) {
+            let mut verify = Command::new("gpgv");
+            verify.arg("--keyring").arg(&self.keyring).args(["--output", "-"]).arg(release);
+            if let Ok(text) = output_bytes(&mut verify) {
+                signed.extend(packages_sha256_in_release(&String::from_utf8_lossy(&text)));
+            }
+        }
+        ensure!(
+            !signed.is_empty(),
+            "no InRelease file in {} is signed by a key of {}: the lists were changed since apt fetched them, or \
+             never fetched; remove {} to have them fetched again",
+            lists.display(),
+            self.keyring.display(),
+            lists.display()
+        );
+        let mut listed = Vec::new();
+        for list in files.iter().filter(|path| is_packages_list(&name(path))) {
+            let bytes = output_bytes(Command::new(APT_HELPER).arg("cat-file").arg(list))?;
+            if signed.contains(&crate::sources::sha256_hex(&bytes)) {
+                listed.extend(sha256_of_version(&String::from_utf8_lossy(&bytes), package, version));
+            }
+        }
+        ensure!(
+            !listed.is_empty(),
+            "no package list that Debian's archive signed (keys {}) gives a SHA-256 for {package} {version}: a list \
+             in {} was changed since apt fetched it, or the archive has no such version; remove {} to have them \
+             fetched again",
+            self.keyring.display(),
+            lists.display(),
+            lists.display()
+        );
         Ok(listed)
     }
 
@@ -219,9 +282,7 @@ impl Unpacked {
         }
         std::fs::create_dir_all(&downloads).with_context(|| format!("failed to create {}", downloads.display()))?;
         eprintln!("image: fetching Debian's {package} (apt-get download, no root needed)");
-        let mut download = self.apt().command("apt-get");
-        download.args(["download", package]).current_dir(&downloads);
-        run_streaming(&mut download).context(format!("apt-get could not download {package}"))?;
+        self.apt.download(package, &downloads)?;
         let deb = newest_deb(&downloads, package)?;
         self.unpack_deb(package, &deb)?;
         Ok(deb)
@@ -279,9 +340,37 @@ fn output_bytes(command: &mut Command) -> Result<Vec<u8>> {
     Ok(output.stdout)
 }
 
-/// The `SHA256:` fields of `apt-cache show` output, one a stanza.
-fn sha256_in_apt_cache_show(show: &str) -> Vec<String> {
-    show.lines().filter_map(|line| line.strip_prefix("SHA256:")).map(|hash| hash.trim().to_string()).collect()
+/// The SHA-256 a signed `Release` text gives for each `Packages` list
+/// (uncompressed: apt-helper decompresses what apt stored): the lines
+/// ` HASH SIZE PATH` of its `SHA256:` field whose path ends `/Packages`.
+fn packages_sha256_in_release(release: &str) -> Vec<String> {
+    let field = release.lines().skip_while(|line| line.trim_end() != "SHA256:").skip(1);
+    let entries = field.take_while(|line| line.starts_with(' '));
+    entries
+        .filter_map(|entry| match entry.split_whitespace().collect::<Vec<_>>()[..] {
+            [hash, _size, path] if path.ends_with("/Packages") => Some(hash.to_string()),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Whether the file `name` in apt's lists folder is a `Packages` list,
+/// as apt stored it (uncompressed, or with a compressor's suffix).
+fn is_packages_list(name: &str) -> bool {
+    name.ends_with("_Packages") || name.rsplit_once('.').is_some_and(|(list, _)| list.ends_with("_Packages"))
+}
+
+/// The `SHA256:` of the stanzas of `package` at `version` in the
+/// `Packages` list `list`.
+fn sha256_of_version(list: &str, package: &str, version: &str) -> Vec<String> {
+    let field = |stanza: &str, name: &str| {
+        stanza.lines().find_map(|line| line.strip_prefix(name)?.strip_prefix(':')).map(str::trim).map(str::to_string)
+    };
+    list.split("\n\n")
+        .filter(|stanza| field(stanza, "Package").as_deref() == Some(package))
+        .filter(|stanza| field(stanza, "Version").as_deref() == Some(version))
+        .filter_map(|stanza| field(stanza, "SHA256"))
+        .collect()
 }
 
 /// What to do with an unpacked package.
@@ -307,7 +396,7 @@ fn refresh_for(package: &str, unpacked: Option<&str>, archive: Result<String>) -
         (Some(unpacked), Err(error)) => Ok(Refresh::KeepWarning(format!(
             "cannot ask Debian's archive for the current {package} ({error:#}); using the unpacked {unpacked}"
         ))),
-        (None, Err(error)) => Err(error),
+        (None, Err(error)) => Err(Unobtainable(format!("{error:#}")).into()),
     }
 }
 
@@ -338,6 +427,8 @@ fn deb_version(package: &str, file_name: &str) -> Option<String> {
 
 #[cfg(test)]
 mod tests {
+    use install::process::output_of;
+
     use super::*;
 
     #[test]
@@ -365,6 +456,7 @@ mod tests {
         assert!(warning.contains("(no network); using the unpacked 16.1"), "{warning}");
         let error = refresh_for("shim-signed", None, offline()).unwrap_err();
         assert_eq!(error.to_string(), "no network");
+        assert!(error.downcast_ref::<Unobtainable>().is_some(), "nothing to keep, and the archive cannot be asked");
     }
 
     #[test]
@@ -408,6 +500,40 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&tool).unwrap(), "the packaged tool\n", "a later build trusted it");
     }
 
+    /// Set, to the test's folder, in the copy of this test binary the test
+    /// below starts.
+    const CHILD_DIR: &str = "UNPACK_TEST_CHILD_DIR";
+
+    #[test]
+    fn a_process_unpacks_only_when_no_other_holds_the_folders_turn() {
+        if let Some(dir) = std::env::var_os(CHILD_DIR) {
+            let dir = Path::new(&dir);
+            let sha256 = std::fs::read_to_string(dir.join("sha256")).unwrap();
+            let deb = dir.join("polylab-test-tool_1.0_all.deb");
+            let pinned = PinnedDeb { package: TOOL.package, deb, sha256: Box::leak(sha256.into_boxed_str()) };
+            Unpacked::pinned(dir.join("unpacked"), vec![pinned]).get(TOOL).unwrap();
+            std::fs::write(dir.join("done"), "").unwrap();
+            return;
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let pinned = test_deb(dir.path());
+        std::fs::write(dir.path().join("sha256"), pinned.sha256).unwrap();
+        let held = turn_in(&dir.path().join("unpacked"), "unpack").unwrap();
+        let name = "secure_boot::debian::tests::a_process_unpacks_only_when_no_other_holds_the_folders_turn";
+        let mut child = Command::new(std::env::current_exe().unwrap())
+            .args(["--exact", name, "--test-threads=1"])
+            .env(CHILD_DIR, dir.path())
+            .stdout(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(1500));
+        let done = dir.path().join("done").exists();
+        drop(held);
+        let status = child.wait().unwrap();
+        assert!(!done, "another process unpacked while this one held the folder's turn");
+        assert!(status.success() && dir.path().join("done").exists(), "the other process never unpacked");
+    }
+
     #[test]
     fn a_package_that_is_not_its_pin_is_refused() {
         let dir = tempfile::tempdir().unwrap();
@@ -419,10 +545,105 @@ mod tests {
         assert!(error.contains("has SHA-256") && error.contains("not the package it claims to be"), "{error}");
     }
 
+    /// An archive of the test's own in `dir`: a key made with gpg (its
+    /// public half in `dir/keyring.gpg`), and lists as apt leaves them in
+    /// `dir/apt/lists`: an `InRelease` signed with the key, giving the
+    /// SHA-256 of `packages`, the `Packages` list beside it. Returns the
+    /// archive, its keyring and the list.
+    fn signed_archive(dir: &Path, packages: &str) -> (Unpacked, PathBuf, PathBuf) {
+        install::packages::ensure_debian_packages("gpg (for a test's signed archive)", &["gpg"], || {
+            install::process::find_in_path("gpg").is_some()
+        })
+        .unwrap();
+        let home = dir.join("gnupg");
+        std::fs::create_dir(&home).unwrap();
+        let gpg = || {
+            let mut gpg = Command::new("gpg");
+            gpg.arg("--homedir").arg(&home).args(["--batch", "--quiet", "--passphrase", "", "--pinentry-mode"]);
+            gpg.arg("loopback");
+            gpg
+        };
+        output_of(gpg().args(["--quick-gen-key", "polylab test archive", "ed25519", "sign", "never"])).unwrap();
+        let keyring = dir.join("keyring.gpg");
+        output_of(gpg().arg("--output").arg(&keyring).arg("--export")).unwrap();
+        let lists = dir.join("apt/lists");
+        std::fs::create_dir_all(&lists).unwrap();
+        let list = lists.join("example.org_debian_dists_test_main_binary-amd64_Packages");
+        std::fs::write(&list, packages).unwrap();
+        let release = format!(
+            "Origin: polylab\nSuite: test\nSHA256:\n {} {} main/binary-amd64/Packages\n",
+            crate::sources::sha256_hex(packages.as_bytes()),
+            packages.len()
+        );
+        let unsigned = dir.join("Release");
+        std::fs::write(&unsigned, release).unwrap();
+        let in_release = lists.join("example.org_debian_dists_test_InRelease");
+        output_of(gpg().arg("--output").arg(&in_release).arg("--clearsign").arg(&unsigned)).unwrap();
+        let _ = Command::new("gpgconf").arg("--homedir").arg(&home).args(["--kill", "gpg-agent"]).status();
+        let apt = PrivateApt::sources_only(dir.join("apt"), &[]);
+        let archive = Unpacked { keyring: keyring.clone(), ..Unpacked::from_archive(dir.join("unpacked"), apt) };
+        (archive, keyring, list)
+    }
+
+    const PACKAGES: &str = "Package: polylab-test-tool\nVersion: 1.0\nArchitecture: all\nSHA256: 1111\n\n\
+                            Package: polylab-test-tool\nVersion: 0.9\nSHA256: 0999\n\n\
+                            Package: polylab-other\nVersion: 1.0\nSHA256: 2222\n";
+
     #[test]
-    fn the_sha256_is_read_from_apt_cache_show() {
-        let show =
-            "Package: sbsigntool\nVersion: 0.9.4-3.1\nSHA256: 0a1b\nSize: 1\n\nPackage: sbsigntool\nSHA256: ff\n";
-        assert_eq!(sha256_in_apt_cache_show(show), ["0a1b", "ff"]);
+    fn the_sha256_is_the_one_debians_signature_covers_for_that_version() {
+        let dir = tempfile::tempdir().unwrap();
+        let (archive, _, list) = signed_archive(dir.path(), PACKAGES);
+        assert_eq!(archive.signed_sha256("polylab-test-tool", "1.0").unwrap(), ["1111"]);
+        assert_eq!(archive.signed_sha256("polylab-test-tool", "0.9").unwrap(), ["0999"], "another version's hash");
+        let error = archive.signed_sha256("polylab-test-tool", "2.0").unwrap_err().to_string();
+        assert!(error.contains("gives a SHA-256 for polylab-test-tool 2.0"), "{error}");
+        std::fs::write(&list, PACKAGES.replace("SHA256: 1111", "SHA256: 6666")).unwrap();
+        let error = archive.signed_sha256("polylab-test-tool", "1.0").unwrap_err().to_string();
+        assert!(error.contains("no package list that Debian's archive signed"), "an edited Packages line: {error}");
+    }
+
+    #[test]
+    fn an_in_release_changed_after_signing_or_signed_by_another_key_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let (archive, _, list) = signed_archive(dir.path(), PACKAGES);
+        let edited = PACKAGES.replace("SHA256: 1111", "SHA256: 6666");
+        std::fs::write(&list, &edited).unwrap();
+        let in_release = list.with_file_name("example.org_debian_dists_test_InRelease");
+        let signed = std::fs::read_to_string(&in_release).unwrap();
+        let hash = crate::sources::sha256_hex(PACKAGES.as_bytes());
+        std::fs::write(&in_release, signed.replace(&hash, &crate::sources::sha256_hex(edited.as_bytes()))).unwrap();
+        let error = archive.signed_sha256("polylab-test-tool", "1.0").unwrap_err().to_string();
+        assert!(error.contains("no InRelease file in"), "an InRelease edited after signing: {error}");
+        std::fs::write(&in_release, signed).unwrap();
+        std::fs::write(&list, PACKAGES).unwrap();
+        let debians = Unpacked { keyring: PathBuf::from(DEBIAN_KEYRING), ..archive };
+        let error = debians.signed_sha256("polylab-test-tool", "1.0").unwrap_err().to_string();
+        assert!(error.contains("is signed by a key of /usr/share/keyrings/"), "signed by a key not Debian's: {error}");
+    }
+
+    #[test]
+    fn a_kept_deb_whose_hash_no_signed_list_gives_is_refused_at_its_use() {
+        let dir = tempfile::tempdir().unwrap();
+        let pinned = test_deb(dir.path());
+        let sha256 = pinned.sha256;
+        let packages = format!("Package: polylab-test-tool\nVersion: 1.0\nSHA256: {sha256}\n");
+        let (archive, _, list) = signed_archive(dir.path(), &packages);
+        let debs = dir.path().join("unpacked/debs/polylab-test-tool");
+        std::fs::create_dir_all(&debs).unwrap();
+        std::fs::copy(&pinned.deb, debs.join("polylab-test-tool_1.0_all.deb")).unwrap();
+        std::fs::write(dir.path().join("unpacked/polylab-test-tool.deb-name"), "polylab-test-tool_1.0_all.deb")
+            .unwrap();
+        // Lists fetched just now, of no source: apt names no version, and
+        // the kept package is used (with a warning).
+        for folder in ["apt/sources.list.d", "apt/cache"] {
+            std::fs::create_dir_all(dir.path().join(folder)).unwrap();
+        }
+        for file in ["apt/sources.list", "apt/lists-fetched"] {
+            std::fs::write(dir.path().join(file), "").unwrap();
+        }
+        assert!(archive.get(TOOL).is_ok_and(|tool| tool.ends_with("usr/bin/tool")));
+        std::fs::write(&list, packages.replace(sha256, &"0".repeat(64))).unwrap();
+        let error = format!("{:#}", archive.get(TOOL).unwrap_err());
+        assert!(error.contains("no package list that Debian's archive signed"), "{error}");
     }
 }

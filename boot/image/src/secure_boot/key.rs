@@ -8,13 +8,17 @@
 //! that `cargo clean` does not force a new enrollment), and never stored
 //! in the clear: the private key is encrypted under a passphrase (AES-256),
 //! which the build asks for once on the terminal (a new key's twice, to
-//! catch a typing slip) or [`PASSPHRASE_ENV`] gives; every `openssl` that
-//! needs it reads it from a pipe on its standard input, and the variable
-//! is taken out of the environment before any child starts
-//! ([`take_passphrase`]), so no other child (cargo, apt-get, dpkg-deb,
-//! sbsign) sees it. Signing decrypts the key into memory only and hands it
-//! to `sbsign` through a pipe. A key given with [`KEY_ENV`] (or `--key`)
-//! must be encrypted too.
+//! catch a typing slip), or reads from a file only its owner can read
+//! ([`passphrase_from_file`], `--passphrase-file`), or [`PASSPHRASE_ENV`]
+//! gives; every `openssl` that needs it reads it from a pipe on its
+//! standard input. The variable is taken out of the environment before
+//! any child starts ([`take_passphrase`]), so no child (cargo, apt-get,
+//! dpkg-deb, sbsign) inherits it; but the process's own first environment
+//! block (`/proc/PID/environ`) and that of every process above it (the
+//! shell, `cargo run`) still hold it: the file and the terminal never put
+//! it in an environment. Signing decrypts the key into memory only and
+//! hands it to `sbsign` through a pipe. A key given with [`KEY_ENV`] (or
+//! `--key`) must be encrypted too.
 //!
 //! Its certificate is made for this one job: not a CA, key usage
 //! digitalSignature, extended key usage codeSigning, a subject with a
@@ -25,7 +29,7 @@
 //! which makes the key one of a year and asks for a new one after.
 
 use std::io::{Read, Write};
-use std::os::unix::fs::{DirBuilderExt, OpenOptionsExt, PermissionsExt};
+use std::os::unix::fs::{DirBuilderExt, MetadataExt, OpenOptionsExt, PermissionsExt};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -38,7 +42,8 @@ use install::process::{command_line, find_in_path, output_of, output_with_input}
 pub const KEY_ENV: &str = "POLYLAB_SECURE_BOOT_KEY";
 /// Its certificate (PEM or DER).
 pub const CERT_ENV: &str = "POLYLAB_SECURE_BOOT_CERT";
-/// The key's passphrase, when no one is at a terminal to type it.
+/// The key's passphrase, when no one is at a terminal to type it (a file,
+/// [`passphrase_from_file`], keeps it out of every environment).
 pub const PASSPHRASE_ENV: &str = "POLYLAB_SECURE_BOOT_PASSPHRASE";
 
 /// How long the generated certificate is valid, in days.
@@ -89,11 +94,9 @@ impl std::fmt::Debug for SigningKey {
 impl SigningKey {
     /// The key named by [`KEY_ENV`] and [`CERT_ENV`] if set, else the
     /// user's generated key, made now if there is none; the passphrase
-    /// from [`PASSPHRASE_ENV`] if set ([`take_passphrase`]), else asked
-    /// for on the terminal. A certificate given in DER is converted into
-    /// `scratch`.
-    pub fn users(scratch: &Path) -> Result<Self> {
-        let passphrase = take_passphrase();
+    /// given, else asked for on the terminal. A certificate given in DER
+    /// is converted into `scratch`.
+    pub fn users(scratch: &Path, passphrase: Option<String>) -> Result<Self> {
         match (std::env::var_os(KEY_ENV), std::env::var_os(CERT_ENV)) {
             (Some(key), Some(cert)) => Self::own(Path::new(&key), Path::new(&cert), passphrase, scratch),
             (None, None) => Self::in_folder(&key_folder()?, passphrase),
@@ -220,8 +223,8 @@ impl SigningKey {
         decrypt.arg("pkey").arg("-in").arg(&self.key).args(["-passin", "stdin"]);
         self.run_with_passphrase(&mut decrypt).with_context(|| {
             format!(
-                "could not decrypt the Secure Boot key {} (a wrong passphrase?): type it again, or set \
-                 {PASSPHRASE_ENV}",
+                "could not decrypt the Secure Boot key {} (a wrong passphrase?): type it again, or give it with \
+                 --passphrase-file (or {PASSPHRASE_ENV})",
                 self.key.display()
             )
         })
@@ -273,10 +276,50 @@ pub fn take_passphrase() -> Option<String> {
         .clone()
 }
 
+/// The passphrase in the file `path`, its one line (a final newline is
+/// not part of it): the file must be a regular file, not a symlink
+/// (`O_NOFOLLOW`), owned by the user running the build and readable and
+/// writable by that user only (mode 0600 or 0400); anything else is
+/// refused with the fix.
+pub fn passphrase_from_file(path: &Path) -> Result<String> {
+    let mut file = std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NOFOLLOW)
+        .open(path)
+        .with_context(|| format!("failed to open the passphrase file {} (a symlink is refused)", path.display()))?;
+    let metadata = file.metadata().with_context(|| format!("failed to read {}", path.display()))?;
+    ensure!(metadata.is_file(), "the passphrase file {} is not a file", path.display());
+    let owner = install::process::user_id();
+    ensure!(
+        Some(metadata.uid()) == owner,
+        "the passphrase file {} belongs to user {}, not to the user running the build: refusing a passphrase \
+         another user could have written",
+        path.display(),
+        metadata.uid()
+    );
+    let mode = metadata.permissions().mode() & 0o777;
+    ensure!(
+        mode & 0o077 == 0,
+        "the passphrase file {} can be read or written by others (mode {mode:o}); make it its owner's only: chmod \
+         600 {}",
+        path.display(),
+        path.display()
+    );
+    let mut passphrase = String::new();
+    file.read_to_string(&mut passphrase).with_context(|| format!("failed to read {}", path.display()))?;
+    let passphrase = passphrase.strip_suffix('\n').unwrap_or(&passphrase).to_string();
+    ensure!(!passphrase.is_empty(), "the passphrase file {} is empty", path.display());
+    Ok(passphrase)
+}
+
 /// Asks for a passphrase on the terminal, not echoing it.
 fn ask_at_terminal(prompt: &str) -> Result<String> {
-    rpassword::prompt_password(prompt)
-        .with_context(|| format!("no terminal to ask for the Secure Boot key's passphrase at: set {PASSPHRASE_ENV}"))
+    rpassword::prompt_password(prompt).with_context(|| {
+        format!(
+            "no terminal to ask for the Secure Boot key's passphrase at: give it with --passphrase-file (or \
+                 {PASSPHRASE_ENV})"
+        )
+    })
 }
 
 /// 16 random hex digits, the certificate's identifier.
@@ -421,6 +464,32 @@ mod tests {
         let error = SigningKey::own(&key, &key, Some("p".into()), dir.path()).unwrap_err().to_string();
         assert!(error.contains("is not encrypted"), "{error}");
         assert!(error.contains("-aes-256-cbc"), "{error}");
+    }
+
+    #[test]
+    fn a_passphrase_file_is_read_only_if_it_is_the_users_alone() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("passphrase");
+        std::fs::write(&file, "a secret\n").unwrap();
+        std::fs::set_permissions(&file, std::fs::Permissions::from_mode(0o600)).unwrap();
+        assert_eq!(passphrase_from_file(&file).unwrap(), "a secret", "one line, its newline left out");
+        std::fs::set_permissions(&file, std::fs::Permissions::from_mode(0o640)).unwrap();
+        let error = passphrase_from_file(&file).unwrap_err().to_string();
+        assert!(error.contains("by others (mode 640)") && error.ends_with(&format!("chmod 600 {}", file.display())));
+        std::fs::set_permissions(&file, std::fs::Permissions::from_mode(0o600)).unwrap();
+        let link = dir.path().join("link");
+        std::os::unix::fs::symlink(&file, &link).unwrap();
+        let error = format!("{:#}", passphrase_from_file(&link).unwrap_err());
+        assert!(error.contains("a symlink is refused"), "{error}");
+        if install::process::is_root() {
+            std::os::unix::fs::chown(&file, Some(65534), None).unwrap();
+            let error = passphrase_from_file(&file).unwrap_err().to_string();
+            assert!(error.contains("belongs to user 65534, not to the user running the build"), "{error}");
+            std::os::unix::fs::chown(&file, Some(0), None).unwrap();
+        }
+        std::fs::write(&file, "\n").unwrap();
+        let error = passphrase_from_file(&file).unwrap_err().to_string();
+        assert!(error.contains("is empty"), "{error}");
     }
 
     #[test]
