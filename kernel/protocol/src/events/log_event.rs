@@ -135,7 +135,7 @@ impl EndedAt {
     }
 }
 
-/// The machine the kernel found, and by what signs (`kernel/src/machine.rs`).
+/// The machine the kernel found, and by what signs (`kernel/src/platform/machine.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct MachineEvidence {
     pub machine: Machine,
