@@ -60,14 +60,14 @@ const GAS_ADDRESS: usize = 4;
 
 /// The ACPI PM timer as the FADT describes it.
 #[derive(Clone, Copy)]
-pub struct PmTimer {
+pub struct PmTimerBlock {
     pub port: u16,
     /// Whether its counter has 32 bits (else 24).
     pub wide: bool,
 }
 
 /// The PM timer, if the FADT under `rsdp` describes one in I/O space.
-pub fn pm_timer(rsdp: u64) -> Option<PmTimer> {
+pub fn pm_timer(rsdp: u64) -> Option<PmTimerBlock> {
     let fadt = table(rsdp, b"FACP")?;
     let flags = u32_at(&fadt, FADT_FLAGS)?;
     if flags & HARDWARE_REDUCED != 0 {
@@ -80,7 +80,7 @@ pub fn pm_timer(rsdp: u64) -> Option<PmTimer> {
         _ if fadt.get(FADT_PM_TIMER_LEN) == Some(&4) => u64::from(u32_at(&fadt, FADT_PM_TIMER_BLOCK)?),
         _ => return None,
     };
-    Some(PmTimer { port: u16::try_from(port).ok().filter(|&port| port != 0)?, wide })
+    Some(PmTimerBlock { port: u16::try_from(port).ok().filter(|&port| port != 0)?, wide })
 }
 
 /// The physical address of the HPET's registers, if the HPET table under

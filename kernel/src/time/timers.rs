@@ -45,7 +45,7 @@ const PM_TIMER_HZ: u64 = 3_579_545;
 impl PmTimer {
     /// The PM timer the ACPI tables under `rsdp` describe, started.
     pub fn find(rsdp: u64) -> Option<Self> {
-        let acpi::PmTimer { port, wide } = acpi::pm_timer(rsdp)?;
+        let acpi::PmTimerBlock { port, wide } = acpi::pm_timer(rsdp)?;
         let port = port::acpi_pm_timer(port);
         let mask = if wide { u32::MAX } else { 0x00FF_FFFF };
         Some(Self { port, mask, last: port.read() & mask, elapsed: 0 })
