@@ -107,7 +107,7 @@ pub fn serve(screen: &mut Screen, stage: &mut Stage, mut pending: PendingLine, f
 }
 
 /// A reply: frame kind and payload. Failures are sent as `ERR` frames.
-type Reply<'a> = Result<(FrameKind, Vec<u8>), ErrorReply<'a>>;
+type Answer<'a> = Result<(FrameKind, Vec<u8>), ErrorReply<'a>>;
 
 struct Server<'a> {
     screen: &'a mut Screen,
@@ -153,7 +153,7 @@ impl Server<'_> {
         }
     }
 
-    fn run<'a>(&mut self, command: Command<'a>) -> Reply<'a> {
+    fn run<'a>(&mut self, command: Command<'a>) -> Answer<'a> {
         match command {
             Command::Ping => {
                 ok(Pong { losses: serial::losses(), heap: heap::state(), interrupts: Some(idt::counts()) })
@@ -232,7 +232,7 @@ fn on_qemu(command: &'static str) -> Result<(), ErrorReply<'static>> {
     }
 }
 
-fn ok(text: impl core::fmt::Display) -> Reply<'static> {
+fn ok(text: impl core::fmt::Display) -> Answer<'static> {
     Ok((FrameKind::Ok, text.to_string().into_bytes()))
 }
 
