@@ -32,4 +32,6 @@ pub mod workspace;
 pub use client::{Console, Dump, Reply};
 pub use picture::compare::compare_images;
 pub use picture::{render, Image};
-pub use qemu::{Adapter, Board, Clock, Cpu, Display, DisplayAhead, ExitDevice, Medium, Qemu, QemuOptions, SerialLine};
+pub use qemu::{
+    Adapter, Board, Cpu, Display, DisplayAhead, ExitDevice, Medium, Qemu, QemuOptions, SerialLine, TimeBase,
+};

@@ -8,7 +8,7 @@
 use std::collections::BTreeSet;
 
 use anyhow::{bail, ensure, Context, Result};
-use harness::{Clock, Qemu, QemuOptions, Reply};
+use harness::{Qemu, QemuOptions, Reply, TimeBase};
 use protocol::{BenchRow, Command, ErrorReply};
 use raster::{Framebuffer, MethodId, SCREEN};
 use scenes::builtin;
@@ -51,7 +51,7 @@ const REPEATED: (&str, u8) = ("abrash38-3", 3);
 /// the control adds little to the test's time.
 const CONTROL: (&str, u8) = ("abrash38-1", 1);
 
-/// Under instruction counting (`Clock::InstructionCount`, as `cargo xtask
+/// Under instruction counting (`TimeBase::InstructionCount`, as `cargo xtask
 /// kbench` and `record` run) the figures count emulated instructions, so
 /// two QEMUs booted side by side, each slowing the other down, time
 /// `abrash38-3` to the same number for every method, and the methods to
@@ -63,7 +63,7 @@ const CONTROL: (&str, u8) = ("abrash38-1", 1);
 #[test]
 fn two_runs_under_instruction_counting_give_identical_bench_figures() -> Result<()> {
     let (scene, repeats) = REPEATED;
-    let counted = QemuOptions { clock: Clock::InstructionCount, ..QemuOptions::default() };
+    let counted = QemuOptions { clock: TimeBase::InstructionCount, ..QemuOptions::default() };
     let bench = |options: QemuOptions, (scene, repeats): (&str, u8), times: usize| -> Result<Vec<Vec<BenchRow>>> {
         let mut qemu = Qemu::boot(options)?;
         (0..times).map(|_| qemu.console.bench(scene, repeats)).collect()

@@ -390,17 +390,21 @@ fn quoted_between(text: &str, start: &str, end: &str) -> Option<Vec<String>> {
 }
 
 /// The kernel's modules that have `unsafe` code (a block, a function, an
-/// impl or a trait), by the name `main.rs` declares them under; a file in
-/// a module's folder counts for the module.
+/// impl or a trait), by their paths from the crate's root (`video::screen`
+/// for `video/screen.rs`, `video` for `video/mod.rs`).
 fn modules_with_unsafe(kernel_src: &Path) -> Result<Vec<String>> {
     let unsafe_code = Regex::new(r"\bunsafe\s*(\{|fn\b|impl\b|trait\b|extern\b)").expect("a valid pattern");
     let mut modules = Vec::new();
     for file in sources(kernel_src).into_iter().filter(|file| file.extension().is_some_and(|e| e == "rs")) {
         let text = std::fs::read_to_string(&file).with_context(|| format!("failed to read {}", file.display()))?;
         let code = text.lines().map(|line| line.split("//").next().unwrap_or("")).collect::<Vec<_>>().join("\n");
-        let relative = file.strip_prefix(kernel_src).expect("under kernel/src");
-        let first = relative.components().next().expect("a file").as_os_str().to_string_lossy();
-        let module = first.trim_end_matches(".rs").to_string();
+        let relative = file.strip_prefix(kernel_src).expect("under kernel/src").with_extension("");
+        let mut names: Vec<String> =
+            relative.components().map(|part| part.as_os_str().to_string_lossy().into_owned()).collect();
+        if names.last().is_some_and(|name| name == "mod") {
+            names.pop();
+        }
+        let module = names.join("::");
         if unsafe_code.is_match(&code) && module != "main" && !modules.contains(&module) {
             modules.push(module);
         }
@@ -410,13 +414,16 @@ fn modules_with_unsafe(kernel_src: &Path) -> Result<Vec<String>> {
 }
 
 /// The modules `main.rs`'s paragraph on `unsafe` names: its backticked
-/// words that are modules of `kernel_src`.
+/// words that are paths of modules of `kernel_src` (`time::clock`).
 fn modules_listed(kernel_src: &Path, main_rs: &str) -> Option<Vec<String>> {
     let quoted =
         quoted_between(main_rs, "`unsafe` code lives in these modules alone", "Everything above them is safe")?;
     let mut modules: Vec<String> = quoted
         .into_iter()
-        .filter(|word| kernel_src.join(format!("{word}.rs")).is_file() || kernel_src.join(word).is_dir())
+        .filter(|word| {
+            let file = kernel_src.join(word.replace("::", "/"));
+            file.with_extension("rs").is_file() || file.join("mod.rs").is_file()
+        })
         .collect();
     modules.sort();
     modules.dedup();
@@ -429,7 +436,7 @@ fn the_kernel_lists_every_module_with_unsafe_code_and_no_other() -> Result<()> {
     let main_rs = std::fs::read_to_string(kernel_src.join("main.rs")).context("failed to read kernel/src/main.rs")?;
     let listed = modules_listed(&kernel_src, &main_rs).context("kernel/src/main.rs has no paragraph on `unsafe`")?;
     let found = modules_with_unsafe(&kernel_src)?;
-    assert!(found.iter().any(|module| module == "port"), "no unsafe code found: {found:?}");
+    assert!(found.iter().any(|module| module == "platform::port"), "no unsafe code found: {found:?}");
     assert_eq!(listed, found, "kernel/src/main.rs lists these modules as having `unsafe` code; the code has");
     Ok(())
 }
@@ -438,9 +445,12 @@ fn the_kernel_lists_every_module_with_unsafe_code_and_no_other() -> Result<()> {
 fn a_module_with_unsafe_code_left_off_the_list_is_caught() {
     let kernel_src = workspace::root().join("kernel/src");
     let text = "//! `unsafe` code lives in these modules alone, each block with a\n\
-                //! `// SAFETY:` note: `port` and `nowhere`; `clock`'s one\n\
-                //! RDTSC. Everything above them is safe\n//! code.\n//! `heap`";
-    assert_eq!(modules_listed(&kernel_src, text), Some(vec!["clock".to_string(), "port".to_string()]));
+                //! `// SAFETY:` note: `platform::port`, `video` and `nowhere`;\n\
+                //! `time::clock`'s one RDTSC. Everything above them is safe\n//! code.\n//! `platform::heap`";
+    assert_eq!(
+        modules_listed(&kernel_src, text),
+        Some(vec!["platform::port".to_string(), "time::clock".to_string(), "video".to_string()])
+    );
     assert_eq!(modules_listed(&kernel_src, "//! no such paragraph"), None);
 }
 

@@ -1,7 +1,7 @@
 //! Leaving QEMU: on request with the requested code, and on every fault
 //! (each by its name) with a FATAL report and the failure code; an NMI
 //! after the kernel stopped cleanly reports nothing (one while it runs is
-//! counted and survived: `interrupts.rs`).
+//! counted and survived: `idt.rs`).
 //! The kernel answers `EXIT` and `FAULT` only where it has identified
 //! QEMU: with CPUID's hypervisor bit hidden it refuses both and touches
 //! nothing.
@@ -100,7 +100,7 @@ fn breakpoint_is_reported_and_exits_with_status_35() -> Result<()> {
 fn page_fault_is_reported_and_exits_with_status_35() -> Result<()> {
     fault_is_reported_and_fails(FaultKind::PageFault, |report| {
         // A read (no write, no user, no protection bits) of the kernel's
-        // unmapped address, `kernel/src/fault.rs`.
+        // unmapped address, `kernel/src/interrupts/fault.rs`.
         matches!(report, FatalReport::PageFault { address: 0xdeadbeef000, code, .. } if code.bits() == 0)
     })
 }

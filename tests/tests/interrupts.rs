@@ -143,7 +143,7 @@ fn the_pits_and_com1s_vectors_sent_through_the_local_apic_are_ended_there() -> R
 /// `FAULT interruptstorm`: the RTC's IRQ 8 routed level-triggered through
 /// the I/O APIC, its line left high, comes again after every end of
 /// interrupt; the kernel must count it, mask it at the I/O APIC (1,000
-/// arrivals within 100 ms, `kernel/src/storm.rs`) long before the command
+/// arrivals within 100 ms, `kernel/src/interrupts/storm.rs`) long before the command
 /// gives up and stops the RTC, say so in a `LOG` frame, and serve on, the
 /// vector silent from then on.
 #[test]

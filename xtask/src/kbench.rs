@@ -19,7 +19,7 @@ use std::time::Duration;
 use anyhow::{Context, Result};
 use harness::cable::open_console;
 use harness::serial_check::bench_table::{BenchTable, Benched, TickUnit};
-use harness::{Clock, Console, Qemu, QemuOptions};
+use harness::{Console, Qemu, QemuOptions, TimeBase};
 use scenes::builtin;
 
 use crate::opt::KbenchOpt;
@@ -56,7 +56,7 @@ fn say(what: &str, _: &Console) {
 }
 
 fn measure_under_qemu(repeats: u8, scenes: &[Benched]) -> Result<BenchTable> {
-    let mut qemu = Qemu::boot(QemuOptions { clock: Clock::InstructionCount, ..QemuOptions::default() })?;
+    let mut qemu = Qemu::boot(QemuOptions { clock: TimeBase::InstructionCount, ..QemuOptions::default() })?;
     let table = BenchTable::measure(&mut qemu.console, TickUnit::EmulatedInstructions, scenes, repeats, say)?;
     qemu.quit()?;
     Ok(table)

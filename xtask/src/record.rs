@@ -15,7 +15,7 @@ use harness::checks::show_matches_host_render;
 use harness::client::pack_for_upload;
 use harness::picture::compare::{compare_images, compare_palettes, differing_pixel_count};
 use harness::render::{render, show_entry, SceneFile};
-use harness::{Clock, Console, Dump, Qemu, QemuOptions};
+use harness::{Console, Dump, Qemu, QemuOptions, TimeBase};
 use indicatif::{ProgressBar, ProgressStyle};
 use protocol::ShowReply;
 use raster::{MethodId, Size, SpanSink, SCREEN};
@@ -49,7 +49,7 @@ pub fn record(opt: &RecordOpt) -> Result<()> {
     // Instruction counting: the cycles in the labels and the summary count
     // emulated instructions, the same in every run (`SHOW` is not paced by
     // the clock, so the frames are the same either way).
-    let mut qemu = Qemu::boot(QemuOptions { clock: Clock::InstructionCount, ..QemuOptions::default() })?;
+    let mut qemu = Qemu::boot(QemuOptions { clock: TimeBase::InstructionCount, ..QemuOptions::default() })?;
     let shown = recording.film(&mut qemu.console)?;
     print!("{}", summary(&shown));
     qemu.quit()?;

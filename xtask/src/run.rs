@@ -10,7 +10,7 @@ use harness::checks::{screen_matches_dump, show_matches_host_render, source_matc
 use harness::client::pack_for_upload;
 use harness::render::{entry_names, SceneFile, SceneSource};
 use harness::workspace::target_dir;
-use harness::{Clock, Display, Medium, Qemu, QemuOptions};
+use harness::{Display, Medium, Qemu, QemuOptions, TimeBase};
 use install::missing::ensure_all;
 use protocol::{Command, Firmware};
 use raster::MethodId;
@@ -155,10 +155,10 @@ fn headless(shown: &OnScreen, method: Option<MethodId>, options: QemuOptions, ou
 /// 110 s of QEMU's CPU time before the kernel ran, against 5.5 s on the
 /// host's clock, so that the boot missed READY's deadline on a loaded
 /// machine.
-fn headless_clock(firmware: Firmware) -> Clock {
+fn headless_clock(firmware: Firmware) -> TimeBase {
     match firmware {
-        Firmware::Bios => Clock::InstructionCount,
-        Firmware::Uefi => Clock::RealTime,
+        Firmware::Bios => TimeBase::InstructionCount,
+        Firmware::Uefi => TimeBase::RealTime,
     }
 }
 
@@ -231,8 +231,8 @@ mod tests {
 
     #[test]
     fn headless_runs_count_instructions_under_the_bios_only() {
-        assert_eq!(headless_clock(Firmware::Bios), Clock::InstructionCount);
-        assert_eq!(headless_clock(Firmware::Uefi), Clock::RealTime);
+        assert_eq!(headless_clock(Firmware::Bios), TimeBase::InstructionCount);
+        assert_eq!(headless_clock(Firmware::Uefi), TimeBase::RealTime);
     }
 
     #[test]

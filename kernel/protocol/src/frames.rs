@@ -10,7 +10,7 @@ use crate::FRAME_MARK;
 /// What a frame carries.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FrameKind {
-    /// Sent once at boot when the console is ready; payload: a [`Ready`](crate::Ready).
+    /// Sent once at boot when the server is ready; payload: a [`Ready`](crate::Ready).
     Ready,
     /// A command succeeded; payload: a short text.
     Ok,

@@ -12,7 +12,7 @@ use crate::scene::{Op, Scene};
 
 /// One built-in scene: a page of a seed's sample program.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Builtin {
+pub struct BuiltinPage {
     pub name: &'static str,
     /// The method of the scene's source.
     pub method: MethodId,
@@ -31,7 +31,7 @@ enum Page {
     World,
 }
 
-impl Builtin {
+impl BuiltinPage {
     const fn new(name: &'static str, method: MethodId, page: Page) -> Self {
         Self { name, method, page }
     }
@@ -49,19 +49,20 @@ impl Builtin {
     }
 }
 
-pub const ABRASH38_1: Builtin = Builtin::new("abrash38-1", MethodId::AbrashFloat, Page::Listing38_3(1));
-pub const ABRASH38_2: Builtin = Builtin::new("abrash38-2", MethodId::AbrashFloat, Page::Listing38_3(2));
-pub const ABRASH38_3: Builtin = Builtin::new("abrash38-3", MethodId::AbrashFloat, Page::Listing38_3(3));
-pub const ABRASH40_1: Builtin = Builtin::new("abrash40-1", MethodId::AbrashAet, Page::Listing40_4(1));
-pub const ABRASH40_2: Builtin = Builtin::new("abrash40-2", MethodId::AbrashAet, Page::Listing40_4(2));
-pub const ABRASH40_3: Builtin = Builtin::new("abrash40-3", MethodId::AbrashAet, Page::Listing40_4(3));
-pub const ABRASH40_4: Builtin = Builtin::new("abrash40-4", MethodId::AbrashAet, Page::Listing40_4(4));
-pub const LAMOTHE_TRIANGLE: Builtin = Builtin::new("lamothe-triangle", MethodId::Lamothe, Page::LamotheTriangle);
-pub const WGT_TRIANGLE: Builtin = Builtin::new("wgt-triangle", MethodId::Wgt, Page::WgtTriangle);
-pub const WORLD: Builtin = Builtin::new("world", MethodId::Exact, Page::World);
+pub const ABRASH38_1: BuiltinPage = BuiltinPage::new("abrash38-1", MethodId::AbrashFloat, Page::Listing38_3(1));
+pub const ABRASH38_2: BuiltinPage = BuiltinPage::new("abrash38-2", MethodId::AbrashFloat, Page::Listing38_3(2));
+pub const ABRASH38_3: BuiltinPage = BuiltinPage::new("abrash38-3", MethodId::AbrashFloat, Page::Listing38_3(3));
+pub const ABRASH40_1: BuiltinPage = BuiltinPage::new("abrash40-1", MethodId::AbrashAet, Page::Listing40_4(1));
+pub const ABRASH40_2: BuiltinPage = BuiltinPage::new("abrash40-2", MethodId::AbrashAet, Page::Listing40_4(2));
+pub const ABRASH40_3: BuiltinPage = BuiltinPage::new("abrash40-3", MethodId::AbrashAet, Page::Listing40_4(3));
+pub const ABRASH40_4: BuiltinPage = BuiltinPage::new("abrash40-4", MethodId::AbrashAet, Page::Listing40_4(4));
+pub const LAMOTHE_TRIANGLE: BuiltinPage =
+    BuiltinPage::new("lamothe-triangle", MethodId::Lamothe, Page::LamotheTriangle);
+pub const WGT_TRIANGLE: BuiltinPage = BuiltinPage::new("wgt-triangle", MethodId::Wgt, Page::WgtTriangle);
+pub const WORLD: BuiltinPage = BuiltinPage::new("world", MethodId::Exact, Page::World);
 
 /// Every built-in scene, in demo order.
-pub const ALL: [Builtin; 10] = [
+pub const ALL: [BuiltinPage; 10] = [
     ABRASH38_1,
     ABRASH38_2,
     ABRASH38_3,
@@ -75,13 +76,13 @@ pub const ALL: [Builtin; 10] = [
 ];
 
 /// The built-in scene called `name`.
-pub fn named(name: &str) -> Option<&'static Builtin> {
+pub fn named(name: &str) -> Option<&'static BuiltinPage> {
     ALL.iter().find(|builtin| builtin.name == name)
 }
 
 /// The built-in scene called `name`, built.
 pub fn scene(name: &str) -> Option<Scene> {
-    named(name).map(Builtin::scene)
+    named(name).map(BuiltinPage::scene)
 }
 
 /// The land of the world at 1:110m, a real many-vertex shape: 129 polygons

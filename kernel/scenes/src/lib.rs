@@ -13,11 +13,15 @@
 
 extern crate alloc;
 
+// Every item has one path: the scene itself (`scene`) is private and
+// re-exported here, at the top; the other modules are namespaces whose
+// items are called by their module's name (`builtin::ALL`, `file::parse`,
+// `packed::pack`, `palette::VGA_DEFAULT`, `show::Stage`).
 pub mod builtin;
 pub mod file;
 pub mod packed;
 pub mod palette;
-pub mod scene;
+mod scene;
 pub mod show;
 
 pub use scene::{DrawReport, Op, PaletteEntry, Scene, FILE_METHOD};

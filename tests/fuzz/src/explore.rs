@@ -42,7 +42,7 @@ struct PageState {
     methods: [MethodId; 2],
     poly: u32,
     click: (i32, i32),
-    page: &'static builtin::Builtin,
+    page: &'static builtin::BuiltinPage,
     text: String,
 }
 

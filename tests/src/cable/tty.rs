@@ -1,7 +1,7 @@
 //! A serial device as the protocol's line: `/dev/ttyUSB0`, `/dev/ttyS0`,
 //! or a pseudo-terminal such as QEMU's `-serial pty`, opened through the
 //! `serialport` crate raw at 115200 baud, 8 data bits, no parity, one stop
-//! bit, no flow control (the kernel's COM1 settings, `kernel/src/serial.rs`).
+//! bit, no flow control (the kernel's COM1 settings, `kernel/src/wire/serial.rs`).
 
 use std::io::{ErrorKind, Read};
 use std::os::unix::fs::FileTypeExt;

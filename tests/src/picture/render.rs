@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Context, Result};
 use raster::{Framebuffer, MethodId, SCREEN};
-use scenes::builtin::{self, Builtin};
+use scenes::builtin::{self, BuiltinPage};
 use scenes::show::{self, Entry, Stage, ENTRIES_IN_ORDER};
 use scenes::{file, Scene};
 
@@ -35,7 +35,7 @@ pub fn builtin_scene(name: &str) -> Result<Scene> {
 
 /// A scene named on the command line: a built-in page, or a scene file.
 pub enum SceneSource {
-    Builtin(&'static Builtin),
+    Builtin(&'static BuiltinPage),
     File(SceneFile),
 }
 

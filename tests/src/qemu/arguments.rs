@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use protocol::Firmware;
 
 use super::board::{HPET_TABLE_FILE, MADT_FILE};
-use super::options::{Clock, Cpu, Display, ExitDevice, Medium, QemuOptions, SerialLine};
+use super::options::{Cpu, Display, ExitDevice, Medium, QemuOptions, SerialLine, TimeBase};
 use install::emulators::{ovmf_code, ovmf_secure_boot_code};
 
 /// The slot `QemuOptions::display_ahead` puts the card in, and the QEMU
@@ -72,7 +72,7 @@ pub(super) fn qemu_arguments(image: &Path, run_dir: &Path, options: QemuOptions)
     flag(&mut args, "-accel", "tcg");
     // Plenty for the bootloader and the kernel's heap; small enough to start fast.
     flag(&mut args, "-m", "128M");
-    if options.clock == Clock::InstructionCount {
+    if options.clock == TimeBase::InstructionCount {
         // `shift=0`: each instruction advances the virtual clock by 2^0 ns,
         // which rdtsc then reads; `sleep=off`: when the guest halts, the
         // clock jumps to the next timer instead of waiting for the host.
@@ -281,7 +281,7 @@ mod tests {
     #[test]
     fn only_instruction_counting_adds_icount() {
         assert!(!arguments(QemuOptions::default()).iter().any(|a| a == "-icount"));
-        let args = arguments(QemuOptions { clock: Clock::InstructionCount, ..QemuOptions::default() });
+        let args = arguments(QemuOptions { clock: TimeBase::InstructionCount, ..QemuOptions::default() });
         assert!(has_pair(&args, "-icount", "shift=0,sleep=off"), "{args:?}");
     }
 

@@ -11,5 +11,5 @@ mod process;
 pub mod qmp;
 
 pub use board::{Board, DisplayAhead};
-pub use options::{Adapter, Clock, Cpu, Display, ExitDevice, Medium, QemuOptions, SerialLine};
+pub use options::{Adapter, Cpu, Display, ExitDevice, Medium, QemuOptions, SerialLine, TimeBase};
 pub use process::Qemu;

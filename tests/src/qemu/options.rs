@@ -166,7 +166,7 @@ impl Adapter {
 
 /// What the guest's clocks (the PIT, rdtsc) follow.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum Clock {
+pub enum TimeBase {
     /// The host's time: the demo plays at its real pace, and rdtsc counts
     /// host time spent emulating, which moves with the host's load.
     #[default]
@@ -222,7 +222,7 @@ pub struct QemuOptions {
     pub medium: Medium,
     pub display: Display,
     pub adapter: Adapter,
-    pub clock: Clock,
+    pub clock: TimeBase,
     pub serial: SerialLine,
     /// With `Firmware::Uefi`: OVMF's Secure Boot build on the q35 machine
     /// (it needs SMM), its variable store Microsoft's keys with Secure Boot

@@ -1,5 +1,5 @@
 //! The `FATAL` frame: a CPU exception or a panic, named, after which the
-//! kernel stops (`kernel/src/fatal.rs`).
+//! kernel stops (`kernel/src/interrupts/fatal.rs`).
 
 use core::fmt;
 
@@ -199,7 +199,7 @@ mod tests {
             FatalReport::PageFault { address: 0xdeadbeef000, code: PageFaultCode::new(0), at: 0x20_1234 },
             FatalReport::PageFault { address: 0, code: PageFaultCode::new(0b11 | 1 << 31 | 1 << 40), at: 2 },
             FatalReport::DoubleFault { error: 0, at: 0x20_1000, stack: 0x10_0000 },
-            FatalReport::Panic("panicked at kernel/src/fault.rs:60:30:\nFAULT panic: the host asked for it"),
+            FatalReport::Panic("panicked at kernel/src/interrupts/fault.rs:60:30:\nFAULT panic: the host asked for it"),
             FatalReport::Panic(""),
             FatalReport::HandlerReturned(FaultKind::PageFault),
         ];

@@ -19,7 +19,7 @@ pub enum LogEvent {
     /// At boot, COM1's IRQ 4 did not arrive: the kernel receives by
     /// polling alone.
     Com1Polling,
-    /// At boot, the PIT's IRQ 0 did not arrive: the console never halts.
+    /// At boot, the PIT's IRQ 0 did not arrive: the server never halts.
     NoTimerTick,
     /// Under UEFI, the firmware's framebuffer is not in the memory of the
     /// VGA at `vga_at`: the frame goes to the framebuffer.
@@ -141,7 +141,7 @@ impl EndedAt {
     }
 }
 
-/// The machine the kernel found, and by what signs (`kernel/src/machine.rs`).
+/// The machine the kernel found, and by what signs (`kernel/src/platform/machine.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct MachineEvidence {
     pub machine: Machine,
@@ -153,7 +153,7 @@ pub struct MachineEvidence {
 }
 
 const COM1_POLLING: &str = "COM1: its interrupt (IRQ 4) did not arrive; receiving by polling alone";
-const NO_TIMER_TICK: &str = "PIT: its interrupt (IRQ 0) did not arrive; the console waits without halting";
+const NO_TIMER_TICK: &str = "PIT: its interrupt (IRQ 0) did not arrive; the server waits without halting";
 const NO_FRAMEBUFFER: &str = "video: the loader handed over no framebuffer (the firmware's graphics mode has none it \
                               can draw in: a PixelBitmask or BltOnly mode, or no graphics output at all)";
 const BESIDE_THE_VGA: [&str; 2] = [
@@ -482,7 +482,7 @@ mod tests {
             "machine: qemu (CPUID hypervisor \"TCGTCGTCGTCG\", host bridge subsystem 1af4:1100)"
         );
         assert_eq!(com1.to_string(), "COM1: its interrupt (IRQ 4) did not arrive; receiving by polling alone");
-        assert_eq!(pit.to_string(), "PIT: its interrupt (IRQ 0) did not arrive; the console waits without halting");
+        assert_eq!(pit.to_string(), "PIT: its interrupt (IRQ 0) did not arrive; the server waits without halting");
         let nmi = LogEvent::Nmi { count: 1, reason: 0x20, serr: false, iochk: false };
         assert_eq!(nmi.to_string(), "NMI 1 (port 0x61 = 0x20: no SERR#, no IOCHK#); the kernel carries on");
         let stray = LogEvent::StrayInterrupt { vector: 0x99, count: 2, ended: EndedAt::LocalApic };

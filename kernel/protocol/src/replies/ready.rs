@@ -60,7 +60,7 @@ impl PciAddress {
 }
 
 /// The machine the kernel found itself on, as far as it can tell without
-/// touching a port it has not identified (`kernel/src/machine.rs`). Only on
+/// touching a port it has not identified (`kernel/src/platform/machine.rs`). Only on
 /// QEMU does the kernel answer `EXIT` and `FAULT`, and write QEMU's exit
 /// port after a fatal error.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -244,7 +244,7 @@ impl Ready {
 }
 
 /// The memory type the CPU writes the live output with, as the kernel's
-/// page tables and the PAT give it (`kernel/src/pat.rs`): `memory=uc`,
+/// page tables and the PAT give it (`kernel/src/platform/pat.rs`): `memory=uc`,
 /// `wc`, `wt`, `wp`, `wb` or `uc-` in `READY`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MemoryType {

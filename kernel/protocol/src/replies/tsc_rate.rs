@@ -5,7 +5,7 @@ use core::fmt;
 
 use super::fields::{Fields, Malformed};
 
-/// How the kernel knows its time-stamp counter's rate (`kernel/src/clock.rs`).
+/// How the kernel knows its time-stamp counter's rate (`kernel/src/time/clock.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ClockSource {
     /// Counted against the PIT at boot.

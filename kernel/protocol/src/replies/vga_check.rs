@@ -189,7 +189,7 @@ fn read_mapping(prose: &mut Prose<'_>) -> Result<PageMapping, Malformed> {
     Ok(PageMapping { pages, page_size, pat_entry, memory, uniform })
 }
 
-/// `VGACHECK`'s answer on each path the frame can take (`kernel/src/video.rs`).
+/// `VGACHECK`'s answer on each path the frame can take (`kernel/src/video/screen.rs`).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum VgaCheck {
     /// Mode 13h: `vga: K mismatches[: M; M...]; window S-E: MAPPING; PAT

@@ -2,14 +2,14 @@
 
 use super::pace::STILL_FRAMES;
 use super::{lamothe, race, shaded};
-use crate::builtin::{self, Builtin};
+use crate::builtin::{self, BuiltinPage};
 use raster::MethodId;
 
 /// What an entry draws.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Kind {
     /// A built-in scene, the same on every frame.
-    Still(Builtin),
+    Still(BuiltinPage),
     /// LaMothe's rotation test: a convex n-gon and quads turning 360 degrees.
     LamotheRotate,
     /// The WGT triangle, Gouraud shaded through a palette ramp.
@@ -22,7 +22,7 @@ pub(super) enum Kind {
     Race,
     /// A built-in page drawn by every method in turn, on the race's
     /// schedule: real art, where the methods' failures show.
-    EveryMethod(Builtin),
+    EveryMethod(BuiltinPage),
 }
 
 /// One scene of the show.
@@ -38,7 +38,7 @@ pub struct Entry {
 
 impl Entry {
     /// A still page: the built-in scene, with its name and its method.
-    const fn still(builtin: Builtin) -> Self {
+    const fn still(builtin: BuiltinPage) -> Self {
         Self { name: builtin.name, frames: 1, method: builtin.method, kind: Kind::Still(builtin) }
     }
 
@@ -49,7 +49,7 @@ impl Entry {
     /// The built-in page the entry draws, for a still and for a page drawn
     /// by every method in turn; `None` for an animation of the show's own
     /// polygons (all convex).
-    pub fn page(&self) -> Option<Builtin> {
+    pub fn page(&self) -> Option<BuiltinPage> {
         match self.kind {
             Kind::Still(page) | Kind::EveryMethod(page) => Some(page),
             _ => None,

@@ -27,7 +27,7 @@ mod trig;
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::builtin::Builtin;
+use crate::builtin::BuiltinPage;
 use crate::scene::{DrawReport, Scene};
 use entries::Kind;
 use raster::sink;
@@ -145,7 +145,12 @@ impl Stage {
 
 /// Draws built-in `page` with `method` onto `target`, building the page
 /// into `built` unless it is the one built last.
-fn draw_page<S: SpanSink>(built: &mut Option<Scene>, page: &Builtin, method: MethodId, target: &mut S) -> DrawReport {
+fn draw_page<S: SpanSink>(
+    built: &mut Option<Scene>,
+    page: &BuiltinPage,
+    method: MethodId,
+    target: &mut S,
+) -> DrawReport {
     let scene = match built {
         Some(scene) if scene.name == page.name => scene,
         built => built.insert(page.scene()),

@@ -7,7 +7,7 @@
 use std::fmt;
 
 use raster::{Point, Polygon, SCREEN, SUBPIXEL_BITS};
-use scenes::builtin::{self, Builtin};
+use scenes::builtin::{self, BuiltinPage};
 use scenes::file::{self, LineError, Statement};
 use scenes::{Op, Scene};
 
@@ -70,7 +70,7 @@ impl fmt::Display for InputError {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Origin {
     /// A built-in page; its edits are what differs from the page as built.
-    Builtin(&'static Builtin),
+    Builtin(&'static BuiltinPage),
     /// A scene file, pasted or loaded; its text is the whole state.
     File,
 }
@@ -101,7 +101,7 @@ impl Explorer {
     }
 
     /// A built-in page, as built.
-    pub fn with_builtin(page: &'static Builtin) -> Self {
+    pub fn with_builtin(page: &'static BuiltinPage) -> Self {
         Self::new(page.scene(), Origin::Builtin(page))
     }
 
