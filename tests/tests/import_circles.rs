@@ -9,9 +9,12 @@
 //! followed through re-exports to the file that defines it, so a module's
 //! `pub use` of its own submodules' items (its face) is no import of its
 //! own; any other re-export is. Each crate is read from its roots (the
-//! files no `mod` declares); paths inside macro calls are not read, nor
-//! are imports from one crate of the workspace into another (Cargo keeps
-//! those acyclic crate by crate, not folder by folder).
+//! files no `mod` declares); paths inside macro calls are not read.
+//!
+//! Between crates, the manifests are read: no crate depends on itself
+//! through others, dev-dependencies included (which Cargo allows), and the
+//! top-level folders the crates live in (kernel/, boot/, xtask/, tests/)
+//! depend on each other one way.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -425,5 +428,153 @@ fn a_circle_of_files_or_of_folders_is_caught_and_a_face_is_not_one() -> Result<(
     assert_eq!(found.len(), 2, "{found:?}");
     assert!(found[0].starts_with("files: src/a.rs -> src/b.rs (use crate::b::B); src/b.rs -> src/a.rs"), "{found:?}");
     assert_eq!(found[1], "rooms of src/: src/p/ <-> src/q/");
+    Ok(())
+}
+
+/// The workspace's crates, read from the manifests under `root`: each
+/// crate's name, its folder, and the workspace crates it depends on, in
+/// any of its dependency tables (normal, dev, build, and each target's).
+fn crates(root: &Path) -> Result<BTreeMap<String, (PathBuf, BTreeSet<String>)>> {
+    let read = |path: &Path| -> Result<toml::Table> {
+        let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+        toml::from_str(&text).with_context(|| format!("parsing {}", path.display()))
+    };
+    let workspace = read(&root.join("Cargo.toml"))?;
+    let members: Vec<PathBuf> = workspace["workspace"]["members"]
+        .as_array()
+        .context("the workspace's members")?
+        .iter()
+        .filter_map(|member| member.as_str().map(PathBuf::from))
+        .collect();
+    let manifests: Vec<(PathBuf, toml::Table)> = members
+        .iter()
+        .map(|member| Ok((member.clone(), read(&root.join(member).join("Cargo.toml"))?)))
+        .collect::<Result<_>>()?;
+    let name_at: BTreeMap<PathBuf, String> = manifests
+        .iter()
+        .filter_map(|(member, manifest)| {
+            Some((member.clone(), manifest.get("package")?.get("name")?.as_str()?.to_string()))
+        })
+        .collect();
+    // A dependency's folder: its own `path`, or the workspace's entry's.
+    let shared = workspace["workspace"].get("dependencies").and_then(toml::Value::as_table);
+    let folder_of = |member: &Path, key: &str, spec: &toml::Value| -> Option<PathBuf> {
+        if let Some(path) = spec.get("path").and_then(toml::Value::as_str) {
+            return Some(normalized(&member.join(path)));
+        }
+        let inherited = spec.get("workspace").and_then(toml::Value::as_bool) == Some(true);
+        inherited.then(|| shared?.get(key)?.get("path")?.as_str().map(PathBuf::from)).flatten()
+    };
+    let mut crates = BTreeMap::new();
+    for (member, manifest) in &manifests {
+        let Some(name) = name_at.get(member) else { continue };
+        let targets = manifest.get("target").and_then(toml::Value::as_table).into_iter().flat_map(|t| t.values());
+        let tables = std::iter::once(manifest).chain(targets.filter_map(toml::Value::as_table));
+        let mut depends = BTreeSet::new();
+        for table in tables {
+            for kind in ["dependencies", "dev-dependencies", "build-dependencies"] {
+                for (key, spec) in table.get(kind).and_then(toml::Value::as_table).into_iter().flatten() {
+                    if let Some(other) = folder_of(member, key, spec).and_then(|folder| name_at.get(&folder)) {
+                        depends.insert(other.clone());
+                    }
+                }
+            }
+        }
+        crates.insert(name.clone(), (member.clone(), depends));
+    }
+    Ok(crates)
+}
+
+/// `path` with its `..` and `.` taken out.
+fn normalized(path: &Path) -> PathBuf {
+    let mut out = PathBuf::new();
+    for part in path.components() {
+        match part {
+            std::path::Component::ParentDir => {
+                out.pop();
+            }
+            std::path::Component::CurDir => {}
+            other => out.push(other),
+        }
+    }
+    out
+}
+
+/// Every circle of crates (Cargo refuses one of normal dependencies, not
+/// one through a dev-dependency), and of the top-level folders the crates
+/// live in, each shown with its members.
+fn crate_circles_in(root: &Path) -> Result<Vec<String>> {
+    let crates = crates(root)?;
+    let edges: BTreeMap<String, BTreeSet<String>> =
+        crates.iter().map(|(name, (_, depends))| (name.clone(), depends.clone())).collect();
+    let mut report: Vec<String> =
+        circles(&edges).into_iter().map(|circle| format!("crates: {}", circle.join(" <-> "))).collect();
+    let top = |name: &String| -> String {
+        let folder = &crates[name].0;
+        folder.components().next().map_or(String::new(), |first| first.as_os_str().to_string_lossy().into_owned())
+    };
+    let mut folders: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (name, depends) in &edges {
+        for other in depends.iter().filter(|other| top(other) != top(name)) {
+            folders.entry(top(name)).or_default().insert(top(other));
+        }
+    }
+    for circle in circles(&folders) {
+        let ties: Vec<String> = edges
+            .iter()
+            .flat_map(|(name, depends)| depends.iter().map(move |other| (name, other)))
+            .filter(|(name, other)| {
+                top(name) != top(other) && circle.contains(&top(name)) && circle.contains(&top(other))
+            })
+            .map(|(name, other)| format!("{name} ({}/) -> {other} ({}/)", top(name), top(other)))
+            .collect();
+        report.push(format!("top-level folders: {}; through {}", circle.join(" <-> "), ties.join(", ")));
+    }
+    Ok(report)
+}
+
+#[test]
+fn no_crate_and_no_top_level_folder_depends_on_itself_in_a_circle() -> Result<()> {
+    let root = workspace::root();
+    let crates = crates(root)?;
+    let depends: usize = crates.values().map(|(_, depends)| depends.len()).sum();
+    assert!(crates.len() > 10 && depends > 20, "{} crates, {depends} dependencies read", crates.len());
+    let found = crate_circles_in(root)?;
+    assert!(found.is_empty(), "{} circles:\n{}", found.len(), found.join("\n"));
+    Ok(())
+}
+
+#[test]
+fn a_circle_of_crates_or_of_top_level_folders_is_caught() -> Result<()> {
+    let manifest =
+        |name: &str, dependencies: &str| format!("[package]\nname = \"{name}\"\nversion = \"0.1.0\"\n\n{dependencies}");
+    let workspace = "[workspace]\nmembers = [\"low/a\", \"low/b\", \"high/c\"]\n\n\
+                     [workspace.dependencies]\na = { path = \"low/a\" }\nc = { path = \"high/c\" }\n";
+    // a (low/) depends on b (low/) by path; c (high/) on a, and a
+    // dev-depends on c: a circle of crates through a dev-dependency, and
+    // of the folders low/ and high/.
+    let tangled = made_up(&[
+        ("Cargo.toml", workspace),
+        (
+            "low/a/Cargo.toml",
+            &manifest("a", "[dependencies]\nb = { path = \"../b\" }\n\n[dev-dependencies]\nc.workspace = true\n"),
+        ),
+        ("low/b/Cargo.toml", &manifest("b", "")),
+        ("high/c/Cargo.toml", &manifest("c", "[target.'cfg(unix)'.dependencies]\na.workspace = true\n")),
+    ])?;
+    let found = crate_circles_in(tangled.path())?;
+    assert_eq!(
+        found,
+        ["crates: a <-> c", "top-level folders: high <-> low; through a (low/) -> c (high/), c (high/) -> a (low/)"],
+        "{found:?}"
+    );
+    // Without the dev-dependency: one way.
+    let one_way = made_up(&[
+        ("Cargo.toml", workspace),
+        ("low/a/Cargo.toml", &manifest("a", "[dependencies]\nb = { path = \"../b\" }\n")),
+        ("low/b/Cargo.toml", &manifest("b", "")),
+        ("high/c/Cargo.toml", &manifest("c", "[target.'cfg(unix)'.dependencies]\na.workspace = true\n")),
+    ])?;
+    assert_eq!(crate_circles_in(one_way.path())?, Vec::<String>::new());
     Ok(())
 }

@@ -1,7 +1,7 @@
 //! `cargo xtask fuzz [--seconds N] [TARGET]`: coverage-guided fuzzing with
 //! libFuzzer through cargo-fuzz, with the pinned nightly. The targets are
-//! the `fuzz` crate's (tests/fuzz; the cargo-fuzz binaries are in
-//! tests/fuzz/targets); each runs for N seconds, one after the other (one
+//! the `fuzz` crate's (xtask/fuzz; the cargo-fuzz binaries are in
+//! xtask/fuzz/targets); each runs for N seconds, one after the other (one
 //! fuzzer at a time: the machine is shared). Everything lives under
 //! target/fuzz: the seed corpora and dictionaries, written afresh from the
 //! built-in scenes on every run, the corpus each target grows and keeps
@@ -35,7 +35,7 @@ use install::toolchain::pinned;
 use crate::opt::FuzzOpt;
 
 /// The cargo-fuzz project, from the workspace root.
-pub const FUZZ_DIR: &str = "tests/fuzz/targets";
+pub const FUZZ_DIR: &str = "xtask/fuzz/targets";
 /// Longest one input may take before libFuzzer calls it a hang: far above
 /// any honest input (the slowest, an explorer scene judged by the
 /// reference, takes under a second).
@@ -361,15 +361,15 @@ mod tests {
     #[test]
     fn a_crash_names_its_input_and_its_panic() {
         let log = "#2\tINITED cov: 10 ft: 10 corp: 1/1b exec/s: 0 rss: 30Mb\n\
-            thread '<unnamed>' panicked at tests/fuzz/src/methods.rs:33:5:\n\
+            thread '<unnamed>' panicked at xtask/fuzz/src/methods.rs:33:5:\n\
             ==9== ERROR: libFuzzer: deadly signal\n\
             artifact_prefix='target/fuzz/artifacts/methods/'; Test unit written to target/fuzz/artifacts/methods/crash-ab12\n";
         let run = FuzzRun::read("methods", &lines(log), exited(1));
         let Some(Failure::Crash { input, reason }) = run.failure.clone() else { panic!("{:?}", run.failure) };
         assert_eq!(input, "target/fuzz/artifacts/methods/crash-ab12");
-        assert!(reason.contains("panicked at tests/fuzz/src/methods.rs"), "{reason}");
+        assert!(reason.contains("panicked at xtask/fuzz/src/methods.rs"), "{reason}");
         let report = run.failure_report(&Places { root: PathBuf::from("target/fuzz") }).unwrap();
-        assert!(report.contains("fuzz run --fuzz-dir tests/fuzz/targets --sanitizer none --target-dir target/fuzz methods target/fuzz/artifacts/methods/crash-ab12"), "{report}");
+        assert!(report.contains("fuzz run --fuzz-dir xtask/fuzz/targets --sanitizer none --target-dir target/fuzz methods target/fuzz/artifacts/methods/crash-ab12"), "{report}");
     }
 
     #[test]

@@ -7,7 +7,7 @@
 //! the pinned nightly and its clippy where missing (the minimal rustup
 //! profile has neither tool), the C libraries the lab's peers build
 //! against (libcairo, Allegro 4, SDL2 with SDL2_gfx, GD), and a C++ compiler for the fuzz targets' libFuzzer.
-//! The fuzz targets (tests/fuzz/targets, a workspace of their own) are
+//! The fuzz targets (xtask/fuzz/targets, a workspace of their own) are
 //! formatted and linted apart.
 
 use std::process::Command;
@@ -131,10 +131,10 @@ mod tests {
     fn the_fuzz_targets_are_formatted_and_linted_in_their_own_workspace() {
         let fmt = command_line(&fuzz_targets_fmt_check());
         assert!(fmt.contains(" fmt --all --check --manifest-path "), "{fmt}");
-        assert!(fmt.ends_with("tests/fuzz/targets/Cargo.toml"), "{fmt}");
+        assert!(fmt.ends_with("xtask/fuzz/targets/Cargo.toml"), "{fmt}");
         let clippy = command_line(&fuzz_targets_clippy());
         assert!(clippy.starts_with("cargo +nightly-2026-10-01 clippy --all-targets --manifest-path "), "{clippy}");
-        assert!(clippy.contains("tests/fuzz/targets/Cargo.toml --target-dir "), "{clippy}");
+        assert!(clippy.contains("xtask/fuzz/targets/Cargo.toml --target-dir "), "{clippy}");
         assert!(clippy.ends_with(" -- -D warnings"), "{clippy}");
     }
 

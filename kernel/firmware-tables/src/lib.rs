@@ -3,7 +3,7 @@
 //! kernel reads, maps or writes there.
 //!
 //! The kernel gives this crate two things: the memory map's regions, each
-//! with its [`Class`] (`kernel/src/memory_map.rs` turns the bootloader's
+//! with its [`Class`] (`kernel/src/platform/memory_map.rs` turns the bootloader's
 //! region kinds into classes), and a way to read physical memory. Nothing
 //! here touches hardware, so the host tests every decision on tables and
 //! maps of its own making, hostile ones included, which QEMU cannot be

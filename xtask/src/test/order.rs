@@ -9,23 +9,23 @@
 /// Seconds each long binary took alone (see the module's note): its
 /// package, its target, the seconds.
 const MEASURED: &[(&str, &str, u32)] = &[
-    ("harness", "adapters", 133),
-    ("harness", "secure_boot_key", 111),
-    ("harness", "secure_boot", 108),
-    ("harness", "soak", 98),
-    ("harness", "serial_check", 96),
-    ("harness", "loader_refusals", 70),
-    ("harness", "clock", 63),
+    ("suites", "adapters", 133),
+    ("suites", "secure_boot_key", 111),
+    ("suites", "secure_boot", 108),
+    ("suites", "soak", 98),
+    ("suites", "serial_check", 96),
+    ("suites", "loader_refusals", 70),
+    ("suites", "clock", 63),
     ("xtask", "xtask", 34),
-    ("harness", "exit", 34),
-    ("harness", "demo_keys", 31),
-    ("harness", "show", 28),
-    ("harness", "vga_path", 25),
-    ("harness", "bench", 24),
-    ("harness", "explorer", 22),
-    ("harness", "line_trouble", 20),
-    ("harness", "interrupts", 19),
-    ("harness", "pages", 16),
+    ("suites", "exit", 34),
+    ("suites", "demo_keys", 31),
+    ("suites", "show", 28),
+    ("suites", "vga_path", 25),
+    ("suites", "bench", 24),
+    ("suites", "explorer", 22),
+    ("suites", "line_trouble", 20),
+    ("suites", "interrupts", 19),
+    ("suites", "pages", 16),
 ];
 
 /// The seconds `target` of `package` took alone, or 0 if not measured.
@@ -44,7 +44,7 @@ mod tests {
         let root = install::workspace::root();
         for &(package, target, _) in MEASURED {
             let file = match (package, target) {
-                ("harness", suite) => root.join("tests/tests").join(format!("{suite}.rs")),
+                ("suites", suite) => root.join("tests/tests").join(format!("{suite}.rs")),
                 ("xtask", "xtask") => root.join("xtask/src/main.rs"),
                 other => panic!("{other:?}: not a binary the test knows how to find"),
             };
@@ -54,8 +54,8 @@ mod tests {
 
     #[test]
     fn the_longest_comes_first_and_the_unmeasured_last() {
-        assert!(expected_seconds("harness", "adapters") > expected_seconds("harness", "pages"));
-        assert_eq!(expected_seconds("harness", "doc_paths"), 0);
+        assert!(expected_seconds("suites", "adapters") > expected_seconds("suites", "pages"));
+        assert_eq!(expected_seconds("suites", "doc_paths"), 0);
         assert_eq!(expected_seconds("raster", "adapters"), 0);
     }
 }

@@ -8,7 +8,6 @@
 use crate::methods::info::Refusal;
 
 use super::super::edge::{EdgeStepper, ShortEdge};
-use super::lent::Stepper;
 use super::tables::{Active, Chain, Crossings, Edge, EdgeRoom, Run};
 
 /// Room for `exact`'s general path for polygons of up to `EDGES` edges
@@ -130,15 +129,15 @@ pub(super) struct Common<'s> {
     runs: &'s mut [Run],
 }
 
-/// Tables for `edges` edges of the kind `E` in `room`, or a refusal when
-/// it holds fewer. Sorted in place, as on the stack: no room for a wide
-/// sort.
+/// Tables for `edges` edges of the kind `E` in its slots `own` and the
+/// `common` tables of a fixed room, or a refusal when they hold fewer.
+/// Sorted in place, as on the stack: no room for a wide sort.
 #[allow(clippy::type_complexity)]
-pub(super) fn tables<E: Stepper>(
-    room: FixedRoom<'_>,
+pub(super) fn tables<'s, E>(
+    own: Slots<'s, E>,
+    common: Common<'s>,
     edges: usize,
-) -> Result<(EdgeRoom<'_, E>, Crossings<'_, E>), Refusal> {
-    let (own, common) = E::fixed(room);
+) -> Result<(EdgeRoom<'s, E>, Crossings<'s, E>), Refusal> {
     if edges > own.edges.len() {
         return Err(Refusal::TooManyVertices);
     }

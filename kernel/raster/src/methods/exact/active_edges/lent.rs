@@ -59,8 +59,14 @@ pub(super) trait Stepper: Crossing {
     ) -> Result<(EdgeRoom<'_, Self>, Crossings<'_, Self>), Refusal> {
         match scratch.0 {
             #[cfg(feature = "alloc")]
-            Lent::Heap(scratch) => scratch::tables(scratch, edges, width),
-            Lent::Fixed(room) => fixed::tables(room, edges),
+            Lent::Heap(scratch) => {
+                let (own, shared) = Self::room(scratch);
+                scratch::tables(own, shared, edges, width)
+            }
+            Lent::Fixed(room) => {
+                let (own, common) = Self::fixed(room);
+                fixed::tables(own, common, edges)
+            }
         }
     }
 }

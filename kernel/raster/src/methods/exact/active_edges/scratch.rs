@@ -13,7 +13,6 @@ use alloc::vec::Vec;
 use crate::methods::info::Refusal;
 
 use super::super::edge::{EdgeStepper, ShortEdge};
-use super::lent::Stepper;
 use super::tables::{Active, Chain, Crossings, Edge, EdgeRoom, Run, Wide};
 
 /// Room for `exact`'s general path, for polygons with too many edges for
@@ -86,16 +85,16 @@ fn room<T: Clone + Default>(table: &mut Vec<T>, len: usize) -> Result<&mut [T], 
     Ok(&mut table[..len])
 }
 
-/// Tables for `edges` edges of the kind `E` in `scratch`, grown to hold
-/// them if they must, with room to sort or count their crossings on a
-/// target `width` wide.
+/// Tables for `edges` edges of the kind `E` in its room `own` and the
+/// `shared` tables of a scratch, grown to hold them if they must, with
+/// room to sort or count their crossings on a target `width` wide.
 #[allow(clippy::type_complexity)]
-pub(super) fn tables<E: Stepper>(
-    scratch: &mut Scratch,
+pub(super) fn tables<'s, E: Clone + Default>(
+    own: &'s mut Room<E>,
+    shared: &'s mut Shared,
     edges: usize,
     width: i32,
-) -> Result<(EdgeRoom<'_, E>, Crossings<'_, E>), Refusal> {
-    let (own, shared) = E::room(scratch);
+) -> Result<(EdgeRoom<'s, E>, Crossings<'s, E>), Refusal> {
     // Counted per column when there are at most four columns per edge;
     // every winding sum stays within `±edges`, an `i32`.
     let columns = width.max(0) as usize + 1;

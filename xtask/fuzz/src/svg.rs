@@ -36,7 +36,7 @@ pub fn check(data: &[u8]) {
 pub fn seeds() -> Vec<(String, Vec<u8>)> {
     macro_rules! drawing {
         ($name:literal) => {
-            ($name.replace('/', "-"), include_bytes!(concat!("../../../xtask/svg-import/tests/svg/", $name)).to_vec())
+            ($name.replace('/', "-"), include_bytes!(concat!("../../svg-import/tests/svg/", $name)).to_vec())
         };
     }
     vec![
