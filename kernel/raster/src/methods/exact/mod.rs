@@ -108,7 +108,8 @@ fn flags_pay(bounds: &Bounds, edges: i64, polygon: &Polygon) -> bool {
 /// kbench`, QEMU counting them): where the box has at most 2 rows per
 /// edge. Past that the flags' extra instructions cost more than the edge
 /// table's: the Black Book page of 40 V shapes (40 rows, 6 edges each)
-/// took 8% more instructions with the host's bound.
+/// took more instructions with the host's bound
+/// (docs/lab-history.md#2026-11-28-the-edge-flags-chosen-more-3359300-d58c787-3c99766).
 #[cfg(target_os = "none")]
 #[inline(always)]
 fn flags_pay(bounds: &Bounds, edges: i64, _polygon: &Polygon) -> bool {
@@ -198,8 +199,8 @@ impl<'a> ExactPath<'a> {
     /// takes any polygon, with no test either: one that encloses nothing
     /// adds nothing there, as the rule says. Dropping such contours first,
     /// so that one monotone contour among them took the monotone fill,
-    /// cost the glyphs 4% of their time, and the families of several
-    /// contours have none (`docs/lab.md`, "This round's fourth change").
+    /// cost the glyphs time, and the families of several contours have
+    /// none (docs/lab-history.md#2026-11-29-no-classification-for-several-contours-b3d2f46).
     #[inline]
     pub fn choose(polygon: &'a Polygon) -> Option<Self> {
         if let [contour] = polygon.contours.as_slice() {
