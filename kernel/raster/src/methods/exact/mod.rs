@@ -90,10 +90,10 @@ pub struct Exact;
 /// same way from row to row and polygon to polygon, while the edge
 /// table's sorting and events do not, and a polygon of several contours
 /// (a shape with holes, a glyph) gives the edge table more chains to start
-/// and merge: with 64 for it too, the holes took 0.91 of their time (the
-/// lab's "What modelling costs" times each path alone, family by family;
-/// `docs/lab.md`, "Where `exact`'s time goes", says how the bounds were
-/// chosen).
+/// and merge, so 64 for it too made the holes quicker (the lab's "What
+/// modelling costs" times each path alone, family by family;
+/// docs/lab-history.md#2026-11-28-several-contours-on-the-edge-flags-87d14f1
+/// says how the bounds were chosen).
 #[cfg(not(target_os = "none"))]
 #[inline(always)]
 fn flags_pay(bounds: &Bounds, edges: i64, polygon: &Polygon) -> bool {
