@@ -481,6 +481,9 @@ mod tests {
         let table = BenchTable::from_json(&serde_json::from_str(&json).expect("it is JSON")).expect("it reads back");
         let page = std::fs::read_to_string(docs.join("lab-results.md")).expect("docs/lab-results.md is there");
         let made = table.markdown(3);
-        assert!(page.contains(&made), "docs/lab-results.md's kernel table differs from docs/kernel_bench.json's:\n{made}");
+        assert!(
+            page.contains(&made),
+            "docs/lab-results.md's kernel table differs from docs/kernel_bench.json's:\n{made}"
+        );
     }
 }
