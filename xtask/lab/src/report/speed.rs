@@ -6,7 +6,7 @@
 use std::fmt::Write;
 
 use super::format::{count, duration, ratio};
-use super::Summary;
+use super::summary::{closest_peer, Summary};
 use crate::results::{Kind, Results, Row, EXACT};
 use crate::stats::{disagreement, median};
 use crate::timing::Timed;
@@ -46,17 +46,6 @@ pub(super) fn spans_against_stores(out: &mut String, results: &Results) {
         );
     }
     out.push('\n');
-}
-
-/// The peer closest to `exact`'s time on `family`: the least time over
-/// `exact`'s of the peers timed there.
-pub fn closest_peer<'a>(results: &'a Results, family: &str) -> Option<&'a Row> {
-    results.rows.iter().filter(|r| r.kind == Kind::Peer && r.family == family && r.time.vs_exact.is_some()).min_by(
-        |a, b| {
-            let ratio = |r: &Row| r.time.vs_exact.map_or(f64::INFINITY, |v| v.ratio);
-            ratio(a).total_cmp(&ratio(b))
-        },
-    )
 }
 
 /// Per family, the peer closest to `exact` with its time over `exact`'s

@@ -10,8 +10,7 @@ use std::fmt::Write;
 use serde::{Deserialize, Serialize};
 
 use super::format::{duration, ratio};
-use super::speed::closest_peer;
-use crate::results::{Results, EXACT};
+use crate::results::{Kind, Results, Row, EXACT};
 use crate::stats::Ratio;
 
 /// A run's figures for the docs.
@@ -85,6 +84,17 @@ impl Summary {
         }
         table
     }
+}
+
+/// The peer closest to `exact`'s time on `family`: the least time over
+/// `exact`'s of the peers timed there.
+pub(super) fn closest_peer<'a>(results: &'a Results, family: &str) -> Option<&'a Row> {
+    results.rows.iter().filter(|r| r.kind == Kind::Peer && r.family == family && r.time.vs_exact.is_some()).min_by(
+        |a, b| {
+            let ratio = |r: &Row| r.time.vs_exact.map_or(f64::INFINITY, |v| v.ratio);
+            ratio(a).total_cmp(&ratio(b))
+        },
+    )
 }
 
 #[cfg(test)]
