@@ -11,8 +11,9 @@ use protocol::HeapState;
 use scenes::builtin;
 use scenes::show::ENTRIES_IN_ORDER;
 
-/// Full cycles this test plays: one full cycle takes about 20 s under TCG
-/// here, and a leak or a fragmenting pattern shows from the second.
+/// Full cycles this test plays (what a cycle takes under TCG is in
+/// docs/testing.md#the-soak): a leak or a fragmenting pattern shows from
+/// the second.
 const CYCLES: usize = 3;
 
 /// Bytes the kernel's show stage takes at boot and keeps: the 320x200

@@ -16,9 +16,10 @@
 //! padding Intel advises against the jump-conditional-code erratum of its
 //! Skylake-derived cores, whose microcode fix makes such a jump miss the
 //! decoded-instruction cache). Without it, where the loops of a fill
-//! happen to fall moves their time by 10-20% from one build to the next
-//! on those cores with no change to their code, our code's and the Rust
-//! peers' alike; with it every build lays its jumps out the same way.
+//! happen to fall moves their time from one build to the next on those
+//! cores with no change to their code, our code's and the Rust peers'
+//! alike (docs/lab.md#how-it-is-built-and-timed gives what was measured);
+//! with it every build lays its jumps out the same way.
 //! Other x86-64 cores get the same padding; the lab has been timed with
 //! and without it on Cascade Lake only.
 //!

@@ -26,7 +26,7 @@ pub fn clear<S: SpanSink + ?Sized>(sink: &mut S, color: u8) {
 /// on the short spans that most polygons are made of, and more than the
 /// inline blocks on the holed polygons' spans of up to 180 bytes, while on
 /// the large convex polygons' rows of up to 320 bytes the two were as
-/// quick (`docs/lab.md`); with 16-byte stores only, the call is the
+/// quick (docs/lab-history.md#2026-11-29-long-spans-inline-e3eca29); with 16-byte stores only, the call is the
 /// cheaper. The blocks are written out, not looped over: the compiler
 /// turns a loop of such stores into a `memset` call.
 #[inline(always)]

@@ -96,6 +96,40 @@ mod tests {
         assert!(self::target("nope").is_none());
     }
 
+    /// The seed counts a page's table gives, target by target: the rows of
+    /// the section `heading` whose first cell is a quoted name and whose
+    /// second is a number.
+    fn seed_counts(page: &str, heading: &str) -> Vec<(String, usize)> {
+        let section = page.split_once(heading).map_or("", |(_, after)| after);
+        let section = section.split("\n#").next().unwrap_or("");
+        section
+            .lines()
+            .filter_map(|line| {
+                let mut cells = line.strip_prefix("| `")?.split('|');
+                let name = cells.next()?.trim().strip_suffix('`')?;
+                Some((name.to_string(), cells.next()?.trim().parse().ok()?))
+            })
+            .collect()
+    }
+
+    #[test]
+    fn testing_md_gives_every_targets_seed_count_as_the_seeds_make_it() {
+        let page = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/testing.md");
+        let page = std::fs::read_to_string(page).expect("docs/testing.md is there");
+        let documented = seed_counts(&page, "### Inputs, seeds and dictionaries");
+        let made: Vec<(String, usize)> =
+            TARGETS.iter().map(|target| (target.name.to_string(), (target.seeds)().len())).collect();
+        assert_eq!(documented, made, "docs/testing.md's seed counts against the targets' seeds");
+    }
+
+    #[test]
+    fn a_seed_table_is_read_row_by_row_and_a_count_off_it_is_not() {
+        let page = "## Other\n| `methods` | 1 | elsewhere |\n### Seeds\n\n| target | seeds | what |\n|---|---:|---|\n\
+                    | `command` | 275 | lines |\n| `svg` | 14 | drawings |\n| `upload` | any bytes | no count |\n### Next\n\
+                    | `scene_file` | 10 | after |";
+        assert_eq!(seed_counts(page, "### Seeds"), [("command".to_string(), 275), ("svg".to_string(), 14)]);
+    }
+
     #[test]
     fn dictionary_words_are_quoted_and_escaped() {
         let words = ["poly".to_string(), "a\"b\\c\n".to_string()];

@@ -163,6 +163,22 @@ mod tests {
         assert_eq!(race.map(|shot| shot.frame).collect::<Vec<_>>(), (0..560).step_by(10).collect::<Vec<_>>());
     }
 
+    /// The frames of a cycle docs/testing.md gives: the number before
+    /// `before`, with its thousands separated by commas.
+    fn frames_before(page: &str, before: &str) -> Option<usize> {
+        let figure = page[..page.find(before)?].rsplit(' ').next()?;
+        figure.replace(',', "").parse().ok()
+    }
+
+    #[test]
+    fn testing_md_gives_the_frames_of_a_cycle_as_the_plan_makes_them() {
+        let page = std::fs::read_to_string(crate::workspace::root().join("docs/testing.md"))
+            .expect("docs/testing.md is there");
+        let page = page.split_whitespace().collect::<Vec<_>>().join(" ");
+        assert_eq!(frames_before(&page, " frames a cycle."), Some(plan(1).len()), "docs/testing.md's soak");
+        assert_eq!(frames_before("entry in demo order, 9,480 frames a cycle.", " frames a cycle."), Some(9480));
+    }
+
     const SETTLED: HeapState = HeapState { used: 1000, free_largest: 5000 };
 
     #[test]

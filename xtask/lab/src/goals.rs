@@ -4,7 +4,7 @@
 //! ones docs/lab.md#goals states: no wrong pixel, no allocation per
 //! polygon in `fill_auto`, faster than every peer. No ratio to a bound is
 //! a goal: a bound replays spans worked out before the clock starts
-//! (docs/lab.md#where-exacts-time-goes).
+//! (docs/lab-results.md#where-exacts-time-goes).
 
 use std::fmt::Write;
 

@@ -135,9 +135,11 @@ pub fn run(options: &LabOptions) -> Result<()> {
     write_real_shape_scenes(&families, &out.join("scenes"))?;
     let json = serde_json::to_string_pretty(&results).context("failed to serialise the results")?;
     write(&out.join("results.json"), &json)?;
+    let summary = serde_json::to_string_pretty(&report::Summary::of(&results)).context("failed to serialise")?;
+    write(&out.join("summary.json"), &(summary + "\n"))?;
     write(&out.join("report.md"), &report::markdown(&results))?;
     charts::draw_all(&results, out)?;
-    eprintln!("lab: wrote results.json, report.md and the charts to {}", out.display());
+    eprintln!("lab: wrote results.json, summary.json, report.md and the charts to {}", out.display());
     check(&out.join("results.json"))
 }
 

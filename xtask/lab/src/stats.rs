@@ -4,7 +4,7 @@
 //! The order statistics, means, deviations and Student's t quantiles are
 //! `statrs`'s.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use statrs::statistics::{Data, OrderStatistics, Statistics};
 
@@ -36,7 +36,7 @@ impl Spread {
 /// of the repeats' ratios, with its interval at [`CONFIDENCE`] (Student's
 /// t on the logarithms of the ratios: a paired design, so a change in the
 /// machine's load that falls on both times of a repeat cancels).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Ratio {
     pub ratio: f64,
     /// The interval's ends; `None` with fewer than two pairs.

@@ -1,6 +1,6 @@
 //! `lab --scene FILE`, the binary as `cargo xtask lab` runs it: a small
 //! scene's report names every contender and the families it was split
-//! into; a bad scene is refused, naming its line, and nothing is written.
+//! into, and its summary.json is the report's table of the closest peers; a bad scene is refused, naming its line, and nothing is written.
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -45,6 +45,13 @@ fn a_small_scene_is_measured_by_every_contender() {
     let results: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
     assert_eq!(results["scene"]["name"], "mine");
+    let summary: lab::report::Summary =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(
+        summary.families.iter().map(|f| f.family.as_str()).collect::<Vec<_>>(),
+        ["scene_triangles", "scene_complex"]
+    );
+    assert!(report.contains(&summary.closest_peers()), "report.md's closest peers are not summary.json's: {report}");
     // Nothing to sweep and no stress family: those charts are not drawn.
     assert!(out.join("versus_exact.png").is_file() && out.join("speed_vs_accuracy.svg").is_file());
     assert!(!out.join("rotation.png").exists() && !out.join("stability.png").exists());

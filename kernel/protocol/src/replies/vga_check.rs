@@ -377,6 +377,9 @@ mod tests {
              PAT 0x0007040600070406"
         );
         assert_eq!(VgaCheck::parse(&text), Ok(passed.clone()));
+        let page = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/protocol.md"))
+            .expect("docs/protocol.md is there");
+        assert!(page.contains(&std::format!("`OK` `{text}`")), "docs/protocol.md's VGACHECK row lacks `OK` `{text}`");
         assert!(passed.passed());
         let mismatches = vec![
             Mismatch { group: RegisterGroup::Misc, index: 0, expected: 0x63, actual: 0x67 },

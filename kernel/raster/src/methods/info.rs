@@ -35,7 +35,7 @@ impl Heap {
     pub const fn name(self) -> &'static str {
         match self {
             Heap::Never => "never",
-            Heap::ManyEdges => "only polygons of over 256 edges",
+            Heap::ManyEdges => "only polygons of over 256 edges, or over 64 that may be 512 px or longer",
             Heap::EveryPolygon => "every polygon",
         }
     }

@@ -7,7 +7,7 @@
 
 use std::fmt::Write as _;
 
-use anyhow::{ensure, Result};
+use anyhow::{ensure, Context, Result};
 use protocol::{TscRate, BENCH_UNIT_LINE};
 use raster::{MethodId, Refusal};
 use scenes::Scene;
@@ -312,6 +312,42 @@ impl BenchTable {
             "results": self.cells_json(),
         })
     }
+
+    /// The table [`BenchTable::json`] wrote under QEMU (kernel_bench.json),
+    /// read back: its cells give the scenes and methods in their order, the
+    /// ticks and the polygons declined. A PC's table is not read back (the
+    /// JSON keeps its TSC rate, not how the kernel came by it).
+    pub fn from_json(json: &Value) -> Result<Self> {
+        ensure!(json["tsc_hz"].is_null(), "a table of a PC's TSC ticks is not read back");
+        let repeats = json["repeats"].as_u64().and_then(|r| u8::try_from(r).ok()).context("no repeats")?;
+        let cells = json["results"].as_array().context("no results")?;
+        let (mut scenes, mut methods) = (Vec::<String>::new(), Vec::<&'static str>::new());
+        let (mut ticks, mut refused) = (Vec::<Vec<u64>>::new(), Vec::<Vec<(usize, Option<Refusal>)>>::new());
+        for cell in cells {
+            let scene = cell["scene"].as_str().context("a cell without a scene")?;
+            let method = cell["method"].as_str().context("a cell without a method")?;
+            let method = method.parse::<MethodId>().with_context(|| format!("`{method}` is no method"))?.name();
+            if methods.last() != Some(&method) {
+                methods.push(method);
+                ticks.push(Vec::new());
+                refused.push(Vec::new());
+            }
+            if methods.len() == 1 {
+                scenes.push(scene.to_string());
+            }
+            let column = ticks.last().map_or(0, Vec::len);
+            ensure!(scenes.get(column).is_some_and(|s| s == scene), "`{method}`'s cells are not in the scenes' order");
+            let refusal = match cell["refusal"].as_str() {
+                Some(name) => Some(Refusal::from_name(name).with_context(|| format!("`{name}` is no refusal"))?),
+                None => None,
+            };
+            let declined = cell["refused"].as_u64().context("a cell without its declined count")? as usize;
+            ticks.last_mut().expect("a row was pushed").push(cell["ticks"].as_u64().context("a cell without ticks")?);
+            refused.last_mut().expect("a row was pushed").push((declined, refusal));
+        }
+        ensure!(ticks.iter().all(|row| row.len() == scenes.len()), "a method lacks a scene");
+        Ok(Self { unit: TickUnit::EmulatedInstructions, repeats, scenes, methods, ticks, refused })
+    }
 }
 
 #[cfg(test)]
@@ -416,5 +452,38 @@ mod tests {
         let json = table.json();
         assert_eq!(json["exact_against_fewest_whole"][1]["fewest"], json!("whole"));
         assert_eq!(json["results"][1]["refusal"], json!("multiple-contours"));
+    }
+
+    #[test]
+    fn a_table_read_back_from_its_json_is_the_table() {
+        let table = BenchTable {
+            unit: TickUnit::EmulatedInstructions,
+            repeats: 3,
+            scenes: vec!["a".to_string(), "b".to_string()],
+            methods: vec!["wgt", "exact"],
+            ticks: vec![vec![1, 2], vec![3, 4]],
+            refused: vec![vec![(0, None), (2, Some(Refusal::MultipleContours))], vec![(0, None); 2]],
+        };
+        assert_eq!(BenchTable::from_json(&table.json()).expect("it reads back"), table);
+        let mut json = table.json();
+        json["results"][1]["scene"] = json!("c");
+        assert!(BenchTable::from_json(&json).is_err(), "a cell out of the scenes' order is refused");
+        let rate = TscRate { hz: 1, source: ClockSource::Pit, readings: ClockReadings::default() };
+        assert!(BenchTable::from_json(&BenchTable { unit: TickUnit::Tsc(rate), ..table }.json()).is_err());
+    }
+
+    /// docs/lab-results.md shows the kernel's counts as kbench wrote them
+    /// in docs/kernel_bench.json: the table that file makes, word for word.
+    #[test]
+    fn docs_lab_results_md_holds_the_kernel_table_kernel_bench_json_makes() {
+        let docs = crate::workspace::root().join("docs");
+        let json = std::fs::read_to_string(docs.join("kernel_bench.json")).expect("docs/kernel_bench.json is there");
+        let table = BenchTable::from_json(&serde_json::from_str(&json).expect("it is JSON")).expect("it reads back");
+        let page = std::fs::read_to_string(docs.join("lab-results.md")).expect("docs/lab-results.md is there");
+        let made = table.markdown(3);
+        assert!(
+            page.contains(&made),
+            "docs/lab-results.md's kernel table differs from docs/kernel_bench.json's:\n{made}"
+        );
     }
 }

@@ -10,8 +10,10 @@ mod clock;
 mod format;
 mod modelling;
 mod speed;
+mod summary;
 
 pub use clock::clock_table;
+pub use summary::{FamilySummary, Summary};
 
 use std::fmt::Write;
 

@@ -6,6 +6,7 @@
 use std::fmt::Write;
 
 use super::format::{count, duration, ratio};
+use super::summary::{closest_peer, Summary};
 use crate::results::{Kind, Results, Row, EXACT};
 use crate::stats::{disagreement, median};
 use crate::timing::Timed;
@@ -47,17 +48,6 @@ pub(super) fn spans_against_stores(out: &mut String, results: &Results) {
     out.push('\n');
 }
 
-/// The peer closest to `exact`'s time on `family`: the least time over
-/// `exact`'s of the peers timed there.
-pub fn closest_peer<'a>(results: &'a Results, family: &str) -> Option<&'a Row> {
-    results.rows.iter().filter(|r| r.kind == Kind::Peer && r.family == family && r.time.vs_exact.is_some()).min_by(
-        |a, b| {
-            let ratio = |r: &Row| r.time.vs_exact.map_or(f64::INFINITY, |v| v.ratio);
-            ratio(a).total_cmp(&ratio(b))
-        },
-    )
-}
-
 /// Per family, the peer closest to `exact` with its time over `exact`'s
 /// and that ratio's interval, and whether the whole interval is above 1
 /// (`exact` surely faster) and above 2 (at least twice as fast).
@@ -67,16 +57,10 @@ pub(super) fn closest_peers(out: &mut String, results: &Results) {
         "## The closest peer on every family\n\nThe peer whose time is the least over `{EXACT}`'s on each family \
          (on the polygons it drew), its ratio with its {:.0}% interval, and whether the interval's lower end is above \
          1 (`{EXACT}` surely faster) and above 2 (surely at least twice as fast).\n\n\
-         | family | closest peer | time / {EXACT}'s | above 1 | above 2 |\n|---|---|---:|---|---|",
-        results.timing.confidence * 100.0
+         {}",
+        results.timing.confidence * 100.0,
+        Summary::of(results).closest_peers()
     );
-    for f in &results.families {
-        let Some(peer) = closest_peer(results, f.name) else { continue };
-        let Some(r) = peer.time.vs_exact else { continue };
-        let yes = |x: f64| if r.surely_above(x) { "yes" } else { "no" };
-        let _ = writeln!(out, "| {} | {} | {} | {} | {} |", f.name, peer.name, ratio(&r), yes(1.0), yes(2.0));
-    }
-    out.push('\n');
 }
 
 /// With two runs or more: how far they disagree, lane by lane, in time and

@@ -25,10 +25,10 @@ impl Bounds {
         let (mut min, mut max) = (first, first);
         // On the host, contour by contour (the first vertex again), each a
         // loop over a slice, which the compiler vectorizes, as it did not
-        // one loop over all the vertices: the glyphs took 0.96 of their
-        // time (`docs/lab.md`, "This round's fourth change"). The kernel
-        // has no vector unit to use, and `cargo xtask kbench` counted 26
-        // to 708 more instructions a page with the host's loops.
+        // one loop over all the vertices; the kernel has no vector unit to
+        // use, and `cargo xtask kbench` counted more instructions with the
+        // host's loops (both measured in
+        // docs/lab-history.md#2026-11-29-no-classification-for-several-contours-b3d2f46).
         #[cfg(not(target_os = "none"))]
         for contour in polygon.contours {
             for p in contour.as_ref() {

@@ -315,8 +315,8 @@ impl Crossing for ShortEdge {
     /// (`dy > 0`; both sides under `2^25` in size). Stepping leaves it
     /// where it is, and its position is the column's first. Not in the
     /// kernel, whose measure is instructions: there a division is one,
-    /// and `cargo xtask kbench` counted more with the comparison (up to
-    /// 1,828 a page, 0.3%) than without.
+    /// and `cargo xtask kbench` counted more with the comparison than
+    /// without (docs/lab-history.md#2026-11-29-a-short-edge-set-up-without-a-division-77b1d9c-22bef92).
     #[cfg(not(target_os = "none"))]
     #[inline(always)]
     fn at_last_row(top: Point, bottom: Point, row: i64) -> Self {

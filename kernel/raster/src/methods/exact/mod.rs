@@ -106,10 +106,10 @@ pub struct Exact;
 /// same way from row to row and polygon to polygon, while the edge
 /// table's sorting and events do not, and a polygon of several contours
 /// (a shape with holes, a glyph) gives the edge table more chains to start
-/// and merge: with 64 for it too, the holes took 0.91 of their time (the
-/// lab's "What modelling costs" times each path alone, family by family;
-/// `docs/lab.md`, "Where `exact`'s time goes", says how the bounds were
-/// chosen).
+/// and merge, so 64 for it too made the holes quicker (the lab's "What
+/// modelling costs" times each path alone, family by family;
+/// docs/lab-history.md#2026-11-28-several-contours-on-the-edge-flags-87d14f1
+/// says how the bounds were chosen).
 #[cfg(not(target_os = "none"))]
 #[inline(always)]
 fn flags_pay<C>(bounds: &Bounds, edges: i64, polygon: PolygonRef<'_, C>) -> bool {
@@ -124,7 +124,8 @@ fn flags_pay<C>(bounds: &Bounds, edges: i64, polygon: PolygonRef<'_, C>) -> bool
 /// kbench`, QEMU counting them): where the box has at most 2 rows per
 /// edge. Past that the flags' extra instructions cost more than the edge
 /// table's: the Black Book page of 40 V shapes (40 rows, 6 edges each)
-/// took 8% more instructions with the host's bound.
+/// took more instructions with the host's bound
+/// (docs/lab-history.md#2026-11-28-the-edge-flags-chosen-more-3359300-d58c787-3c99766).
 #[cfg(target_os = "none")]
 #[inline(always)]
 fn flags_pay<C>(bounds: &Bounds, edges: i64, _polygon: PolygonRef<'_, C>) -> bool {
@@ -234,8 +235,8 @@ impl<'a, C: AsRef<[Point]>> ExactPath<'a, C> {
     /// takes any polygon, with no test either: one that encloses nothing
     /// adds nothing there, as the rule says. Dropping such contours first,
     /// so that one monotone contour among them took the monotone fill,
-    /// cost the glyphs 4% of their time, and the families of several
-    /// contours have none (`docs/lab.md`, "This round's fourth change").
+    /// cost the glyphs time, and the families of several contours have
+    /// none (docs/lab-history.md#2026-11-29-no-classification-for-several-contours-b3d2f46).
     #[inline]
     pub fn choose(polygon: impl Into<PolygonRef<'a, C>>) -> Option<Self> {
         let polygon = polygon.into();

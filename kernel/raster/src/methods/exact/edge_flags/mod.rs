@@ -13,8 +13,8 @@
 //! first, nothing is emitted, and the polygon is flagged again in one
 //! plane whose counters, one per cell, add up the windings of its
 //! crossings. The planes need no counters to clear, set or read, which
-//! makes the glyphs and icons quicker (`docs/lab.md`, "This round's
-//! change").
+//! makes the glyphs and icons quicker
+//! (docs/lab-history.md#2026-11-29-two-planes-for-the-non-zero-rule-5b89133).
 //!
 //! There is no edge table, no chain and no event: each edge is set up
 //! where the scatter reaches it, and a row costs its crossings and the

@@ -30,9 +30,9 @@ pub(super) fn scan<const NON_ZERO: bool, const WORDS: usize, const CELLS: usize,
 /// run still open after the last reaches the right border (edges right of
 /// the target are not flagged). The runs go to the sink as irregular
 /// spans ([`SpanSink::irregular_span`]): on the stars, whose rows hold
-/// runs of every length, the framebuffer's masked store of them took
-/// 0.85 of the time its span store did (`docs/lab.md`, "This round's
-/// third change"). The non-zero rule's runs gained nothing from it.
+/// runs of every length, the framebuffer's masked store of them is the
+/// quicker (docs/lab-history.md#2026-11-29-the-even-odd-runs-in-one-masked-store-1151701).
+/// The non-zero rule's runs gained nothing from it.
 #[inline(always)]
 fn even_odd<const WORDS: usize, S: SpanSink + ?Sized>(
     band: Range<i64>,
