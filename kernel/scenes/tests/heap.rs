@@ -125,7 +125,7 @@ fn methods_allocate_as_their_info_says_and_the_show_adds_nothing() {
 type Shot = (&'static Entry, u32, MethodId);
 
 /// The allocations of `shot` as the kernel's `SHOW` makes them
-/// (`kernel/src/player.rs`): an animation drawn and labelled on the stage,
+/// (`kernel/src/show/player.rs`): an animation drawn and labelled on the stage,
 /// a still drawn and labelled on the screen (`screen` here).
 fn show_allocations(stage: &mut Stage, screen: &mut Framebuffer, (entry, frame, method): Shot) -> u64 {
     allocations(|| {
