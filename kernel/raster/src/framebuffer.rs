@@ -3,7 +3,7 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::sink::{set_bytes, set_prefix};
+use crate::stores::{set_bytes, set_prefix};
 use crate::target::{Size, SpanSink};
 
 /// A byte-per-pixel image in memory: the host's (and the tests') target.
@@ -124,7 +124,7 @@ impl Framebuffer {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sink::clear;
+    use crate::stores::clear;
 
     #[test]
     fn clear_covers_every_pixel() {

@@ -110,8 +110,9 @@ extern crate alloc;
 // Every item has one path: the modules are private, and what a caller
 // uses is re-exported here, at the top, except three namespaces whose
 // items are called by their module's name: `methods` (each method's
-// type, `methods::Exact`), `reference` (`reference::fill`, the judge) and `sink`
-// (`sink::clear`, `sink::set_bytes`, the stores).
+// type, `methods::Exact`), `reference` (`reference::fill`, the judge) and `stores`
+// (`stores::clear`, `stores::set_bytes`: what a sink may store spans
+// with; the sink interface, `SpanSink`, is the target's, in target.rs).
 mod classify;
 #[cfg(feature = "alloc")]
 mod coverage;
@@ -121,7 +122,7 @@ mod geometry;
 pub mod methods;
 #[cfg(feature = "alloc")]
 pub mod reference;
-pub mod sink;
+pub mod stores;
 mod target;
 #[cfg(test)]
 mod test_rng;

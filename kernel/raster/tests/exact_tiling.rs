@@ -8,7 +8,7 @@ use exact_support::PX;
 use proptest::prelude::*;
 use raster::methods::Exact;
 use raster::reference::{self, SampleOffset};
-use raster::{sink, CoverageReport, CoverageSink, Method, Point, Polygon, Size, SCREEN};
+use raster::{stores, CoverageReport, CoverageSink, Method, Point, Polygon, Size, SCREEN};
 
 /// The sign of the turn `a -> b -> c`, exact for any `i32` points.
 fn turn(a: Point, b: Point, c: Point) -> i128 {
@@ -108,7 +108,7 @@ fn screen_point() -> impl Strategy<Value = Point> {
 
 fn whole_screen() -> CoverageSink {
     let mut target = CoverageSink::new(SCREEN);
-    sink::clear(&mut target, 1);
+    stores::clear(&mut target, 1);
     target
 }
 

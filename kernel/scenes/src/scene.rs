@@ -3,7 +3,7 @@
 use alloc::string::String;
 use alloc::vec::Vec;
 
-use raster::sink;
+use raster::stores;
 use raster::{MethodId, Polygon, Refusal, SpanSink};
 
 use crate::palette::{Palette, VGA_DEFAULT};
@@ -103,7 +103,7 @@ impl Scene {
         let mut report = DrawReport::default();
         for op in &self.ops {
             match op {
-                Op::Clear(color) => sink::clear(sink, *color),
+                Op::Clear(color) => stores::clear(sink, *color),
                 Op::Fill(polygon) => report.record(method.fill(polygon, sink)),
             }
         }

@@ -19,7 +19,7 @@ use core::ptr::{self, NonNull};
 
 use bootloader_api::BootInfo;
 use protocol::{Firmware, LogEvent, MemoryType, Mismatch, VgaCheck, Video, Window, DUMP_LEN, FRAMEBUFFER_LEN};
-use raster::{sink, MethodId};
+use raster::{stores, MethodId};
 use scenes::palette::{Palette, VGA_DEFAULT};
 use scenes::{DrawReport, Scene};
 use volatile::{VolatilePtr, VolatileRef};
@@ -243,7 +243,7 @@ impl Screen {
     /// Fills the screen with `color` of the VGA default palette.
     pub fn clear(&mut self, color: u8) {
         self.use_palette(&VGA_DEFAULT);
-        sink::clear(&mut self.canvas, color);
+        stores::clear(&mut self.canvas, color);
         self.present();
     }
 

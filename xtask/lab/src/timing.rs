@@ -5,7 +5,7 @@ use std::hint::black_box;
 use std::ops::Range;
 use std::time::{Duration, Instant};
 
-use raster::sink::set_bytes;
+use raster::stores::set_bytes;
 use raster::{Framebuffer, Polygon, SpanSink, SCREEN};
 use serde::Serialize;
 
@@ -78,7 +78,7 @@ pub enum Bound {
     Memset,
     /// The exact reference's spans stored straight into a 320x200 byte
     /// buffer by the framebuffer's own span store
-    /// ([`raster::sink::set_bytes`]), in a loop over the recorded spans with
+    /// ([`raster::stores::set_bytes`]), in a loop over the recorded spans with
     /// no call per span: the true lower bound of a fill into that
     /// framebuffer, which must store the same spans and find them too.
     Store,

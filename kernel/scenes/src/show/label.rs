@@ -131,14 +131,14 @@ fn put(target: &mut dyn SpanSink, x_start: i32, y: i32, x_end: i32, color: u8) {
 mod tests {
     use super::*;
     use crate::show::entries::{entry, ENTRIES_IN_ORDER};
-    use raster::sink;
+    use raster::stores;
     use raster::{Framebuffer, SCREEN};
 
     const BACKGROUND: u8 = 3;
 
     fn screen() -> Framebuffer {
         let mut target = Framebuffer::new(SCREEN);
-        sink::clear(&mut target, BACKGROUND);
+        stores::clear(&mut target, BACKGROUND);
         target
     }
 

@@ -30,7 +30,7 @@ use alloc::vec::Vec;
 use crate::builtin::BuiltinPage;
 use crate::scene::{DrawReport, Scene};
 use entries::Kind;
-use raster::sink;
+use raster::stores;
 use raster::{Framebuffer, MethodId, SpanSink, SCREEN};
 use scratch::Scratch;
 
@@ -76,7 +76,7 @@ impl Stage {
     pub fn draw(&mut self, entry: &Entry, frame: u32, method: MethodId) -> DrawReport {
         let frame = entry.wrap(frame);
         let animated = method.method();
-        sink::clear(&mut self.target, 0);
+        stores::clear(&mut self.target, 0);
         match entry.kind {
             Kind::Still(page) => draw_page(&mut self.still, &page, method, &mut self.target),
             Kind::EveryMethod(page) => draw_page(&mut self.art, &page, method, &mut self.target),
@@ -96,7 +96,7 @@ impl Stage {
     /// other than the stage, such as the screen itself. An animated entry
     /// draws nothing but the black.
     pub fn draw_still<S: SpanSink>(&mut self, entry: &Entry, method: MethodId, target: &mut S) -> DrawReport {
-        sink::clear(target, 0);
+        stores::clear(target, 0);
         match entry.kind {
             Kind::Still(page) => draw_page(&mut self.still, &page, method, target),
             _ => DrawReport::default(),
@@ -121,7 +121,7 @@ impl Stage {
             Kind::PendletonDepth => shaded::Shaded::Depth,
             Kind::Still(_) | Kind::LamotheRotate | Kind::Race | Kind::EveryMethod(_) => return None,
         };
-        sink::clear(&mut self.target, 0);
+        stores::clear(&mut self.target, 0);
         let (scratch, depth, target) = (&mut self.scratch, &mut self.depth, &mut self.target);
         Some(shaded::draw(shaded, modelling, entry.wrap(frame), method.method(), scratch, depth, target))
     }
@@ -339,7 +339,7 @@ mod tests {
             let method = entry.method_at(0);
             let mut elsewhere = Framebuffer::new(SCREEN);
             // Not black: the still clears its target first.
-            sink::clear(&mut elsewhere, 9);
+            stores::clear(&mut elsewhere, 9);
             let report = stage.draw_still(entry, method, &mut elsewhere);
             draw_labels(&mut elsewhere, entry, 0, method, 1234);
             let staged = stage.draw(entry, 0, method);
@@ -350,7 +350,7 @@ mod tests {
         }
         let rotate = entry("lamothe-rotate").unwrap();
         let mut elsewhere = Framebuffer::new(SCREEN);
-        sink::clear(&mut elsewhere, 9);
+        stores::clear(&mut elsewhere, 9);
         assert_eq!(stage.draw_still(rotate, MethodId::Exact, &mut elsewhere).polygons, 0);
         assert!(elsewhere.pixels().iter().all(|&p| p == 0));
     }

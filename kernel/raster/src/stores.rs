@@ -1,7 +1,8 @@
 //! Stores any sink may use: the store of one span into bytes
 //! ([`set_bytes`]), of the first bytes of a 64-byte window ([`set_prefix`]),
 //! and a whole target filled through a sink's spans
-//! ([`clear`]). The sink interface itself is [`SpanSink`].
+//! ([`clear`]). The sink interface itself, [`SpanSink`], is the target's
+//! (`target.rs`).
 
 use crate::target::SpanSink;
 
