@@ -26,6 +26,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use scenes::Scene;
 
 pub mod area;
+pub mod builds;
 pub mod charts;
 pub mod closed;
 pub mod contender;

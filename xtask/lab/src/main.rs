@@ -2,7 +2,8 @@
 //! an unoptimised build mean little): `lab [--quick] [--launches N]
 //! [--order-seed S] [--build NAME] [--out DIR] [--scene FILE [--scene-from
 //! TEXT]]`. Each launch is this binary again, with `--launch K --plan FILE
-//! --record FILE`.
+//! --record FILE`; `lab --compare NAME=DIR ... --out DIR` sets the runs of
+//! several builds side by side.
 
 use std::path::PathBuf;
 
@@ -45,6 +46,10 @@ struct Cli {
     /// What the report says the scene came from [default: FILE].
     #[arg(long, value_name = "TEXT", requires = "scene")]
     scene_from: Option<String>,
+    /// Instead of measuring: set the runs of several builds side by side,
+    /// each NAME=DIR (its results.json in DIR), in --out's report.md.
+    #[arg(long, value_name = "NAME=DIR", value_parser = lab::builds::BuildRun::parse, conflicts_with = "launch")]
+    compare: Vec<lab::builds::BuildRun>,
     /// Run as launch K (from 0) of a run: time as --plan says, write what
     /// was timed to --record.
     #[arg(long, value_name = "K", hide = true, requires_all = ["plan", "record"])]
@@ -62,6 +67,9 @@ fn main() -> anyhow::Result<()> {
         None => lab::Shapes::Corpus,
     };
     let out_dir = cli.out.unwrap_or_else(|| PathBuf::from(lab::default_out_dir(&shapes)));
+    if !cli.compare.is_empty() {
+        return lab::builds::compare(&cli.compare, &out_dir);
+    }
     let options = lab::LabOptions {
         quick: cli.quick,
         launches: cli.launches.map_or(lab::default_launches(cli.quick), usize::from),
