@@ -183,7 +183,7 @@ pub struct ShowRow {
 fn shaded_entries() -> Vec<&'static Entry> {
     let mut stage = Stage::new();
     ENTRIES_IN_ORDER
-        .into_iter()
+        .iter()
         .filter(|entry| stage.draw_modelled(entry, 0, MethodId::Exact, Modelling::Needed).is_some())
         .collect()
 }
