@@ -6,8 +6,11 @@
 //! wall-clock time; results.json, report.md and the charts under the
 //! output directory.
 //!
-//! Speed is measured, never asserted. What fails a run is a missing
-//! results.json or any wrong pixel, overdraw, gap or failure of `exact`.
+//! Speed is measured, never asserted, in launches: fresh processes of the
+//! lab, each timing everything ([`run_launch`]), every ratio's interval
+//! across them (docs/lab-method.md). What fails a run is a missing
+//! results.json, any wrong pixel, overdraw, gap or failure of `exact`, or
+//! a timed frame of `raster`'s methods that is not its judged pixels.
 //!
 //! ## Examples
 //!
@@ -156,9 +159,10 @@ pub fn run(options: &LabOptions) -> Result<()> {
     if options.launches == 0 {
         bail!("--launches must be at least 1");
     }
-    let (families, scene) = match &options.shapes {
-        Shapes::Corpus => (families_of(options)?, None),
-        Shapes::Scene(user) => (families_of(options)?, Some(user)),
+    let families = families_of(options)?;
+    let scene = match &options.shapes {
+        Shapes::Corpus => None,
+        Shapes::Scene(user) => Some(user),
     };
     let out = &options.out_dir;
     let launch_dir = out.join("launches");

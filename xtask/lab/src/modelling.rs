@@ -40,7 +40,8 @@ pub struct PathRow {
     pub gaps: Option<u64>,
     pub failures: Option<u64>,
     /// Its time, only where the lane takes every polygon of the family;
-    /// over `exact`'s and the store bound's, paired.
+    /// over `exact`'s and the store bound's, paired within each launch,
+    /// across launches.
     #[serde(flatten)]
     pub time: Timed,
     /// Heap allocations per polygon once the lane has run over the family

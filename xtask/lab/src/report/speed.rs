@@ -13,7 +13,8 @@ use crate::timing::{LaunchFigures, Timed};
 
 /// Per family: `exact`, finding its spans alone (`fill_auto` into a sink
 /// that stores nothing) and the store bound, with the ratios that say
-/// where `exact`'s time goes, each from the paired repeats.
+/// where `exact`'s time goes, each across launches of the paired repeats
+/// within each.
 pub(super) fn spans_against_stores(out: &mut String, results: &Results) {
     let _ = writeln!(
         out,
