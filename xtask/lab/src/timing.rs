@@ -349,8 +349,8 @@ pub fn time_family(
     progress: &dyn Fn(),
 ) -> Result<Speeds, String> {
     let lanes = plan.lanes();
-    let mut time =
-        |range: Range<usize>| time_range(family, plan, exact, contenders, &lanes, timing, range, order, progress);
+    let job = Job { family, plan, exact, contenders, lanes: &lanes, timing };
+    let mut time = |range: Range<usize>| job.time(range, order, progress);
     let per_value = family.sweep.as_ref().filter(|s| s.axis.timed_per_value());
     let Some(sweep) = per_value else { return time(0..family.polygons.len()) };
     let values = sweep.runs();
@@ -392,96 +392,101 @@ fn weighted_mean(runs: &[Speeds], pick: &dyn Fn(&Speeds) -> &Samples, counts: &d
         .collect()
 }
 
-#[allow(clippy::too_many_arguments)]
-fn time_range(
-    family: &Family,
-    plan: &FamilyPlan,
-    exact: &[Vec<Span>],
-    contenders: &[Contender],
-    lanes: &[Option<Lane>],
+/// What timing a family takes, besides the polygons of the moment.
+struct Job<'a> {
+    family: &'a Family,
+    plan: &'a FamilyPlan,
+    /// `exact`'s spans of every polygon of the family.
+    exact: &'a [Vec<Span>],
+    contenders: &'a [Contender],
+    /// The lanes timed, in [`Lane::all`] order.
+    lanes: &'a [Option<Lane>],
     timing: Timing,
-    range: Range<usize>,
-    order: &mut Order,
-    progress: &dyn Fn(),
-) -> Result<Speeds, String> {
-    // Per contender, the polygons of the range it is timed on.
-    let subsets: Vec<Option<Vec<usize>>> = plan
-        .timed
-        .iter()
-        .map(|timed| Some(timed.as_ref()?.iter().copied().filter(|i| range.contains(i)).collect()))
-        .collect();
-    let polygons_of = |subset: &[usize]| -> Vec<&Polygon> { subset.iter().map(|&i| &family.polygons[i]).collect() };
-    let polygons: Vec<Vec<&Polygon>> =
-        subsets.iter().map(|s| s.as_deref().map(polygons_of).unwrap_or_default()).collect();
-    let timed: Vec<usize> = (0..contenders.len()).filter(|&c| subsets[c].is_some()).collect();
-    // `exact` again on each other set of polygons a contender is timed on.
-    let exact_at = contenders.iter().position(|c| matches!(c, Contender::Method(MethodId::Exact)));
-    let exact_set = exact_at.and_then(|e| subsets[e].clone());
-    let mut other_sets: Vec<Vec<usize>> = Vec::new();
-    for subset in subsets.iter().flatten() {
-        if exact_at.is_some() && exact_set.as_ref() != Some(subset) && !other_sets.contains(subset) {
-            other_sets.push(subset.clone());
-        }
-    }
-    let all: Vec<&Polygon> = family.polygons[range.clone()].iter().collect();
-    let spans: Vec<&[Span]> = exact[range.clone()].iter().map(Vec::as_slice).collect();
-    let lanes_timed: Vec<usize> = (0..lanes.len()).filter(|&l| lanes[l].is_some()).collect();
-    let mut screens: Vec<Framebuffer> = timed.iter().map(|_| Framebuffer::new(SCREEN)).collect();
-    let mut passes: Vec<(Box<dyn FnMut() + '_>, usize)> = timed
-        .iter()
-        .zip(&mut screens)
-        .map(|(&c, screen)| {
-            let pass =
-                contenders[c].pass_into(&polygons[c], screen).unwrap_or_else(|| contenders[c].pass(&polygons[c]));
-            (pass, polygons[c].len())
-        })
-        .collect();
-    if let Some(e) = exact_at {
-        passes.extend(other_sets.iter().map(|set| (contenders[e].pass(&polygons_of(set)), set.len())));
-    }
-    passes.extend(Bound::ALL.iter().map(|bound| (bound.pass(&spans), spans.len())));
-    passes.extend(lanes_timed.iter().filter_map(|&l| Some((lanes[l]?.pass(&all), all.len()))));
-    let mut samples =
-        timing.samples_each(passes.iter_mut().map(|(p, n)| (&mut **p as &mut dyn FnMut(), *n)).collect(), order);
-    drop(passes);
-    for _ in 0..contenders.len() + Bound::ALL.len() + lanes.len() {
-        progress();
-    }
-    let mut screens_checked = 0;
-    for (&c, screen) in timed.iter().zip(&screens) {
-        if !contenders[c].is_peer() {
-            check_screen(&contenders[c], &polygons[c], screen).map_err(|e| format!("{}: {e}", family.name))?;
-            screens_checked += 1;
-        }
-    }
-    let lane_samples = samples.split_off(timed.len() + other_sets.len() + Bound::ALL.len());
-    let bound_samples = samples.split_off(timed.len() + other_sets.len());
-    let other_samples = samples.split_off(timed.len());
-    let mut contender_samples = vec![Samples::new(); contenders.len()];
-    for (&c, ns) in timed.iter().zip(samples) {
-        contender_samples[c] = ns;
-    }
-    let exact_on = (0..contenders.len())
-        .map(|c| {
-            let (Some(e), Some(subset)) = (exact_at, &subsets[c]) else { return Samples::new() };
-            match other_sets.iter().position(|set| set == subset) {
-                Some(s) => other_samples[s].clone(),
-                None => contender_samples[e].clone(),
+}
+
+impl Job<'_> {
+    /// Times the polygons of `range` ([`time_family`]).
+    fn time(&self, range: Range<usize>, order: &mut Order, progress: &dyn Fn()) -> Result<Speeds, String> {
+        let Job { family, plan, exact, contenders, lanes, timing } = *self;
+        // Per contender, the polygons of the range it is timed on.
+        let subsets: Vec<Option<Vec<usize>>> = plan
+            .timed
+            .iter()
+            .map(|timed| Some(timed.as_ref()?.iter().copied().filter(|i| range.contains(i)).collect()))
+            .collect();
+        let polygons_of = |subset: &[usize]| -> Vec<&Polygon> { subset.iter().map(|&i| &family.polygons[i]).collect() };
+        let polygons: Vec<Vec<&Polygon>> =
+            subsets.iter().map(|s| s.as_deref().map(polygons_of).unwrap_or_default()).collect();
+        let timed: Vec<usize> = (0..contenders.len()).filter(|&c| subsets[c].is_some()).collect();
+        // `exact` again on each other set of polygons a contender is timed on.
+        let exact_at = contenders.iter().position(|c| matches!(c, Contender::Method(MethodId::Exact)));
+        let exact_set = exact_at.and_then(|e| subsets[e].clone());
+        let mut other_sets: Vec<Vec<usize>> = Vec::new();
+        for subset in subsets.iter().flatten() {
+            if exact_at.is_some() && exact_set.as_ref() != Some(subset) && !other_sets.contains(subset) {
+                other_sets.push(subset.clone());
             }
+        }
+        let all: Vec<&Polygon> = family.polygons[range.clone()].iter().collect();
+        let spans: Vec<&[Span]> = exact[range.clone()].iter().map(Vec::as_slice).collect();
+        let lanes_timed: Vec<usize> = (0..lanes.len()).filter(|&l| lanes[l].is_some()).collect();
+        let mut screens: Vec<Framebuffer> = timed.iter().map(|_| Framebuffer::new(SCREEN)).collect();
+        let mut passes: Vec<(Box<dyn FnMut() + '_>, usize)> = timed
+            .iter()
+            .zip(&mut screens)
+            .map(|(&c, screen)| {
+                let pass =
+                    contenders[c].pass_into(&polygons[c], screen).unwrap_or_else(|| contenders[c].pass(&polygons[c]));
+                (pass, polygons[c].len())
+            })
+            .collect();
+        if let Some(e) = exact_at {
+            passes.extend(other_sets.iter().map(|set| (contenders[e].pass(&polygons_of(set)), set.len())));
+        }
+        passes.extend(Bound::ALL.iter().map(|bound| (bound.pass(&spans), spans.len())));
+        passes.extend(lanes_timed.iter().filter_map(|&l| Some((lanes[l]?.pass(&all), all.len()))));
+        let mut samples =
+            timing.samples_each(passes.iter_mut().map(|(p, n)| (&mut **p as &mut dyn FnMut(), *n)).collect(), order);
+        drop(passes);
+        for _ in 0..contenders.len() + Bound::ALL.len() + lanes.len() {
+            progress();
+        }
+        let mut screens_checked = 0;
+        for (&c, screen) in timed.iter().zip(&screens) {
+            if !contenders[c].is_peer() {
+                check_screen(&contenders[c], &polygons[c], screen).map_err(|e| format!("{}: {e}", family.name))?;
+                screens_checked += 1;
+            }
+        }
+        let lane_samples = samples.split_off(timed.len() + other_sets.len() + Bound::ALL.len());
+        let bound_samples = samples.split_off(timed.len() + other_sets.len());
+        let other_samples = samples.split_off(timed.len());
+        let mut contender_samples = vec![Samples::new(); contenders.len()];
+        for (&c, ns) in timed.iter().zip(samples) {
+            contender_samples[c] = ns;
+        }
+        let exact_on = (0..contenders.len())
+            .map(|c| {
+                let (Some(e), Some(subset)) = (exact_at, &subsets[c]) else { return Samples::new() };
+                match other_sets.iter().position(|set| set == subset) {
+                    Some(s) => other_samples[s].clone(),
+                    None => contender_samples[e].clone(),
+                }
+            })
+            .collect();
+        let mut lane_all = vec![Samples::new(); lanes.len()];
+        for (&l, ns) in lanes_timed.iter().zip(lane_samples) {
+            lane_all[l] = ns;
+        }
+        Ok(Speeds {
+            contenders: contender_samples,
+            exact_on,
+            bounds: bound_samples,
+            lanes: lane_all,
+            runs: vec![],
+            screens_checked,
         })
-        .collect();
-    let mut lane_all = vec![Samples::new(); lanes.len()];
-    for (&l, ns) in lanes_timed.iter().zip(lane_samples) {
-        lane_all[l] = ns;
     }
-    Ok(Speeds {
-        contenders: contender_samples,
-        exact_on,
-        bounds: bound_samples,
-        lanes: lane_all,
-        runs: vec![],
-        screens_checked,
-    })
 }
 
 /// Fails unless `screen`, into which `contender` (one of ours) filled
