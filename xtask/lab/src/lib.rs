@@ -164,6 +164,8 @@ pub fn run(options: &LabOptions) -> Result<()> {
         Shapes::Corpus => None,
         Shapes::Scene(user) => Some(user),
     };
+    // The commit as the run starts, right after `cargo run` built from it.
+    let build = Build::this(&options.build);
     let out = &options.out_dir;
     let launch_dir = out.join("launches");
     fs::create_dir_all(&launch_dir).with_context(|| format!("failed to create {}", launch_dir.display()))?;
@@ -191,7 +193,7 @@ pub fn run(options: &LabOptions) -> Result<()> {
     }
     let load_at_end = load_average();
 
-    let mut results = Results::new(corpus::SEED, options.quick, &contenders, Build::this(&options.build));
+    let mut results = Results::new(corpus::SEED, options.quick, &contenders, build);
     results.scene = scene.map(|user| results::SceneInfo { name: user.scene.name.clone(), from: user.from.clone() });
     for (f, (family, (judged, lanes))) in families.iter().zip(&judged).enumerate() {
         let speeds: Vec<Speeds> = records.iter().map(|r| r.families[f].clone()).collect();

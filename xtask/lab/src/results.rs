@@ -135,8 +135,9 @@ const FEATURES: [(&str, bool); 15] = [
 #[derive(Clone, Debug, Serialize)]
 pub struct Build {
     pub name: String,
-    /// `git describe`'s commit of the working tree, with `-dirty` where it
-    /// holds uncommitted changes; `None` outside a git checkout.
+    /// `git describe`'s commit of the working tree as the run started
+    /// (`cargo xtask lab` has just built the binary from it), with `-dirty`
+    /// where it held uncommitted changes; `None` outside a git checkout.
     pub commit: Option<String>,
     /// Of [`FEATURES`], those this binary was compiled to use.
     pub features: Vec<&'static str>,
