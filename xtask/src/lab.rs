@@ -8,8 +8,13 @@
 //! widest stores the CPU has (the framebuffer's span store takes 64-byte
 //! blocks where there is AVX2; the host's baseline, SSE2, has 16-byte
 //! ones); in a target directory of its own (`target/native`), so that the
-//! other builds keep theirs. Cairo is the system's library, built by
-//! Debian for the baseline, which picks its SIMD at run time.
+//! other builds keep theirs. With `--build v3` it is built for x86-64-v3
+//! instead (AVX2 and its companions, no AVX-512: the machines most people
+//! have), in `target/x86-64-v3`; with `--build both`, both, one after the
+//! other, each measured whole into a folder of its own under the output
+//! directory, and the lab then sets the two side by side in that
+//! directory's report.md. Cairo is the system's library, built by Debian
+//! for the baseline, which picks its SIMD at run time.
 //!
 //! On x86-64 it is also built with no jump straddling or ending on a
 //! 32-byte boundary (LLVM's `-x86-branches-within-32B-boundaries`, the
@@ -33,7 +38,7 @@
 
 use std::path::{absolute, Path, PathBuf};
 
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 use harness::render::SceneFile;
 use install::lab_art::ensure_lab_art;
 use install::libraries::ensure_lab_libraries;
@@ -41,20 +46,51 @@ use install::missing::ensure_all;
 use install::process::run_streaming;
 use scenes::Scene;
 
-use crate::opt::LabOpt;
+use crate::opt::{LabBuild, LabOpt};
 
-/// What the lab is built with: code for this machine's CPU, its jumps
-/// kept within 32-byte blocks on x86-64.
-const NATIVE_RUSTFLAGS: &str = if cfg!(target_arch = "x86_64") {
-    "-C target-cpu=native -C llvm-args=-x86-branches-within-32B-boundaries"
-} else {
-    "-C target-cpu=native"
-};
-/// Where, apart from the other builds (whose flags differ).
-const NATIVE_TARGET_DIR: &str = "target/native";
+/// A build of the lab: its name (the report's, and its folder's under the
+/// output directory with `--build both`), the CPU it is compiled for and
+/// where it is built, apart from the other builds (whose flags differ).
+struct Flavour {
+    name: &'static str,
+    cpu: &'static str,
+    target_dir: &'static str,
+}
+
+const NATIVE: Flavour = Flavour { name: "native", cpu: "native", target_dir: "target/native" };
+const V3: Flavour = Flavour { name: "x86-64-v3", cpu: "x86-64-v3", target_dir: "target/x86-64-v3" };
+
+impl Flavour {
+    /// What it is built with: code for its CPU, its jumps kept within
+    /// 32-byte blocks on x86-64.
+    fn rustflags(&self) -> String {
+        let cpu = format!("-C target-cpu={}", self.cpu);
+        if cfg!(target_arch = "x86_64") {
+            format!("{cpu} -C llvm-args=-x86-branches-within-32B-boundaries")
+        } else {
+            cpu
+        }
+    }
+
+    /// `cargo run` of the lab binary built as this flavour, in release.
+    fn lab(&self) -> std::process::Command {
+        let mut command = install::toolchain::host();
+        command.env("RUSTFLAGS", self.rustflags());
+        command.args(["run", "--quiet", "--release", "--package", "lab", "--target-dir", self.target_dir, "--"]);
+        command
+    }
+}
 
 pub fn lab(opt: &LabOpt) -> Result<()> {
     let user = user_scene(opt)?;
+    let flavours: &[Flavour] = match opt.build {
+        LabBuild::Native => &[NATIVE],
+        LabBuild::V3 => &[V3],
+        LabBuild::Both => &[NATIVE, V3],
+    };
+    if opt.build != LabBuild::Native && !cfg!(target_arch = "x86_64") {
+        bail!("--build {:?} is a build for x86-64; this host is not one", opt.build);
+    }
     // The Cairo peer builds against the system libcairo; the Allegro,
     // SDL2_gfx and GD peers against theirs; the corpus (not a scene) has
     // Debian's flags.
@@ -66,21 +102,38 @@ pub fn lab(opt: &LabOpt) -> Result<()> {
     let default_out = if user.is_some() { "target/lab-scene" } else { "target/lab" };
     let out = opt.out.clone().unwrap_or_else(|| PathBuf::from(default_out));
     let out = absolute(&out).with_context(|| format!("bad output directory {}", out.display()))?;
-    let mut command = install::toolchain::host();
-    command.env("RUSTFLAGS", NATIVE_RUSTFLAGS);
-    command.args(["run", "--quiet", "--release", "--package", "lab", "--target-dir", NATIVE_TARGET_DIR, "--"]);
-    if opt.quick {
-        command.arg("--quick");
-    }
-    command.arg("--runs").arg(opt.runs.to_string());
-    command.arg("--out").arg(out);
     // Held until the lab is done with the scene file in it.
     let scene_dir = tempfile::tempdir().context("failed to make a folder for the scene")?;
-    if let Some(user) = &user {
-        let path = handed_over(&user.scene, scene_dir.path())?;
-        command.arg("--scene").arg(path).arg("--scene-from").arg(&user.from);
+    let scene = match &user {
+        Some(user) => Some((handed_over(&user.scene, scene_dir.path())?, &user.from)),
+        None => None,
+    };
+    let both = flavours.len() > 1;
+    for flavour in flavours {
+        let mut command = flavour.lab();
+        if opt.quick {
+            command.arg("--quick");
+        }
+        if let Some(launches) = opt.launches {
+            command.arg("--launches").arg(launches.to_string());
+        }
+        command.arg("--build").arg(flavour.name);
+        command.arg("--out").arg(if both { out.join(flavour.name) } else { out.clone() });
+        if let Some((path, from)) = &scene {
+            command.arg("--scene").arg(path).arg("--scene-from").arg(from);
+        }
+        eprintln!("xtask: the lab, built as {} ({})", flavour.name, flavour.rustflags());
+        run_streaming(&mut command)?;
     }
-    run_streaming(&mut command)
+    if both {
+        let mut command = NATIVE.lab();
+        for flavour in flavours {
+            command.arg("--compare").arg(format!("{}={}", flavour.name, out.join(flavour.name).display()));
+        }
+        command.arg("--out").arg(&out);
+        run_streaming(&mut command)?;
+    }
+    Ok(())
 }
 
 /// The user's shapes, as the lab is to measure them: the scene, and what
@@ -124,7 +177,7 @@ mod tests {
     use super::*;
 
     fn opt(scene: Option<PathBuf>) -> LabOpt {
-        LabOpt { quick: true, runs: 1, out: None, scene, svg: None }
+        LabOpt { quick: true, launches: None, build: LabBuild::Native, out: None, scene, svg: None }
     }
 
     fn svg(path: PathBuf) -> LabOpt {

@@ -233,10 +233,17 @@ pub struct LabOpt {
     /// --scene or --svg, the short timing alone.
     #[arg(long)]
     pub quick: bool,
-    /// Runs of the whole timing, one after the other; with 2 or more the
-    /// report says how far they disagree.
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..))]
-    pub runs: u16,
+    /// Launches of the whole timing, each a fresh process of the lab, one
+    /// after the other; every ratio's interval is across them [default:
+    /// 3, or 2 with --quick].
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+    pub launches: Option<u16>,
+    /// The build(s) measured: `native` (-C target-cpu=native), `v3`
+    /// (x86-64-v3: AVX2, no AVX-512), or `both`, one after the other, each
+    /// in DIR/native and DIR/x86-64-v3 with DIR/report.md setting them side
+    /// by side.
+    #[arg(long, value_enum, default_value_t = LabBuild::Native)]
+    pub build: LabBuild,
     /// Where results.json, report.md and the charts go [default:
     /// target/lab, or target/lab-scene with --scene or --svg].
     #[arg(long, value_name = "DIR")]
@@ -251,6 +258,14 @@ pub struct LabOpt {
     /// 320x200).
     #[arg(long, value_name = "FILE")]
     pub svg: Option<PathBuf>,
+}
+
+/// What `cargo xtask lab --build` builds the lab as.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum LabBuild {
+    Native,
+    V3,
+    Both,
 }
 
 #[derive(Args, Debug)]

@@ -118,45 +118,59 @@ impl Contender {
         }
     }
 
-    /// One timed pass over `polygons` into a 320x200 target (for a peer, its
-    /// own kind of target).
+    /// One timed pass over `polygons` into a 320x200 target of its own
+    /// (for a peer, its own kind of target).
     pub fn pass<'a>(&self, polygons: &[&'a Polygon]) -> Box<dyn FnMut() + 'a> {
         match *self {
-            Contender::Method(id) => {
-                let polygons = polygons.to_vec();
-                let mut screen = Framebuffer::new(SCREEN);
-                // Compiled for the framebuffer: its store is inlined into
-                // the fill.
-                Box::new(move || {
-                    for polygon in &polygons {
-                        // A refusal costs what it costs; it draws nothing.
-                        let _ = id.fill(polygon, &mut screen);
-                    }
-                    black_box(&mut screen);
-                })
-            }
             Contender::Peer(p) => p.pass(polygons),
-            Contender::Path(which) => {
+            ours => {
                 let polygons = polygons.to_vec();
                 let (mut screen, mut scratch) = (Framebuffer::new(SCREEN), Scratch::new());
-                Box::new(move || {
-                    for &polygon in &polygons {
-                        let _ =
-                            ExactPath::alone(which, polygon).and_then(|path| path.fill_with(&mut screen, &mut scratch));
-                    }
-                    black_box(&mut screen);
-                })
-            }
-            Contender::Auto => {
-                let polygons = polygons.to_vec();
-                let (mut screen, mut scratch) = (Framebuffer::new(SCREEN), Scratch::new());
-                Box::new(move || {
-                    for &polygon in &polygons {
-                        let _ = fill_auto_with(polygon, &mut screen, &mut scratch);
-                    }
-                    black_box(&mut screen);
-                })
+                Box::new(move || ours.fill_all(&polygons, &mut screen, &mut scratch))
             }
         }
+    }
+
+    /// For ours (a method, one of `exact`'s paths or `fill_auto`): the same
+    /// pass as [`Contender::pass`], into `screen`, which the caller reads
+    /// once the pass is dropped (the timed pixels); `None` for a peer,
+    /// whose target is its own kind.
+    pub fn pass_into<'a>(
+        &self,
+        polygons: &[&'a Polygon],
+        screen: &'a mut Framebuffer,
+    ) -> Option<Box<dyn FnMut() + 'a>> {
+        if self.is_peer() {
+            return None;
+        }
+        let (ours, polygons, mut scratch) = (*self, polygons.to_vec(), Scratch::new());
+        Some(Box::new(move || ours.fill_all(&polygons, screen, &mut scratch)))
+    }
+
+    /// Fills `polygons` into `screen` as the timed passes of ours do: each
+    /// fill compiled for the framebuffer (its store inlined into the fill),
+    /// the paths and `fill_auto` with a scratch kept from polygon to
+    /// polygon. A refusal costs what it costs; it draws nothing. A peer
+    /// draws nothing here.
+    fn fill_all(self, polygons: &[&Polygon], screen: &mut Framebuffer, scratch: &mut Scratch) {
+        match self {
+            Contender::Method(id) => {
+                for polygon in polygons {
+                    let _ = id.fill(polygon, screen);
+                }
+            }
+            Contender::Path(which) => {
+                for polygon in polygons {
+                    let _ = ExactPath::alone(which, *polygon).and_then(|path| path.fill_with(screen, &mut *scratch));
+                }
+            }
+            Contender::Auto => {
+                for polygon in polygons {
+                    let _ = fill_auto_with(*polygon, screen, &mut *scratch);
+                }
+            }
+            Contender::Peer(_) => {}
+        }
+        black_box(screen);
     }
 }

@@ -9,8 +9,8 @@ use crate::contender::Contender;
 
 /// One way through a family's polygons. Every lane is timed in turn with
 /// the family's contenders and bounds ([`crate::timing::time_family`]),
-/// so its ratios to `exact` and to the store bound are paired, each with
-/// its interval.
+/// so its ratios to `exact` and to the store bound are paired within each
+/// launch, each with its interval across launches.
 ///
 /// Adding a lane (a candidate structure, say): a variant here, its name
 /// in [`Lane::name`], its pass in [`Lane::pass`], and its place in

@@ -6,8 +6,11 @@
 //! wall-clock time; results.json, report.md and the charts under the
 //! output directory.
 //!
-//! Speed is measured, never asserted. What fails a run is a missing
-//! results.json or any wrong pixel, overdraw, gap or failure of `exact`.
+//! Speed is measured, never asserted, in launches: fresh processes of the
+//! lab, each timing everything ([`run_launch`]), every ratio's interval
+//! across them (docs/lab-method.md). What fails a run is a missing
+//! results.json, any wrong pixel, overdraw, gap or failure of `exact`, or
+//! a timed frame of `raster`'s methods that is not its judged pixels.
 //!
 //! ## Examples
 //!
@@ -19,12 +22,14 @@
 
 use std::fs;
 use std::path::{Path, PathBuf};
+use std::process::Command;
 
 use anyhow::{anyhow, bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use scenes::Scene;
 
 pub mod area;
+pub mod builds;
 pub mod charts;
 pub mod closed;
 pub mod contender;
@@ -44,8 +49,9 @@ pub mod timing;
 
 use contender::Contender;
 use corpus::Budget;
-use results::{Results, TimingInfo, EXACT};
-use timing::Timing;
+use results::{Build, Results, TimingInfo, EXACT};
+use serde::{Deserialize, Serialize};
+use timing::{FamilyPlan, Order, Speeds, Timing};
 
 /// What `cargo xtask lab` asks for.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -53,9 +59,16 @@ pub struct LabOptions {
     /// A small corpus and short timing, for CI; with a scene, the short
     /// timing alone.
     pub quick: bool,
-    /// Runs of the whole timing, one after the other (at least 1): the
-    /// report says how far they disagree.
-    pub runs: usize,
+    /// Launches of the whole timing, each a fresh process, one after the
+    /// other (at least 1; [`default_launches`]): each ratio's interval is
+    /// across them.
+    pub launches: usize,
+    /// The seed of the orders passes are timed in: launch `k` (from 0)
+    /// draws its orders from `order_seed + k`.
+    pub order_seed: u64,
+    /// What the caller built the lab binary as (`native`, `x86-64-v3`),
+    /// for the report.
+    pub build: String,
     /// Where results.json, report.md and the charts go.
     pub out_dir: PathBuf,
     /// What is measured: the corpus, or a scene's polygons.
@@ -64,9 +77,29 @@ pub struct LabOptions {
 
 impl Default for LabOptions {
     fn default() -> Self {
-        Self { quick: false, runs: 1, out_dir: PathBuf::from(default_out_dir(&Shapes::Corpus)), shapes: Shapes::Corpus }
+        Self {
+            quick: false,
+            launches: default_launches(false),
+            order_seed: ORDER_SEED,
+            build: String::from("as built"),
+            out_dir: PathBuf::from(default_out_dir(&Shapes::Corpus)),
+            shapes: Shapes::Corpus,
+        }
     }
 }
+
+/// Launches unless told: 3 for a full run, the fewest an interval across
+/// launches can be worked out from, 2, with `--quick`.
+pub const fn default_launches(quick: bool) -> usize {
+    if quick {
+        2
+    } else {
+        3
+    }
+}
+
+/// The seed of the orders passes are timed in, unless told.
+pub const ORDER_SEED: u64 = 0x6b2c_41f7;
 
 /// The polygons a run measures.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -112,26 +145,74 @@ impl UserScene {
     }
 }
 
-/// Runs the lab: measures, writes every output, then checks them. Bad
-/// input (a scene with no polygon, `runs` of 0) is refused before
-/// anything is written.
+/// Runs the lab: judges every contender on every family, times them all
+/// in `launches` fresh processes of this binary one after the other
+/// ([`run_launch`]), writes every output from what they all timed, then
+/// checks them. Bad input (a scene with no polygon, no launch) is refused
+/// before anything is written; a launch that fails (its timed pixels not
+/// the judged ones, say) fails the run.
 pub fn run(options: &LabOptions) -> Result<()> {
-    let (budget, timing) = if options.quick { (Budget::QUICK, Timing::QUICK) } else { (Budget::FULL, Timing::FULL) };
+    let timing = timing_of(options);
     if cfg!(debug_assertions) {
         eprintln!("warning: the lab is built without optimisations; its timings mean little (use --release)");
     }
-    if options.runs == 0 {
-        bail!("--runs must be at least 1");
+    if options.launches == 0 {
+        bail!("--launches must be at least 1");
     }
-    let (families, scene) = match &options.shapes {
-        Shapes::Corpus => (corpus::build(budget)?, None),
-        Shapes::Scene(user) => (corpus::user::families(&user.scene)?, Some(user)),
+    let families = families_of(options)?;
+    let scene = match &options.shapes {
+        Shapes::Corpus => None,
+        Shapes::Scene(user) => Some(user),
     };
-    let mut results = measure_families(&families, options.quick, scene.is_none(), options.runs, timing);
-    results.scene = scene.map(|user| results::SceneInfo { name: user.scene.name.clone(), from: user.from.clone() });
-
+    // The commit as the run starts, right after `cargo run` built from it.
+    let build = Build::this(&options.build);
     let out = &options.out_dir;
-    fs::create_dir_all(out).with_context(|| format!("failed to create {}", out.display()))?;
+    let launch_dir = out.join("launches");
+    fs::create_dir_all(&launch_dir).with_context(|| format!("failed to create {}", launch_dir.display()))?;
+    let contenders = Contender::all();
+    let judged = judge_families(&families, &contenders);
+    let plans: Vec<FamilyPlan> = families
+        .iter()
+        .zip(&judged)
+        .map(|(family, (judged, lanes))| FamilyPlan::of(family, judged, &lanes.timed()))
+        .collect();
+    let plan_path = launch_dir.join("plan.json");
+    write(&plan_path, &serde_json::to_string(&plans).context("failed to serialise the plan")?)?;
+    let scene_path = match scene {
+        Some(user) => {
+            let path = launch_dir.join(format!("{}.scene", user.scene.name));
+            write(&path, &scenes::file::write(&user.scene))?;
+            Some(path)
+        }
+        None => None,
+    };
+    let load_at_start = load_average();
+    let mut records = Vec::with_capacity(options.launches);
+    for launch in 0..options.launches {
+        records.push(launch_one(options, launch, &plan_path, scene_path.as_deref(), &launch_dir)?);
+    }
+    let load_at_end = load_average();
+
+    let mut results = Results::new(corpus::SEED, options.quick, &contenders, build);
+    results.scene = scene.map(|user| results::SceneInfo { name: user.scene.name.clone(), from: user.from.clone() });
+    for (f, (family, (judged, lanes))) in families.iter().zip(&judged).enumerate() {
+        let speeds: Vec<Speeds> = records.iter().map(|r| r.families[f].clone()).collect();
+        results.add_family(family, &contenders, judged, lanes, &speeds);
+    }
+    results.show_modelling = modelling::show_rows(&records.iter().map(|r| r.show.clone()).collect::<Vec<_>>());
+    results.timing = TimingInfo {
+        launches: options.launches,
+        order_seed: options.order_seed,
+        repeats: timing.repeats,
+        min_repeat_ms: timing.min_repeat.as_secs_f64() * 1e3,
+        confidence: stats::CONFIDENCE,
+        load_average: (load_at_start, load_at_end),
+        launch_loads: records.iter().map(|r| r.load_average).collect(),
+        cpu: fs::read_to_string("/proc/cpuinfo").ok().and_then(|text| cpu_model(&text)),
+        screens_checked: records.iter().map(|r| r.families.iter().map(|s| s.screens_checked).sum::<usize>()).sum(),
+    };
+    results.goals = goals::measure(&results);
+
     write_real_shape_scenes(&families, &out.join("scenes"))?;
     let json = serde_json::to_string_pretty(&results).context("failed to serialise the results")?;
     write(&out.join("results.json"), &json)?;
@@ -139,64 +220,133 @@ pub fn run(options: &LabOptions) -> Result<()> {
     write(&out.join("summary.json"), &(summary + "\n"))?;
     write(&out.join("report.md"), &report::markdown(&results))?;
     charts::draw_all(&results, out)?;
+    eprintln!("{}", report::summary(&results));
     eprintln!("lab: wrote results.json, summary.json, report.md and the charts to {}", out.display());
     check(&out.join("results.json"))
 }
 
-/// Judges every contender and lane on every family, then times them all
-/// `runs` times over, family after family in each run, with a progress bar;
-/// and, `with_show`, the show's shaded entries as modelled.
-fn measure_families(families: &[corpus::Family], quick: bool, with_show: bool, runs: usize, timing: Timing) -> Results {
-    let contenders = Contender::all();
-    let lanes = lane::Lane::all().len();
-    let timed_lanes = contenders.len() + timing::Bound::ALL.len() + lanes;
-    let work: u64 =
-        families.iter().map(|f| 2 * f.polygons.len() as u64 + runs as u64 * timing::jobs(f, timed_lanes)).sum();
-    let bar = ProgressBar::new(work).with_style(
-        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {percent:>3}% {msg}")
-            .expect("the progress template is valid")
-            .progress_chars("=> "),
-    );
-    let judged: Vec<(measure::Judged, modelling::Judgement)> = families
+/// The timing a run asks for.
+fn timing_of(options: &LabOptions) -> Timing {
+    if options.quick {
+        Timing::QUICK
+    } else {
+        Timing::FULL
+    }
+}
+
+/// The families a run measures: the corpus, or the scene's.
+fn families_of(options: &LabOptions) -> Result<Vec<corpus::Family>> {
+    match &options.shapes {
+        Shapes::Corpus => corpus::build(if options.quick { Budget::QUICK } else { Budget::FULL }),
+        Shapes::Scene(user) => corpus::user::families(&user.scene),
+    }
+}
+
+/// Judges every contender and lane on every family, with a progress bar.
+fn judge_families(
+    families: &[corpus::Family],
+    contenders: &[Contender],
+) -> Vec<(measure::Judged, modelling::Judgement)> {
+    let bar = progress_bar(families.iter().map(|f| 2 * f.polygons.len() as u64).sum());
+    let judged = families
         .iter()
         .map(|family| {
             bar.set_message(format!("judging {}", family.name));
-            let judged = measure::quietly(|| measure::judge(family, &contenders, &|| bar.inc(1)));
+            let judged = measure::quietly(|| measure::judge(family, contenders, &|| bar.inc(1)));
             (judged, modelling::judge(family, &|| bar.inc(1)))
         })
         .collect();
-    let load_at_start = load_average();
-    let mut speeds: Vec<Vec<timing::Speeds>> = vec![Vec::with_capacity(runs); families.len()];
-    for run in 0..runs {
-        for ((family, (judged, lanes)), speeds) in families.iter().zip(&judged).zip(&mut speeds) {
-            bar.set_message(format!("timing {} (run {} of {runs})", family.name, run + 1));
-            let timed = lanes.timed();
-            speeds.push(timing::time_family(family, judged, &contenders, &timed, timing, &|| bar.inc(1)));
-        }
+    bar.finish_and_clear();
+    judged
+}
+
+fn progress_bar(work: u64) -> ProgressBar {
+    ProgressBar::new(work).with_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {percent:>3}% {msg}")
+            .expect("the progress template is valid")
+            .progress_chars("=> "),
+    )
+}
+
+/// What one launch timed, as it hands it back in its record file.
+#[derive(Debug, Serialize, Deserialize)]
+struct LaunchRecord {
+    /// The 1-minute load average when it started timing and when it ended.
+    load_average: (Option<f64>, Option<f64>),
+    /// Per family, in the plan's order.
+    families: Vec<Speeds>,
+    /// The show's samples ([`modelling::time_show`]); none for a scene.
+    show: Vec<timing::Samples>,
+}
+
+/// Runs launch `launch` (from 0) as a fresh process of this binary, told
+/// the plan (and the scene, if any) and where to write its record; reads
+/// the record back.
+fn launch_one(
+    options: &LabOptions,
+    launch: usize,
+    plan: &Path,
+    scene: Option<&Path>,
+    dir: &Path,
+) -> Result<LaunchRecord> {
+    let record = dir.join(format!("launch-{}.json", launch + 1));
+    let exe = std::env::current_exe().context("failed to find the lab binary to launch")?;
+    let mut command = Command::new(exe);
+    if options.quick {
+        command.arg("--quick");
     }
-    let show_modelling = if with_show {
-        bar.set_message("modelling the show");
-        modelling::measure_show(timing)
-    } else {
-        vec![]
+    if let Some(scene) = scene {
+        command.arg("--scene").arg(scene);
+    }
+    command.arg("--launch").arg(launch.to_string()).arg("--launches").arg(options.launches.to_string());
+    command.arg("--order-seed").arg(options.order_seed.to_string());
+    command.arg("--plan").arg(plan).arg("--record").arg(&record);
+    let status = command.status().context("failed to start a launch of the lab")?;
+    if !status.success() {
+        bail!("launch {} of {} failed ({status})", launch + 1, options.launches);
+    }
+    let text = fs::read_to_string(&record).with_context(|| format!("launch {} left no record", launch + 1))?;
+    serde_json::from_str(&text).with_context(|| format!("{} is not a launch record", record.display()))
+}
+
+/// One launch, in a process of its own: times every family as `plan`
+/// (the judging's [`FamilyPlan`]s, a JSON file) says, in orders drawn from
+/// `options.order_seed + launch`, checks each timed frame of ours against
+/// its judged pixels, times the show (on the corpus), and writes what it
+/// timed to `record`. A frame that is not its judged pixels fails it.
+pub fn run_launch(options: &LabOptions, launch: usize, plan: &Path, record: &Path) -> Result<()> {
+    let timing = timing_of(options);
+    let families = families_of(options)?;
+    let text = fs::read_to_string(plan).with_context(|| format!("failed to read {}", plan.display()))?;
+    let plans: Vec<FamilyPlan> =
+        serde_json::from_str(&text).with_context(|| format!("{} is not a plan", plan.display()))?;
+    let names = |plans: &[FamilyPlan]| plans.iter().map(|p| p.family.clone()).collect::<Vec<_>>();
+    if names(&plans) != families.iter().map(|f| f.name.to_string()).collect::<Vec<_>>() {
+        bail!("{} plans other families than this launch builds: {:?}", plan.display(), names(&plans));
+    }
+    let contenders = Contender::all();
+    let lanes = contenders.len() + timing::Bound::ALL.len() + lane::Lane::all().len();
+    let bar = progress_bar(families.iter().map(|f| timing::jobs(f, lanes)).sum());
+    let mut order = Order::seeded(options.order_seed.wrapping_add(launch as u64));
+    let load_at_start = load_average();
+    let mut speeds = Vec::with_capacity(families.len());
+    for (family, plan) in families.iter().zip(&plans) {
+        bar.set_message(format!("timing {} (launch {} of {})", family.name, launch + 1, options.launches));
+        let exact: Vec<Vec<spans::Span>> = family.polygons.iter().map(measure::exact_spans).collect();
+        let timed = timing::time_family(family, plan, &exact, &contenders, timing, &mut order, &|| bar.inc(1));
+        speeds.push(timed.map_err(|error| anyhow!("launch {}: {error}", launch + 1))?);
+    }
+    let show = match options.shapes {
+        Shapes::Corpus => {
+            bar.set_message(format!("timing the show (launch {} of {})", launch + 1, options.launches));
+            modelling::time_show(timing, &mut order)
+        }
+        Shapes::Scene(_) => vec![],
     };
     let load_at_end = load_average();
     bar.finish_and_clear();
-    let mut results = Results::new(corpus::SEED, quick, &contenders);
-    for ((family, (judged, lanes)), speeds) in families.iter().zip(&judged).zip(&speeds) {
-        results.add_family(family, &contenders, judged, lanes, speeds);
-    }
-    results.show_modelling = show_modelling;
-    results.timing = TimingInfo {
-        runs,
-        repeats: timing.repeats,
-        min_repeat_ms: timing.min_repeat.as_secs_f64() * 1e3,
-        confidence: stats::CONFIDENCE,
-        load_average: (load_at_start, load_at_end),
-        cpu: fs::read_to_string("/proc/cpuinfo").ok().and_then(|text| cpu_model(&text)),
-    };
-    results.goals = goals::measure(&results);
-    results
+    let record_of = LaunchRecord { load_average: (load_at_start, load_at_end), families: speeds, show };
+    write(record, &serde_json::to_string(&record_of).context("failed to serialise the launch's record")?)
 }
 
 /// The 1-minute load average, where the system tells it.

@@ -188,6 +188,12 @@ impl ReferenceFill {
     }
 }
 
+/// The reference's spans of `polygon` under our convention (pixel
+/// centres), as [`Judged::exact`] holds them: what the bounds replay.
+pub fn exact_spans(polygon: &Polygon) -> Vec<Span> {
+    ReferenceFill::of(polygon, Own::Sample(SampleOffset::CENTRE)).spans
+}
+
 fn coverage_of(spans: &[Span]) -> CoverageSink {
     let mut coverage = CoverageSink::new(SCREEN);
     spans::replay(spans, 1, &mut coverage);

@@ -14,7 +14,7 @@
 use std::hint::black_box;
 
 use raster::{ExactPath, MethodId, Polygon};
-use scenes::show::{Modelling, Stage, ENTRIES_IN_ORDER};
+use scenes::show::{Entry, Modelling, Stage, ENTRIES_IN_ORDER};
 use serde::Serialize;
 
 use crate::contender::Contender;
@@ -23,7 +23,7 @@ use crate::heap;
 use crate::lane::Lane;
 use crate::measure::{self, Tally};
 use crate::stats::{Ratio, Spread};
-use crate::timing::{Samples, Timed, Timing};
+use crate::timing::{Order, Samples, Timed, Timing};
 
 /// One lane on one family, as written to results.json. Accuracy fields are
 /// `None` for the lanes that only classify.
@@ -40,7 +40,8 @@ pub struct PathRow {
     pub gaps: Option<u64>,
     pub failures: Option<u64>,
     /// Its time, only where the lane takes every polygon of the family;
-    /// over `exact`'s and the store bound's, paired.
+    /// over `exact`'s and the store bound's, paired within each launch,
+    /// across launches.
     #[serde(flatten)]
     pub time: Timed,
     /// Heap allocations per polygon once the lane has run over the family
@@ -119,7 +120,7 @@ impl Judgement {
     }
 
     /// The rows of the family, from `lanes`, each lane's samples in each
-    /// run (in [`Lane::all`] order), and `exact`'s and the store bound's
+    /// launch (in [`Lane::all`] order), and `exact`'s and the store bound's
     /// in the same repeats.
     pub fn rows(&self, lanes: &[Vec<&Samples>], exact: &[&Samples], store: &[&Samples]) -> Vec<PathRow> {
         let mut rows: Vec<PathRow> = Lane::all()
@@ -169,22 +170,33 @@ pub struct ShowRow {
     pub modelling: &'static str,
     /// Frames timed: every frame of the entry, drawn by `exact`.
     pub frames: u32,
-    /// The median time per frame, with the least and most of the repeats.
+    /// The median time per frame, with the least and most of the repeats
+    /// of every launch.
     pub ns_per_frame: Option<Spread>,
-    /// Time over the same entry's as it needs, from the paired repeats.
+    /// Time over the same entry's as it needs, across launches
+    /// ([`Ratio::across`]).
     pub time_vs_needed: Option<Ratio>,
+    /// The same within each launch, from its paired repeats.
+    pub launches: Vec<Option<Ratio>>,
+}
+
+/// The shaded entries of the show, in order.
+fn shaded_entries() -> Vec<&'static Entry> {
+    let mut stage = Stage::new();
+    ENTRIES_IN_ORDER
+        .iter()
+        .filter(|entry| stage.draw_modelled(entry, 0, MethodId::Exact, Modelling::Needed).is_some())
+        .collect()
 }
 
 /// Every shaded entry of the show, every frame, drawn by `exact` as the
-/// entry needs and over-modelled, the two timed in turn.
-pub fn measure_show(timing: Timing) -> Vec<ShowRow> {
+/// entry needs and over-modelled, the two timed in turn (in an order
+/// `order` draws): per entry, the samples as needed, then forced.
+pub fn time_show(timing: Timing, order: &mut Order) -> Vec<Samples> {
     let method = MethodId::Exact;
     let (mut as_needed, mut forced) = (Stage::new(), Stage::new());
-    let mut rows = Vec::new();
-    for entry in ENTRIES_IN_ORDER {
-        if as_needed.draw_modelled(entry, 0, method, Modelling::Needed).is_none() {
-            continue;
-        }
+    let mut samples = Vec::new();
+    for entry in shaded_entries() {
         let every_frame = |stage: &mut Stage, modelling: Modelling| {
             for frame in 0..entry.frames {
                 black_box(stage.draw_modelled(entry, frame, method, modelling));
@@ -193,14 +205,28 @@ pub fn measure_show(timing: Timing) -> Vec<ShowRow> {
         let mut pass_needed = || every_frame(&mut as_needed, Modelling::Needed);
         let mut pass_forced = || every_frame(&mut forced, Modelling::Forced);
         let frames = entry.frames as usize;
-        let samples = timing.samples_each(vec![(&mut pass_needed, frames), (&mut pass_forced, frames)]);
-        for (name, ns) in ["needed", "forced"].into_iter().zip(&samples) {
+        samples.extend(timing.samples_each(vec![(&mut pass_needed, frames), (&mut pass_forced, frames)], order));
+    }
+    samples
+}
+
+/// The show's rows from each launch's [`time_show`].
+pub fn show_rows(launches: &[Vec<Samples>]) -> Vec<ShowRow> {
+    let mut rows = Vec::new();
+    for (e, entry) in shaded_entries().into_iter().enumerate() {
+        let needed: Vec<&Samples> = launches.iter().filter_map(|launch| launch.get(2 * e)).collect();
+        for (m, name) in ["needed", "forced"].into_iter().enumerate() {
+            let mine: Vec<&Samples> = launches.iter().filter_map(|launch| launch.get(2 * e + m)).collect();
+            let within: Vec<Option<Ratio>> =
+                mine.iter().zip(&needed).map(|(ns, needed)| Ratio::paired(ns, needed)).collect();
+            let all: Samples = mine.iter().flat_map(|s| s.iter().copied()).collect();
             rows.push(ShowRow {
                 entry: entry.name,
                 modelling: name,
                 frames: entry.frames,
-                ns_per_frame: Spread::of(ns),
-                time_vs_needed: Ratio::paired(ns, &samples[0]),
+                ns_per_frame: Spread::of(&all),
+                time_vs_needed: Ratio::across(&within.iter().flatten().copied().collect::<Vec<_>>()),
+                launches: within,
             });
         }
     }
@@ -228,8 +254,10 @@ mod tests {
             .iter()
             .map(|lane| (lane.map_or_else(|| Lane::Dispatch.pass(&[]), |l| l.pass(&polygons)), polygons.len()))
             .collect();
-        let mut samples =
-            FAST.samples_each(passes.iter_mut().map(|(p, n)| (&mut **p as &mut dyn FnMut(), *n)).collect());
+        let mut samples = FAST.samples_each(
+            passes.iter_mut().map(|(p, n)| (&mut **p as &mut dyn FnMut(), *n)).collect(),
+            &mut Order::seeded(1),
+        );
         for (samples, lane) in samples.iter_mut().zip(judgement.timed()) {
             if lane.is_none() {
                 samples.clear();
@@ -262,7 +290,8 @@ mod tests {
                 (Some(0), Some(0), Some(0), Some(0))
             );
             assert!(row.time.ns_per_polygon.is_some() && row.time_vs_cheapest.is_some(), "{row:?}");
-            assert_eq!(row.time.vs_exact.map(|r| r.pairs), Some(2), "{row:?}");
+            assert_eq!(row.time.launches[0].vs_exact.map(|r| r.count), Some(2), "{row:?}");
+            assert_eq!(row.time.vs_exact.map(|r| r.count), Some(1), "{row:?}");
         }
         assert_eq!(rows[0].chosen_by_fill_auto, Some(rows[0].polygons));
         assert_eq!(rows[1].chosen_by_fill_auto, Some(0));
@@ -286,7 +315,7 @@ mod tests {
 
     #[test]
     fn every_shaded_entry_is_timed_both_ways() {
-        let rows = measure_show(FAST);
+        let rows = show_rows(&[time_show(FAST, &mut Order::seeded(1))]);
         let entries: Vec<(&str, &str)> = rows.iter().map(|r| (r.entry, r.modelling)).collect();
         assert_eq!(
             entries,

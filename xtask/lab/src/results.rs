@@ -76,38 +76,85 @@ pub struct SceneInfo {
     pub from: String,
 }
 
-/// How the times were taken: how many runs of the whole timing, how many
-/// repeats in each, and the machine's load around them.
+/// How the times were taken: how many launches of the whole timing, how
+/// many repeats in each, in what orders, and the machine's load around
+/// them.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct TimingInfo {
-    /// Runs of the whole timing (`--runs`), one after the other.
-    pub runs: usize,
-    /// Repeats of every lane in each run, timed in turn.
+    /// Launches of the whole timing (`--launches`), each a fresh process,
+    /// one after the other.
+    pub launches: usize,
+    /// The seed of the orders passes are timed in; launch `k` (from 0)
+    /// draws its orders from `order_seed + k` ([`crate::timing::Order`]).
+    pub order_seed: u64,
+    /// Repeats of every lane in each launch, timed in turn.
     pub repeats: usize,
     /// How long each repeat of a pass lasts at least, in milliseconds.
     pub min_repeat_ms: f64,
     /// The confidence of the intervals of ratios.
     pub confidence: f64,
-    /// The 1-minute load average when the timing started and when it
-    /// ended, where the system tells it (`/proc/loadavg`).
+    /// The 1-minute load average when the first launch started and when
+    /// the last ended, where the system tells it (`/proc/loadavg`).
     pub load_average: (Option<f64>, Option<f64>),
+    /// The same for each launch.
+    pub launch_loads: Vec<(Option<f64>, Option<f64>)>,
     /// The processor the times were taken on, where the system tells it
     /// (`/proc/cpuinfo`): ratios between contenders differ from one
     /// generation to another.
     pub cpu: Option<String>,
+    /// Timed framebuffers of ours checked against their judged pixels,
+    /// every launch's together ([`crate::timing::check_screen`]).
+    pub screens_checked: usize,
 }
 
-/// The CPU features the lab was compiled to use (`cargo xtask lab` builds
-/// it with `-C target-cpu=native`, and on x86-64 with its jumps kept
-/// within 32-byte blocks).
+/// The CPU features of x86-64 a fill's code may be compiled to use, as
+/// `target_feature` names them, from SSE4.2 (x86-64-v2) through AVX2 and
+/// its companions (x86-64-v3) to AVX-512 (x86-64-v4 and beyond).
+const FEATURES: [(&str, bool); 15] = [
+    ("sse4.2", cfg!(target_feature = "sse4.2")),
+    ("popcnt", cfg!(target_feature = "popcnt")),
+    ("avx", cfg!(target_feature = "avx")),
+    ("avx2", cfg!(target_feature = "avx2")),
+    ("bmi1", cfg!(target_feature = "bmi1")),
+    ("bmi2", cfg!(target_feature = "bmi2")),
+    ("fma", cfg!(target_feature = "fma")),
+    ("lzcnt", cfg!(target_feature = "lzcnt")),
+    ("avx512f", cfg!(target_feature = "avx512f")),
+    ("avx512bw", cfg!(target_feature = "avx512bw")),
+    ("avx512cd", cfg!(target_feature = "avx512cd")),
+    ("avx512dq", cfg!(target_feature = "avx512dq")),
+    ("avx512vl", cfg!(target_feature = "avx512vl")),
+    ("avx512vbmi", cfg!(target_feature = "avx512vbmi")),
+    ("avx512vbmi2", cfg!(target_feature = "avx512vbmi2")),
+];
+
+/// What the lab binary is: the build as its caller names it (`cargo
+/// xtask lab --build`: `native`, `-C target-cpu=native`, or `x86-64-v3`),
+/// the commit it was built from, and the CPU features it was compiled to
+/// use.
 #[derive(Clone, Debug, Serialize)]
 pub struct Build {
-    pub avx2: bool,
-    pub avx512f: bool,
+    pub name: String,
+    /// `git describe`'s commit of the working tree as the run started
+    /// (`cargo xtask lab` has just built the binary from it), with `-dirty`
+    /// where it held uncommitted changes; `None` outside a git checkout.
+    pub commit: Option<String>,
+    /// Of [`FEATURES`], those this binary was compiled to use.
+    pub features: Vec<&'static str>,
 }
 
 impl Build {
-    pub const THIS: Build = Build { avx2: cfg!(target_feature = "avx2"), avx512f: cfg!(target_feature = "avx512f") };
+    /// This binary, built as `name`.
+    pub fn this(name: &str) -> Build {
+        let commit = std::process::Command::new("git")
+            .args(["describe", "--always", "--dirty", "--abbrev=12", "--exclude=*"])
+            .output()
+            .ok()
+            .filter(|out| out.status.success())
+            .and_then(|out| Some(String::from_utf8(out.stdout).ok()?.trim().to_string()));
+        let features = FEATURES.iter().filter(|(_, on)| *on).map(|(name, _)| *name).collect();
+        Build { name: name.to_string(), commit, features }
+    }
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -216,7 +263,7 @@ pub struct SweepPoint {
 }
 
 impl Results {
-    pub fn new(seed: u64, quick: bool, contenders: &[Contender]) -> Self {
+    pub fn new(seed: u64, quick: bool, contenders: &[Contender], build: Build) -> Self {
         let mut infos: Vec<ContenderInfo> = contenders
             .iter()
             .map(|c| ContenderInfo {
@@ -254,13 +301,14 @@ impl Results {
             modelling: vec![],
             show_modelling: vec![],
             goals: vec![],
-            build: Build::THIS,
+            build,
             timing: TimingInfo::default(),
         }
     }
 
     /// Adds what was measured on `family`: its judgement, its lanes'
-    /// (`lanes`), and the samples of every run of the timing (`runs`).
+    /// (`lanes`), and the samples of every launch of the timing
+    /// (`runs`).
     pub fn add_family(
         &mut self,
         family: &Family,
@@ -318,6 +366,7 @@ impl Results {
         for (c, contender) in contenders.iter().enumerate() {
             let Some(tally) = &judged.tallies[c] else { continue };
             let timed_polygons = &judged.timed[c];
+            let exact_on: Vec<&Samples> = runs.iter().map(|s| &s.exact_on[c]).collect();
             let kind = if contender.is_peer() { Kind::Peer } else { Kind::Method };
             let base = row(
                 contender.name(),
@@ -325,7 +374,7 @@ impl Results {
                 tally.polygons,
                 timed_polygons.len() as u64,
                 pixels_of(&mut timed_polygons.iter().copied()),
-                timed(&|s| &s.contenders[c]),
+                Timed::of(&runs.iter().map(|s| &s.contenders[c]).collect::<Vec<_>>(), &exact_on, &store_runs),
             );
             self.rows.push(with_tally(base, tally, !family.tilings.is_empty()));
         }
@@ -450,5 +499,59 @@ fn with_tally(row: Row, tally: &Tally, tiled: bool) -> Row {
         first_failure: tally.first_failure.clone(),
         first_refusal: tally.first_refusal.clone(),
         ..row
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// A row of `name` on `family` with nothing measured.
+    pub(crate) fn row(name: &'static str, family: &'static str) -> Row {
+        Row {
+            name,
+            kind: Kind::Method,
+            family,
+            group: Group::Stress,
+            polygons: 0,
+            pixels: 0,
+            timed_polygons: 0,
+            time: Timed::default(),
+            pixels_per_second: None,
+            time_vs_memset: None,
+            wrong_pixels: None,
+            wrong_pixels_own: None,
+            missing_pixels: None,
+            missing_pixels_own: None,
+            overdraw: None,
+            gaps: None,
+            failures: None,
+            refusals: None,
+            faulty_polygons: None,
+            drawn_pixels: None,
+            centroid_bias: None,
+            first_failure: None,
+            first_refusal: None,
+        }
+    }
+
+    /// Results with `families` and no contender or row.
+    pub(crate) fn results(families: &[&'static str]) -> Results {
+        let mut results = Results::new(0, true, &[], Build::this("test"));
+        results.families = families
+            .iter()
+            .map(|&name| FamilyInfo { name, group: Group::Stress, description: "", polygons: 0, tilings: 0, pixels: 0 })
+            .collect();
+        results
+    }
+
+    /// The build names the features it was compiled with, and only those.
+    #[test]
+    fn the_build_names_its_features() {
+        let build = Build::this("native");
+        assert_eq!(build.name, "native");
+        assert_eq!(build.features.contains(&"avx2"), cfg!(target_feature = "avx2"));
+        assert_eq!(build.features.contains(&"avx512bw"), cfg!(target_feature = "avx512bw"));
+        assert!(build.features.iter().all(|f| FEATURES.iter().any(|(name, on)| name == f && *on)));
     }
 }

@@ -1,6 +1,6 @@
 //! Small statistics: the spread of timing repeats, the ratio of two
-//! contenders' times from paired repeats with its interval, how far runs
-//! disagree, and the Pareto front of the speed-against-accuracy chart.
+//! contenders' times from paired repeats with its interval, within a launch
+//! and across launches, how far launches disagree, and the Pareto front of the speed-against-accuracy chart.
 //! The order statistics, means, deviations and Student's t quantiles are
 //! `statrs`'s.
 
@@ -32,24 +32,28 @@ impl Spread {
     }
 }
 
-/// One time over another, from repeats timed in turn: the geometric mean
-/// of the repeats' ratios, with its interval at [`CONFIDENCE`] (Student's
-/// t on the logarithms of the ratios: a paired design, so a change in the
-/// machine's load that falls on both times of a repeat cancels).
+/// One time over another, with its interval at [`CONFIDENCE`]: within a
+/// launch, from repeats timed in turn ([`Ratio::paired`]); across launches,
+/// from each launch's ratio ([`Ratio::across`]). Either way the figure is
+/// the geometric mean of the ratios it is over, and the interval Student's
+/// t on their logarithms with one degree of freedom fewer than there are
+/// ratios.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Ratio {
     pub ratio: f64,
-    /// The interval's ends; `None` with fewer than two pairs.
+    /// The interval's ends; `None` with fewer than two ratios.
     pub low: Option<f64>,
     pub high: Option<f64>,
-    /// Repeats paired.
-    pub pairs: usize,
+    /// The ratios it is over: repeats paired, or launches.
+    pub count: usize,
 }
 
 impl Ratio {
     /// `a` over `b`, repeat by repeat (`a[i]` and `b[i]` timed in the
-    /// same repeat); pairs where either time is not a positive number are
-    /// left out. `None` without a pair.
+    /// same repeat of one launch: a paired design, so a change in the
+    /// machine's load that falls on both times of a repeat cancels); pairs
+    /// where either time is not a positive number are left out. `None`
+    /// without a pair.
     pub fn paired(a: &[f64], b: &[f64]) -> Option<Ratio> {
         let logs: Vec<f64> = a
             .iter()
@@ -57,29 +61,45 @@ impl Ratio {
             .filter(|(a, b)| a.is_finite() && b.is_finite() && **a > 0.0 && **b > 0.0)
             .map(|(a, b)| (a / b).ln())
             .collect();
-        let pairs = logs.len();
-        if pairs == 0 {
+        Self::of_logs(&logs)
+    }
+
+    /// The ratio over launches, from each launch's own ([`Ratio::paired`]
+    /// within it): the geometric mean of the launches' ratios, and the t
+    /// interval of the mean of their logarithms with `launches - 1`
+    /// degrees of freedom, which holds the process (its code's layout in
+    /// memory, its caches' and predictors' state, the clock's speed that
+    /// day) as the unit that varies. `None` without a launch.
+    pub fn across(launches: &[Ratio]) -> Option<Ratio> {
+        Self::of_logs(&launches.iter().map(|r| r.ratio.ln()).collect::<Vec<f64>>())
+    }
+
+    /// The geometric mean of the ratios whose logarithms are `logs`, with
+    /// the t interval of their mean.
+    fn of_logs(logs: &[f64]) -> Option<Ratio> {
+        let count = logs.len();
+        if count == 0 {
             return None;
         }
         let mean = logs.iter().mean();
-        let (low, high) = if pairs < 2 {
+        let (low, high) = if count < 2 {
             (None, None)
         } else {
-            let t = StudentsT::new(0.0, 1.0, (pairs - 1) as f64).expect("a positive number of degrees of freedom");
-            let half = t.inverse_cdf(0.5 + CONFIDENCE / 2.0) * logs.iter().std_dev() / (pairs as f64).sqrt();
+            let t = StudentsT::new(0.0, 1.0, (count - 1) as f64).expect("a positive number of degrees of freedom");
+            let half = t.inverse_cdf(0.5 + CONFIDENCE / 2.0) * logs.iter().std_dev() / (count as f64).sqrt();
             (Some((mean - half).exp()), Some((mean + half).exp()))
         };
-        Some(Ratio { ratio: mean.exp(), low, high, pairs })
+        Some(Ratio { ratio: mean.exp(), low, high, count })
     }
 
     /// Whether the whole interval lies above `x` (a ratio of one pair
-    /// has no interval, and is above nothing).
+    /// or one launch has no interval, and is above nothing).
     pub fn surely_above(&self, x: f64) -> bool {
         self.low.is_some_and(|low| low > x)
     }
 }
 
-/// How far `values` (one figure from each of several runs) disagree: the
+/// How far `values` (one figure from each of several launches) disagree: the
 /// largest over the smallest, less one; `None` with fewer than two.
 pub fn disagreement(values: &[f64]) -> Option<f64> {
     (values.len() >= 2 && values.iter().all(|v| *v > 0.0)).then(|| values.max() / values.min() - 1.0)
@@ -168,8 +188,33 @@ mod tests {
         assert!((r.ratio - m.exp()).abs() < 1e-9, "{r:?}");
         assert!((r.low.unwrap() - (m - half).exp()).abs() < 1e-6, "{r:?}");
         assert!((r.high.unwrap() - (m + half).exp()).abs() < 1e-6, "{r:?}");
-        assert_eq!(r.pairs, 3);
+        assert_eq!(r.count, 3);
         assert!(r.surely_above(1.0) && !r.surely_above(2.0));
+    }
+
+    /// Across launches the interval is over the launches' ratios alone,
+    /// whatever the repeats within each: ratios 2.0, 2.4 and 2.2 have
+    /// logarithms of mean m = 0.7857 and standard deviation s = 0.0912
+    /// (worked out here by hand), and t(0.975, 2) = 4.3027 for 3 launches,
+    /// so the interval is exp(m ± 4.3027 s / sqrt 3) = 1.75–2.75.
+    #[test]
+    fn the_interval_across_launches_is_the_t_interval_of_their_ratios() {
+        let launch = |ratio, count| Ratio { ratio, low: Some(ratio * 0.99), high: Some(ratio * 1.01), count };
+        let r = Ratio::across(&[launch(2.0, 7), launch(2.4, 7), launch(2.2, 7)]).unwrap();
+        let logs = [2.0f64.ln(), 2.4f64.ln(), 2.2f64.ln()];
+        let m = logs.iter().sum::<f64>() / 3.0;
+        let s = (logs.iter().map(|l| (l - m).powi(2)).sum::<f64>() / 2.0).sqrt();
+        assert!((m - 0.785_7).abs() < 1e-4 && (s - 0.091_2).abs() < 1e-4, "{m} {s}");
+        let half = 4.302_652_7 * s / 3f64.sqrt();
+        assert!((r.ratio - m.exp()).abs() < 1e-9, "{r:?}");
+        assert!((r.low.unwrap() - (m - half).exp()).abs() < 1e-6, "{r:?}");
+        assert!((r.high.unwrap() - (m + half).exp()).abs() < 1e-6, "{r:?}");
+        assert!((r.low.unwrap() - 1.75).abs() < 0.005 && (r.high.unwrap() - 2.75).abs() < 0.005, "{r:?}");
+        assert_eq!(r.count, 3);
+        // One launch has a ratio and no interval; none has no ratio.
+        let one = Ratio::across(&[launch(2.0, 7)]).unwrap();
+        assert_eq!((one.ratio, one.low, one.high, one.count), (2.0, None, None, 1));
+        assert_eq!(Ratio::across(&[]), None);
     }
 
     #[test]
@@ -183,7 +228,7 @@ mod tests {
     #[test]
     fn one_pair_has_no_interval_and_none_has_no_ratio() {
         let r = Ratio::paired(&[4.0, f64::NAN], &[2.0, 1.0]).unwrap();
-        assert_eq!((r.ratio, r.low, r.high, r.pairs), (2.0, None, None, 1));
+        assert_eq!((r.ratio, r.low, r.high, r.count), (2.0, None, None, 1));
         assert!(!r.surely_above(1.0));
         assert_eq!(Ratio::paired(&[], &[]), None);
         assert_eq!(Ratio::paired(&[0.0], &[1.0]), None);

@@ -51,7 +51,23 @@ fn a_small_scene_is_measured_by_every_contender() {
         summary.families.iter().map(|f| f.family.as_str()).collect::<Vec<_>>(),
         ["scene_triangles", "scene_complex"]
     );
-    assert!(report.contains(&summary.closest_peers()), "report.md's closest peers are not summary.json's: {report}");
+    assert!(summary.families.iter().all(|f| f.closest_peer.is_some()), "{summary:?}");
+    // summary.json's closest peers are the run's: on each family, the peer
+    // whose time over `exact`'s is least in results.json.
+    for family in &summary.families {
+        let peers = results["rows"].as_array().unwrap().iter().filter(|row| {
+            row["kind"] == "peer" && row["family"] == family.family.as_str() && row["vs_exact"].is_object()
+        });
+        let ratio = |row: &&serde_json::Value| row["vs_exact"]["ratio"].as_f64().unwrap();
+        let closest = peers.min_by(|a, b| ratio(a).total_cmp(&ratio(b)));
+        assert_eq!(
+            closest.map(|row| row["name"].as_str().unwrap()),
+            family.closest_peer.as_deref(),
+            "{}",
+            family.family
+        );
+        assert_eq!(closest.map(|row| ratio(&row)), family.vs_exact.map(|r| r.ratio), "{}", family.family);
+    }
     // Nothing to sweep and no stress family: those charts are not drawn.
     assert!(out.join("versus_exact.png").is_file() && out.join("speed_vs_accuracy.svg").is_file());
     assert!(!out.join("rotation.png").exists() && !out.join("stability.png").exists());

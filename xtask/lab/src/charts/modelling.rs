@@ -145,7 +145,7 @@ where
     let (blue, red) = (RGBColor(31, 119, 180), RGBColor(214, 39, 40));
     for (i, entry) in entries.iter().enumerate() {
         let forced = results.show_modelling.iter().find(|r| r.entry == *entry && r.modelling == "forced");
-        let needed = Ratio { ratio: 1.0, low: None, high: None, pairs: 0 };
+        let needed = Ratio { ratio: 1.0, low: None, high: None, count: 0 };
         let bars = [(Some(needed), blue), (forced.and_then(|r| r.time_vs_needed), red)];
         for (k, (ratio, color)) in bars.into_iter().enumerate() {
             let Some(ratio) = ratio else { continue };
@@ -153,7 +153,7 @@ where
             let top = ratio.ratio;
             show.draw_series([Rectangle::new([(x0, 0.0), (x0 + 0.32, top)], color.mix(0.75).filled())])?;
             if let (Some(low), Some(high)) = (ratio.low, ratio.high) {
-                // The ratio's interval, from the paired repeats.
+                // The ratio's interval across launches.
                 show.draw_series([ErrorBar::new_vertical(x0 + 0.16, low, top, high, BLACK.stroke_width(2), 10)])?;
             }
             let label_at = ratio.high.unwrap_or(top) + most * 0.01;

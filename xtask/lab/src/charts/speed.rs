@@ -96,10 +96,10 @@ where
     Ok(())
 }
 
-/// Each mean's marker and name. Every marker, then every name placed, is a
-/// box a name must not cover: a name goes to the nearest place right or
-/// left of its point, going out up and down, and a line leads to it from
-/// the point where it had to move.
+/// Each mean's marker, then each one's name. Every marker, then every
+/// name placed, is a box a name must not cover: a name goes to the nearest
+/// place right or left of its point ([`place_label`]), and a line leads to
+/// it from the point where it had to move off the point's row.
 fn draw_means<'a, DB: DrawingBackend + 'a>(
     root: &DrawingArea<DB, Shift>,
     chart: &mut Chart<'a, DB>,
@@ -110,34 +110,75 @@ where
     DB::ErrorType: 'static,
 {
     let centres: Vec<(i32, i32)> = means.iter().map(|m| chart.backend_coord(&m.at)).collect();
-    let mut taken: Vec<(i32, i32, i32, i32)> = centres.iter().map(|&(x, y)| (x - 12, y - 12, x + 12, y + 12)).collect();
-    for (mean, &(px, py)) in means.iter().zip(&centres) {
+    let mut taken: Vec<Box2> = centres.iter().map(|&(x, y)| (x - 12, y - 12, x + 12, y + 12)).collect();
+    for mean in means {
         chart.draw_series([
             marker::<DB, _>(mean.kind, mean.at, 11, BLACK.filled()),
             marker::<DB, _>(mean.kind, mean.at, 9, color_of(mean.name).filled()),
         ])?;
+    }
+    let text = TextStyle::from((FONT, 16).into_font());
+    for (mean, &point) in means.iter().zip(&centres) {
         let label = match mean.kind {
             Kind::Peer => format!("{} ({} families)", mean.name, mean.families),
             _ => mean.name.to_string(),
         };
-        let width = 9 * label.chars().count() as i32;
-        let free = |(x, y): (i32, i32)| {
-            taken.iter().all(|&(x0, y0, x1, y1)| x + width <= x0 || x1 <= x || y + 9 <= y0 || y1 <= y - 9)
-        };
-        let mut candidates = (0..16).flat_map(|k: i32| {
-            let dy = if k % 2 == 0 { k / 2 * 20 } else { -(k / 2 + 1) * 20 };
-            [(px + 16, py + dy), (px - 16 - width, py + dy)]
-        });
-        let (x, y) = candidates.find(|&at| free(at)).unwrap_or((px + 16, py));
-        taken.push((x, y - 9, x + width, y + 9));
-        if y != py {
-            let end = if x > px { x - 2 } else { x + width + 2 };
-            root.draw(&PathElement::new([(px, py), (end, y)], BLACK.mix(0.5).stroke_width(1)))?;
+        let (width, height) = root.estimate_text_size(&label, &text)?;
+        let placed = place_label(point, (width as i32, height as i32), &taken);
+        taken.push(placed.space);
+        if let Some(end) = placed.leader {
+            root.draw(&PathElement::new([point, end], BLACK.mix(0.7).stroke_width(1)))?;
         }
-        let text = TextStyle::from((FONT, 16).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
-        root.draw(&Text::new(label, (x, y), text))?;
+        let side = if placed.right { HPos::Left } else { HPos::Right };
+        root.draw(&Text::new(label, placed.at, text.pos(Pos::new(side, VPos::Center))))?;
     }
     Ok(())
+}
+
+/// A box on the chart, in pixels: left, top, right, bottom.
+type Box2 = (i32, i32, i32, i32);
+
+/// Pixels between a marker's centre and its name.
+const LABEL_GAP: i32 = 16;
+
+/// Where a name goes.
+#[derive(Debug, PartialEq)]
+struct Placed {
+    /// The end of the name nearer its point, at its middle's height: its
+    /// left end where it is right of the point, its right end where left.
+    at: (i32, i32),
+    right: bool,
+    /// The box it takes, with a pixel's margin above and below.
+    space: Box2,
+    /// Where a line from the point ends at the name, if it left the
+    /// point's row.
+    leader: Option<(i32, i32)>,
+}
+
+/// The place of a name `size` (width, height) pixels beside its point at
+/// `(px, py)`: the first place free of `taken` of those right of the point
+/// (starting [`LABEL_GAP`] right of its centre) or left of it (ending as
+/// far left), on the point's row, then 20 pixels higher, lower, 40 higher,
+/// and so on; with a leader line where the name is off the point's row.
+/// A name left of its point is drawn by its right end, so it ends the gap
+/// from the point whatever the font makes of its width.
+fn place_label((px, py): (i32, i32), (width, height): (i32, i32), taken: &[Box2]) -> Placed {
+    let half = height / 2 + 1;
+    let space = |(x, y): (i32, i32), right: bool| {
+        if right {
+            (x, y - half, x + width, y + half)
+        } else {
+            (x - width, y - half, x, y + half)
+        }
+    };
+    let free = |b: Box2| taken.iter().all(|&(x0, y0, x1, y1)| b.2 <= x0 || x1 <= b.0 || b.3 <= y0 || y1 <= b.1);
+    let mut candidates = (0..16).flat_map(|k: i32| {
+        let dy = if k % 2 == 0 { k / 2 * 20 } else { -(k / 2 + 1) * 20 };
+        [((px + LABEL_GAP, py + dy), true), ((px - LABEL_GAP, py + dy), false)]
+    });
+    let (at, right) = candidates.find(|&(at, right)| free(space(at, right))).unwrap_or(((px + LABEL_GAP, py), true));
+    let leader = (at.1 != py).then(|| if right { (at.0 - 2, at.1) } else { (at.0 + 2, at.1) });
+    Placed { at, right, space: space(at, right), leader }
 }
 
 #[cfg(test)]
@@ -152,5 +193,23 @@ mod tests {
             [(1.0, 10.0), (1.0, 5.0), (2.0, 5.0), (2.0, 3.0), (9.0, 3.0), (9.0, 3.0)]
         );
         assert!(staircase(&[], 9.0, 10.0).is_empty());
+    }
+
+    /// A name stands right by its point: on its right where that is free;
+    /// on its left where not, ending the same gap from the point; off the
+    /// point's row only where both sides are taken, and then with a line
+    /// leading from the point to its near end.
+    #[test]
+    fn a_name_stands_by_its_point_or_is_led_to() {
+        let point = (400, 300);
+        let marker = (388, 288, 412, 312);
+        let right = place_label(point, (150, 18), &[marker]);
+        assert_eq!((right.at, right.right, right.leader), ((416, 300), true, None));
+        let cairo = (416, 290, 560, 310);
+        let left = place_label(point, (150, 18), &[marker, cairo]);
+        assert_eq!((left.at, left.right, left.leader), ((400 - 16, 300), false, None));
+        assert_eq!(left.space, (234, 290, 384, 310));
+        let both = place_label(point, (150, 18), &[marker, cairo, left.space]);
+        assert_eq!((both.at, both.right, both.leader), ((416, 280), true, Some((414, 280))));
     }
 }

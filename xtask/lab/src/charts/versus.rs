@@ -1,5 +1,5 @@
 //! Every peer's time over `exact`'s, family by family, each with the
-//! interval of that ratio from the paired repeats: the project's speed
+//! interval of that ratio across launches: the project's speed
 //! claim as a picture, a bar reaching below 1 being a family where the
 //! lead is not sure.
 
@@ -48,7 +48,7 @@ where
     let y_range = data.start..data.start * (data.end / data.start).powf(5.0 / 3.0);
     let mut chart = ChartBuilder::on(root)
         .caption(
-            "Each peer's time over exact's, family by family (bars: the 95% interval from the paired repeats; cut at 1000)",
+            "Each peer's time over exact's, family by family (bars: the 95% interval across launches; cut at 1000)",
             (FONT, 22),
         )
         .margin(20)

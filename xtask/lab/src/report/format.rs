@@ -49,9 +49,9 @@ mod tests {
 
     #[test]
     fn ratios_carry_their_interval() {
-        let r = Ratio { ratio: 1.554, low: Some(1.49), high: Some(1.612), pairs: 7 };
+        let r = Ratio { ratio: 1.554, low: Some(1.49), high: Some(1.612), count: 7 };
         assert_eq!(ratio(&r), "1.55× (1.49–1.61)");
-        assert_eq!(ratio(&Ratio { low: None, high: None, pairs: 1, ..r }), "1.55×");
+        assert_eq!(ratio(&Ratio { low: None, high: None, count: 1, ..r }), "1.55×");
     }
 
     #[test]

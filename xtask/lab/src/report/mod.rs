@@ -3,7 +3,7 @@
 //! on where it fails, tied to its seed. Every number comes from
 //! [`Results`]; nothing here measures. What modelling costs is in
 //! `modelling.rs`; the speed tables with their spread, the peers and the
-//! runs' disagreement in `speed.rs`; what each contender does inside the
+//! launches' disagreement in `speed.rs`; what each contender does inside the
 //! clock in `clock.rs`.
 
 mod clock;
@@ -18,9 +18,44 @@ pub use summary::{FamilySummary, Summary};
 use std::fmt::Write;
 
 use crate::corpus::Group;
-use crate::results::{Kind, Results, Row, EXACT, ZERO_FLOOR};
+use crate::results::{GoalRow, Kind, Results, Row, EXACT, ZERO_FLOOR};
 use crate::stats::pareto_front;
 use format::{count, duration, ratio};
+
+/// The machine and the build, in a sentence each: the processor, the
+/// build with its commit and the CPU features it was compiled to use, and
+/// the load average when the first launch started and the last ended,
+/// launch by launch.
+pub fn machine(results: &Results) -> String {
+    let (build, timing) = (&results.build, &results.timing);
+    let load = |l: Option<f64>| l.map_or("unknown".to_string(), |l| format!("{l:.2}"));
+    let per_launch: Vec<String> =
+        timing.launch_loads.iter().map(|(start, end)| format!("{}–{}", load(*start), load(*end))).collect();
+    let features =
+        if build.features.is_empty() { "no feature past SSE2".to_string() } else { build.features.join(", ") };
+    let avx512 = if build.features.iter().any(|f| f.starts_with("avx512")) { "" } else { ", no AVX-512" };
+    format!(
+        "Processor: {}. Build: `{}` of commit {}, compiled for {features}{avx512}. Load average {} when the first \
+         launch started, {} when the last ended (launch by launch: {}).",
+        timing.cpu.as_deref().unwrap_or("unknown"),
+        build.name,
+        build.commit.as_deref().unwrap_or("unknown"),
+        load(timing.load_average.0),
+        load(timing.load_average.1),
+        per_launch.join(", ")
+    )
+}
+
+/// What the console is told at the end of a run: the machine and the
+/// build ([`machine`]), and `exact` against its goals.
+pub fn summary(results: &Results) -> String {
+    let mut out = format!("lab: {}", machine(results));
+    for goal in &results.goals {
+        let met = if goal.met { "met" } else { "not met" };
+        let _ = write!(out, "\nlab: {}: {} (goal: {}; {met})", goal.measure, shown(goal), goal.goal);
+    }
+    out
+}
 
 /// The whole report.
 pub fn markdown(results: &Results) -> String {
@@ -37,23 +72,32 @@ pub fn markdown(results: &Results) -> String {
     };
     let _ = writeln!(out, "# Polygon-fill lab\n");
     let timing = &results.timing;
-    let load = |l: Option<f64>| l.map_or("unknown".to_string(), |l| format!("{l:.2}"));
+    let launches = timing.launches;
     let _ = writeln!(
         out,
-        "Run: {measured}. Host wall-clock times in release, filling into a 320x200 framebuffer: \
-         every contender, bound and lane of a family timed in turn in each of {} repeats (each at least {} ms), in \
-         each of {} run{} of the whole timing; a time is the median of those repeats, with the least and the most \
-         of them, and a ratio of two times is the geometric mean of the repeats' ratios with its {:.0}% interval \
-         (Student's t on their logarithms). Processor: {}. Load average {} when the timing started, {} when it ended. \
-         Accuracy against `raster::reference`. Charts: {} (.svg and .png beside this file).\n",
+        "Run: {measured}. {}\n\nHost wall-clock times in release, filling into a 320x200 framebuffer, in {launches} \
+         launch{} of the lab, each a fresh process, one after the other: in each, every contender, bound and lane of \
+         a family timed in turn in each of {} repeats (each at least {} ms), in an order shuffled afresh for every \
+         family (launch k, from 0, draws its orders from seed `{}` + k). A peer's time is set against `{EXACT}`'s \
+         on the very polygons the peer drew, the two timed in the same repeats. A time is the median of every \
+         launch's repeats, with the least and the most of them. A ratio of two times is taken within each launch \
+         as the geometric mean of its repeats' ratios, with its {:.0}% interval (Student's t on their logarithms, \
+         {} degrees of freedom), and across launches as the geometric mean of the launches' ratios, with its \
+         {:.0}% interval (Student's t on their logarithms, {} degree{} of freedom{}): the tables give the ratio \
+         across launches. Each of the {} timed frames of `raster`'s methods, every launch's, held its judged \
+         fill's pixels. Accuracy against `raster::reference`. Charts: {} (.svg and .png beside this file).\n",
+        machine(results),
+        if launches == 1 { "" } else { "es" },
         timing.repeats,
         timing.min_repeat_ms,
-        timing.runs,
-        if timing.runs == 1 { "" } else { "s" },
+        timing.order_seed,
         timing.confidence * 100.0,
-        timing.cpu.as_deref().unwrap_or("unknown"),
-        load(timing.load_average.0),
-        load(timing.load_average.1),
+        timing.repeats.saturating_sub(1),
+        timing.confidence * 100.0,
+        launches.saturating_sub(1),
+        if launches == 2 { "" } else { "s" },
+        if launches == 1 { ", so none: one launch has no interval across launches" } else { "" },
+        count(timing.screens_checked as u64),
         crate::charts::Chart::drawn(results).map(|c| c.name()).collect::<Vec<_>>().join(", "),
     );
     corpus_table(&mut out, results);
@@ -65,7 +109,7 @@ pub fn markdown(results: &Results) -> String {
     classic_failures(&mut out, results);
     speed::closest_peers(&mut out, results);
     speed::peers_on_everyday_families(&mut out, results);
-    speed::runs_disagreement(&mut out, results);
+    speed::launches_disagreement(&mut out, results);
     measure_table(&mut out, results, "Speed: ns per polygon, median (least–most of the repeats)", true, |r| {
         let t = &r.time;
         Some(format!("{} ({}–{})", duration(t.ns_per_polygon?), duration(t.ns_min?), duration(t.ns_max?)))
@@ -160,15 +204,19 @@ fn exact_goals(out: &mut String, results: &Results) {
     );
     let _ = writeln!(out, "| measure | measured | goal | met |\n|---|---:|---|---|");
     for goal in &results.goals {
-        let shown = match (&goal.note, goal.value) {
-            (Some(note), _) => note.clone(),
-            (None, Some(v)) => format!("{v}"),
-            (None, None) => "not measured".to_string(),
-        };
-        let _ =
-            writeln!(out, "| {} | {shown} | {} | {} |", goal.measure, goal.goal, if goal.met { "yes" } else { "no" });
+        let met = if goal.met { "yes" } else { "no" };
+        let _ = writeln!(out, "| {} | {} | {} | {met} |", goal.measure, shown(goal), goal.goal);
     }
     out.push('\n');
+}
+
+/// A goal's measure as the report shows it: its note, else its value.
+fn shown(goal: &GoalRow) -> String {
+    match (&goal.note, goal.value) {
+        (Some(note), _) => note.clone(),
+        (None, Some(v)) => format!("{v}"),
+        (None, None) => "not measured".to_string(),
+    }
 }
 
 /// One sentence per classic method: how far it is from exact under our

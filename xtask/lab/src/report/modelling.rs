@@ -20,8 +20,8 @@ pub(super) fn modelling_tables(out: &mut String, results: &Results) {
          simplicity included); `spans unstored` is `fill_auto` into a sink that stores nothing, what finding the \
          spans costs alone. The paths and `fill_auto` keep one `Scratch` from polygon to polygon, as a program \
          drawing frame after frame would. Every lane is timed in turn with the family's contenders and bounds, so its \
-         ratios to `exact`'s time and the store bound's are paired (results.json's `vs_exact` and `vs_store`, each \
-         with its interval). Cells: time per polygon (the median), time over the cheapest path's that takes the \
+         ratios to `exact`'s time and the store bound's are paired within each launch, and taken across launches \
+         (results.json's `vs_exact` and `vs_store`, each with its interval). Cells: time per polygon (the median), time over the cheapest path's that takes the \
          whole family, heap allocations per polygon once the lane has gone over the family (a scratch grown to the \
          largest polygon allocates no more); ← marks the path `fill_auto` picks, with how many polygons.\n"
     );

@@ -1,19 +1,21 @@
 //! report.md's speed tables beyond the one-measure tables: where
 //! `exact`'s time goes (finding spans against storing them), the closest
 //! peer on every family, the peers on the everyday families, and how far
-//! the runs of the timing disagree.
+//! the launches of the timing disagree.
 
 use std::fmt::Write;
 
 use super::format::{count, duration, ratio};
-use super::summary::{closest_peer, Summary};
+use super::summary::closest_peer;
+use crate::goals::{lowest_lower_end, LEADS};
 use crate::results::{Kind, Results, Row, EXACT};
 use crate::stats::{disagreement, median};
-use crate::timing::Timed;
+use crate::timing::{LaunchFigures, Timed};
 
 /// Per family: `exact`, finding its spans alone (`fill_auto` into a sink
 /// that stores nothing) and the store bound, with the ratios that say
-/// where `exact`'s time goes, each from the paired repeats.
+/// where `exact`'s time goes, each across launches of the paired repeats
+/// within each.
 pub(super) fn spans_against_stores(out: &mut String, results: &Results) {
     let _ = writeln!(
         out,
@@ -49,34 +51,62 @@ pub(super) fn spans_against_stores(out: &mut String, results: &Results) {
 }
 
 /// Per family, the peer closest to `exact` with its time over `exact`'s
-/// and that ratio's interval, and whether the whole interval is above 1
-/// (`exact` surely faster) and above 2 (at least twice as fast).
+/// across launches with its interval, and within each launch with its
+/// own; then the lowest lower end over the family's peers of the interval
+/// across launches, which peer it is, and whether it is above 1 (`exact`
+/// surely faster) and above each of [`LEADS`].
 pub(super) fn closest_peers(out: &mut String, results: &Results) {
+    let confidence = results.timing.confidence * 100.0;
+    let leads: Vec<String> = LEADS.iter().map(|lead| format!("above {lead}")).collect();
     let _ = writeln!(
         out,
         "## The closest peer on every family\n\nThe peer whose time is the least over `{EXACT}`'s on each family \
-         (on the polygons it drew), its ratio with its {:.0}% interval, and whether the interval's lower end is above \
-         1 (`{EXACT}` surely faster) and above 2 (surely at least twice as fast).\n\n\
-         {}",
-        results.timing.confidence * 100.0,
-        Summary::of(results).closest_peers()
+         (both timed on the polygons the peer drew), that ratio across the {} launches with its {confidence:.0}% \
+         interval, and within each launch with its own; then the lowest lower end of the intervals across launches \
+         over all the family's peers, whose it is, and whether it is above 1 (`{EXACT}` surely faster) and above \
+         each lead.\n\n| family | closest peer | time / {EXACT}'s, across launches | within each launch | lowest lower end \
+         | above 1 | {} |\n|---|---|---:|---|---:|---|{}",
+        results.timing.launches,
+        leads.join(" | "),
+        "---|".repeat(LEADS.len())
     );
+    for f in &results.families {
+        let Some(peer) = closest_peer(results, f.name) else { continue };
+        let Some(r) = peer.time.vs_exact else { continue };
+        let within: Vec<String> =
+            peer.time.launches.iter().map(|l| l.vs_exact.as_ref().map_or("–".to_string(), ratio)).collect();
+        let peers = results.rows.iter().filter(|row| row.kind == Kind::Peer && row.family == f.name);
+        let Some((lowest, low)) = lowest_lower_end(peers) else { continue };
+        let yes = |x: f64| if low > x { "yes" } else { "no" };
+        let above: Vec<&str> = LEADS.iter().map(|&lead| yes(lead)).collect();
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} | {low:.2} ({}) | {} | {} |",
+            f.name,
+            peer.name,
+            ratio(&r),
+            within.join("; "),
+            lowest.name,
+            yes(1.0),
+            above.join(" | ")
+        );
+    }
+    out.push('\n');
 }
 
-/// With two runs or more: how far they disagree, lane by lane, in time and
-/// in time over `exact`'s; `exact`'s time and the closest peer's ratio run
-/// by run on every family.
-pub(super) fn runs_disagreement(out: &mut String, results: &Results) {
-    let runs = results.timing.runs;
-    if runs < 2 {
+/// With two launches or more: how far they disagree, lane by lane, in time
+/// and in time over `exact`'s; `exact`'s time and the closest peer's ratio
+/// launch by launch on every family.
+pub(super) fn launches_disagreement(out: &mut String, results: &Results) {
+    let launches = results.timing.launches;
+    if launches < 2 {
         return;
     }
     let mut times = Vec::new();
     let mut ratios = Vec::new();
     for r in results.rows.iter().filter(|r| r.name != EXACT) {
-        let figure = |pick: fn(&crate::timing::RunFigures) -> Option<f64>| -> Vec<f64> {
-            r.time.runs.iter().filter_map(pick).collect()
-        };
+        let figure =
+            |pick: fn(&LaunchFigures) -> Option<f64>| -> Vec<f64> { r.time.launches.iter().filter_map(pick).collect() };
         if let Some(d) = disagreement(&figure(|f| f.ns_per_polygon)) {
             times.push((d, r));
         }
@@ -86,13 +116,14 @@ pub(super) fn runs_disagreement(out: &mut String, results: &Results) {
     }
     let _ = writeln!(
         out,
-        "## How far the {runs} runs disagree\n\nThe whole timing was run {runs} times, one after the other. For \
-         every contender and bound on every family, the runs' medians disagree (the largest over the smallest, less \
-         one) by {}; their times over `{EXACT}`'s, each from its run's paired repeats, by {}.\n",
+        "## How far the {launches} launches disagree\n\nThe whole timing was launched {launches} times, each a fresh \
+         process, one after the other. For every contender and bound on every family, the launches' medians \
+         disagree (the largest over the smallest, less one) by {}; their times over `{EXACT}`'s, each from its \
+         launch's paired repeats, by {}.\n",
         summary(&mut times),
         summary(&mut ratios)
     );
-    let columns: Vec<String> = (1..=runs).map(|r| format!("run {r}")).collect();
+    let columns: Vec<String> = (1..=launches).map(|r| format!("launch {r}")).collect();
     let _ = writeln!(
         out,
         "| family | `{EXACT}`, {} | disagree | closest peer | its time / `{EXACT}`'s, {} | disagree |\n|---|---:|---:|---|---:|---:|",
@@ -101,10 +132,10 @@ pub(super) fn runs_disagreement(out: &mut String, results: &Results) {
     );
     for f in &results.families {
         let Some(exact) = results.row(EXACT, f.name) else { continue };
-        let medians: Vec<f64> = exact.time.runs.iter().filter_map(|r| r.ns_per_polygon).collect();
+        let medians: Vec<f64> = exact.time.launches.iter().filter_map(|r| r.ns_per_polygon).collect();
         let peer = closest_peer(results, f.name);
         let peer_ratios: Vec<f64> =
-            peer.map(|p| p.time.runs.iter().filter_map(|r| Some(r.vs_exact?.ratio)).collect()).unwrap_or_default();
+            peer.map(|p| p.time.launches.iter().filter_map(|r| Some(r.vs_exact?.ratio)).collect()).unwrap_or_default();
         let percent = |d: Option<f64>| d.map_or("–".to_string(), |d| format!("{:.1}%", d * 100.0));
         let _ = writeln!(
             out,
@@ -123,7 +154,7 @@ pub(super) fn runs_disagreement(out: &mut String, results: &Results) {
 /// "a median of X% and at most Y% (NAME on FAMILY)" over `disagreements`.
 fn summary(disagreements: &mut [(f64, &Row)]) -> String {
     let values: Vec<f64> = disagreements.iter().map(|(d, _)| *d).collect();
-    let Some(middle) = median(&values) else { return "nothing (no figure in two runs)".to_string() };
+    let Some(middle) = median(&values) else { return "nothing (no figure in two launches)".to_string() };
     disagreements.sort_by(|a, b| a.0.total_cmp(&b.0));
     let (most, row) = disagreements[disagreements.len() - 1];
     format!("a median of {:.1}% and at most {:.1}% ({} on {})", middle * 100.0, most * 100.0, row.name, row.family)
@@ -199,7 +230,7 @@ struct PeerSummary {
     name: &'static str,
     families: usize,
     /// Geometric mean of its time per polygon over `exact`'s (each
-    /// family's from the paired repeats).
+    /// family's across launches).
     time_over_exact: f64,
     /// Wrong pixels per exact pixel, our convention and its own.
     wrong: f64,

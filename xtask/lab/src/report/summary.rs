@@ -18,8 +18,9 @@ use crate::stats::Ratio;
 pub struct Summary {
     /// The processor, as results.json's `timing` names it.
     pub cpu: Option<String>,
-    /// Runs of the whole timing, and repeats in each.
-    pub runs: usize,
+    /// Launches (fresh processes) of the whole timing, and repeats in
+    /// each.
+    pub launches: usize,
     pub repeats: usize,
     /// The 1-minute load average when the timing started and ended.
     pub load_average: (Option<f64>, Option<f64>),
@@ -55,7 +56,7 @@ impl Summary {
             .collect();
         Self {
             cpu: timing.cpu.clone(),
-            runs: timing.runs,
+            launches: timing.launches,
             repeats: timing.repeats,
             load_average: timing.load_average,
             families,
@@ -102,7 +103,7 @@ mod tests {
     use super::*;
 
     fn summary() -> Summary {
-        let r = |ratio, low| Some(Ratio { ratio, low: Some(low), high: Some(ratio + 0.1), pairs: 7 });
+        let r = |ratio, low| Some(Ratio { ratio, low: Some(low), high: Some(ratio + 0.1), count: 7 });
         let family = |name: &str, peer: Option<&str>, vs_exact| FamilySummary {
             family: name.to_string(),
             exact_ns: Some(1_500.0),
@@ -111,7 +112,7 @@ mod tests {
         };
         Summary {
             cpu: Some("a CPU".to_string()),
-            runs: 1,
+            launches: 1,
             repeats: 7,
             load_average: (Some(1.5), Some(1.0)),
             families: vec![
