@@ -26,7 +26,8 @@ use anyhow::{bail, ensure, Context, Result};
 
 use install::apt::{PrivateApt, DEBIAN_KEYRING};
 use install::once::turn_in;
-use install::process::{command_line, run_streaming};
+use install::packages::ensure_debian_packages;
+use install::process::{command_line, find_in_path, run_streaming};
 
 /// apt's helper, whose `cat-file` reads a list as apt stored it
 /// (compressed or not) and writes it out decompressed.
@@ -230,6 +231,10 @@ impl Unpacked {
     /// that list, the `SHA256:` of the stanzas of `package` at `version`.
     /// Lists of other archives (not signed by these keys) are left out.
     fn signed_sha256(&self, package: &str, version: &str) -> Result<Vec<String>> {
+        // Debian 13's apt verifies with sqv and no longer pulls gpgv in.
+        ensure_debian_packages("gpgv (to check Debian's signature on the package lists)", &["gpgv"], || {
+            find_in_path("gpgv").is_some()
+        })?;
         let lists = self.apt.lists_dir();
         let mut files: Vec<PathBuf> = std::fs::read_dir(&lists)
             .with_context(|| format!("failed to list {}", lists.display()))?
@@ -551,10 +556,8 @@ mod tests {
     /// SHA-256 of `packages`, the `Packages` list beside it. Returns the
     /// archive, its keyring and the list.
     fn signed_archive(dir: &Path, packages: &str) -> (Unpacked, PathBuf, PathBuf) {
-        install::packages::ensure_debian_packages("gpg (for a test's signed archive)", &["gpg"], || {
-            install::process::find_in_path("gpg").is_some()
-        })
-        .unwrap();
+        ensure_debian_packages("gpg (for a test's signed archive)", &["gpg"], || find_in_path("gpg").is_some())
+            .unwrap();
         let home = dir.join("gnupg");
         std::fs::create_dir(&home).unwrap();
         let gpg = || {
