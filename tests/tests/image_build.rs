@@ -12,7 +12,7 @@ use std::path::Path;
 use anyhow::{ensure, Context, Result};
 use boot_image::patched_copy::{fingerprint, PatchedBootloader, COPY_BUILD_FOLDER};
 use boot_image::{image_build_turn, stage_builds, stage_builds_with};
-use install::process::command_line;
+use install::command_line;
 
 /// Runs every stage build, failing on a failed one; returns what cargo
 /// printed on its standard error, build by build.

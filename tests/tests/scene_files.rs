@@ -7,7 +7,7 @@
 use anyhow::{ensure, Context, Result};
 use harness::checks::{screen_matches_dump, source_matches_host_render};
 use harness::large_scenes::{large_file, rings};
-use harness::render::{SceneFile, SceneSource};
+use harness::sources::{SceneFile, SceneSource};
 use harness::{Qemu, QemuOptions};
 use protocol::{ChunkReply, Command, ErrorReply, UPLOAD_BUDGET};
 use raster::MethodId;

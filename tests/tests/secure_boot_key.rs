@@ -21,8 +21,8 @@ use harness::secure_boot::{
     boot, first_boot, ready_and_page_1_exact, refused, scratch, FatImage, MokEntry, Screen, SHIM_REFUSES,
 };
 use harness::Adapter;
-use install::once::{once_per_process, Failure};
-use install::process::output_of;
+use install::output_of;
+use install::{once_per_process, Failure};
 
 /// The passphrase of the tests' key (it signs nothing but these images).
 const PASSPHRASE: &str = "polylab Secure Boot tests";

@@ -25,8 +25,8 @@ use boot_image::secure_boot::key::SigningKey;
 use boot_image::secure_boot::{shim, Enrollment, SHIM_PATH};
 use harness::secure_boot::{boot, loader_hash, ready_and_page_1_exact, scratch, FatImage, MokEntry};
 use harness::Adapter;
-use install::once::{once_per_process, Failure};
-use install::process::output_of;
+use install::output_of;
+use install::{once_per_process, Failure};
 
 /// Debian's pool, where every package version lives until it is dropped.
 const POOL: &str = "http://deb.debian.org/debian/pool/main/s";

@@ -3,7 +3,7 @@
 use anyhow::Result;
 use harness::checks::{screen_matches_dump, source_matches_host_render};
 use harness::client::{pack_for_upload, transfer_time, Uploaded, BAUD};
-use harness::render::SceneSource;
+use harness::sources::SceneSource;
 use harness::{Qemu, QemuOptions};
 use protocol::Command;
 use scenes::{file, Op, Scene, FILE_METHOD};

@@ -27,10 +27,10 @@ use anyhow::{bail, Context, Result};
 use harness::supervisor::Supervised;
 use harness::workspace;
 use indicatif::{ProgressBar, ProgressStyle};
-use install::process::{command_line, run_streaming};
-use install::toolchain::ensure_cargo_fuzz;
-use install::toolchain::ensure_toolchain;
-use install::toolchain::pinned;
+use install::ensure_cargo_fuzz;
+use install::ensure_toolchain;
+use install::pinned;
+use install::{command_line, run_streaming};
 
 use crate::opt::FuzzOpt;
 
@@ -272,7 +272,7 @@ impl FuzzRun {
             Failure::Crash { input, reason } => {
                 let replay = format!(
                     "cargo +{} fuzz run --fuzz-dir {FUZZ_DIR} --sanitizer none --target-dir {} {} {input}",
-                    install::toolchain::PINNED_TOOLCHAIN,
+                    install::PINNED_TOOLCHAIN,
                     places.root.display(),
                     self.target
                 );

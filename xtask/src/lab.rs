@@ -39,11 +39,11 @@
 use std::path::{absolute, Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
-use harness::render::SceneFile;
-use install::lab_art::ensure_lab_art;
-use install::libraries::ensure_lab_libraries;
-use install::missing::ensure_all;
-use install::process::run_streaming;
+use harness::sources::SceneFile;
+use install::ensure_all;
+use install::ensure_lab_art;
+use install::ensure_lab_libraries;
+use install::run_streaming;
 use scenes::Scene;
 
 use crate::opt::{LabBuild, LabOpt};
@@ -74,7 +74,7 @@ impl Flavour {
 
     /// `cargo run` of the lab binary built as this flavour, in release.
     fn lab(&self) -> std::process::Command {
-        let mut command = install::toolchain::host();
+        let mut command = install::host();
         command.env("RUSTFLAGS", self.rustflags());
         command.args(["run", "--quiet", "--release", "--package", "lab", "--target-dir", self.target_dir, "--"]);
         command

@@ -14,13 +14,13 @@ use std::process::Command;
 
 use anyhow::{Context, Result};
 use boot_image::cargo::{NightlyBuild, NIGHTLY_ONLY};
-use install::libraries::ensure_lab_libraries;
-use install::missing::ensure_all;
-use install::process::run_streaming;
-use install::toolchain::ensure_cxx;
-use install::toolchain::ensure_toolchain;
-use install::toolchain::{ensure_thumb_target, host, pinned, KERNEL_TARGET, THUMB_TARGET};
+use install::ensure_all;
+use install::ensure_cxx;
+use install::ensure_lab_libraries;
+use install::ensure_toolchain;
+use install::run_streaming;
 use install::workspace;
+use install::{ensure_thumb_target, host, pinned, KERNEL_TARGET, THUMB_TARGET};
 
 pub fn lint() -> Result<()> {
     // Under `cargo xtask`, rustup names the running toolchain in
@@ -113,7 +113,7 @@ fn kernel_clippy() -> Command {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use install::process::command_line;
+    use install::command_line;
 
     #[test]
     fn host_clippy_covers_every_host_crate_with_the_pinned_nightly_and_denies_warnings() {

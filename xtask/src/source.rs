@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Result};
 use clap::Args;
 use harness::client::pack_for_upload;
-use harness::render::{SceneFile, SceneSource};
+use harness::sources::{SceneFile, SceneSource};
 use svg_import::{import_file, Options, PaletteChoice, ViewBox};
 
 /// `--scene NAME|FILE` or `--svg FILE`, not both.

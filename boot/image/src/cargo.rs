@@ -4,8 +4,8 @@
 use std::path::PathBuf;
 use std::process::Command;
 
-use install::toolchain::{pinned, KERNEL_TARGET};
 use install::workspace;
+use install::{pinned, KERNEL_TARGET};
 
 /// Workspace members that only build with the pinned nightly (`boot`'s
 /// bootloader build script uses `-Zbuild-std`; the kernel is bare metal):
@@ -58,7 +58,7 @@ impl NightlyBuild<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use install::process::command_line;
+    use install::command_line;
 
     #[test]
     fn kernel_build_uses_the_pinned_nightly_and_its_own_target_dir() {

@@ -35,10 +35,10 @@ use crate::secure_boot::key::{self, SigningKey};
 use crate::secure_boot::{
     loader, shim, Enrollment, CERTIFICATE_PATH, HASH_ENROLL_PATH, LOADER_PATH, MOK_MANAGER_PATH, SHIM_PATH,
 };
-use install::once::{once_per_process, Failure};
-use install::process::run_streaming;
-use install::toolchain::ensure_toolchain;
+use install::ensure_toolchain;
+use install::run_streaming;
 use install::workspace;
+use install::{once_per_process, Failure};
 
 pub use provenance::IMAGE_ENV;
 
@@ -79,7 +79,7 @@ pub fn build_image_with(enrollment: &Enrollment, debian: &Unpacked, image: &Path
 /// turn until the file returned is dropped. [`build_image_with`] takes
 /// it; a caller of [`stage_builds`] takes it itself.
 pub fn image_build_turn() -> Result<std::fs::File> {
-    install::once::turn("image-build")
+    install::turn("image-build")
 }
 
 /// The builds of the kernel and of the image writer (against the patched
@@ -270,7 +270,7 @@ pub fn image_path() -> PathBuf {
 
 #[cfg(test)]
 mod tests {
-    use install::apt::PrivateApt;
+    use install::PrivateApt;
 
     use super::*;
 

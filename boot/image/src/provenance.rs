@@ -127,8 +127,7 @@ mod tests {
         let root = workspace::root();
         let mut metadata = std::process::Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
         metadata.args(["metadata", "--no-deps", "--offline", "--format-version", "1"]).current_dir(root);
-        let metadata: serde_json::Value =
-            serde_json::from_str(&install::process::output_of(&mut metadata).unwrap()).unwrap();
+        let metadata: serde_json::Value = serde_json::from_str(&install::output_of(&mut metadata).unwrap()).unwrap();
         let packages = metadata["packages"].as_array().unwrap();
         let folder_of =
             |manifest: &serde_json::Value| PathBuf::from(manifest.as_str().unwrap()).parent().unwrap().to_path_buf();

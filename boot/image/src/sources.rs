@@ -15,9 +15,9 @@ use std::path::{Path, PathBuf};
 use anyhow::{ensure, Context, Result};
 use sha2::{Digest, Sha256};
 
-use install::process::{output_of, run_streaming};
-use install::toolchain::pinned;
+use install::pinned;
 use install::workspace;
+use install::{output_of, run_streaming};
 
 /// The `bootloader` release the edits are written against. `boot/Cargo.toml`
 /// asks for exactly this version (a unit test holds it to that), so a new

@@ -22,15 +22,13 @@ use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context, Result};
 use boot_image::build_image;
-use install::files::system_file;
-use install::process::command_line;
+use install::command_line;
+use install::system_file;
 use protocol::Ready;
 
 use crate::client::{forward_bytes, Console, FrameReader};
 use crate::supervisor::Supervised;
-use install::emulators::{
-    ensure_bochs, BOCHS, BOCHS_BIOS, BOCHS_BIOS_ENV, BOCHS_CIRRUS_VGA_BIOS, BOCHS_CIRRUS_VGA_BIOS_ENV,
-};
+use install::{ensure_bochs, BOCHS, BOCHS_BIOS, BOCHS_BIOS_ENV, BOCHS_CIRRUS_VGA_BIOS, BOCHS_CIRRUS_VGA_BIOS_ENV};
 
 /// Longest wait for Bochs to connect COM1 to the harness.
 const CONNECT_TIMEOUT: Duration = Duration::from_secs(30);

@@ -9,9 +9,10 @@ use scenes::{builtin, show};
 
 use crate::client::{Console, Dump};
 use crate::picture::compare::{compare_images, compare_palettes};
-use crate::picture::render::{builtin_scene, render, render_show, show_entry, SceneSource};
+use crate::picture::render::{render, render_show};
 use crate::picture::Image;
 use crate::qemu::Qemu;
+use crate::sources::{builtin_scene, show_entry, SceneSource};
 
 /// QEMU shows each mode-13h pixel as a 2x2 block of its 640x400 screen.
 pub const SCREEN_SCALE: u32 = 2;

@@ -3,12 +3,12 @@
 //! take QEMU's screendumps, and compare pictures.
 //!
 //! ```no_run
-//! use harness::{compare_images, render, Qemu, QemuOptions};
+//! use harness::{compare_images, render, sources, Qemu, QemuOptions};
 //! # fn main() -> anyhow::Result<()> {
 //! let mut qemu = Qemu::boot(QemuOptions::default())?;
 //! qemu.console.draw("abrash38-1", None)?;
 //! let dump = qemu.console.dump()?;
-//! let scene = render::builtin_scene("abrash38-1")?;
+//! let scene = sources::builtin_scene("abrash38-1")?;
 //! let expected = render::render(&scene, scene.method);
 //! compare_images("abrash38-1", &expected, &dump.image())?;
 //! # Ok(())
@@ -26,6 +26,7 @@ pub mod qemu;
 pub mod secure_boot;
 pub mod serial_check;
 pub mod soak;
+pub mod sources;
 pub mod supervisor;
 pub mod workspace;
 

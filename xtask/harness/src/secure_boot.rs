@@ -15,9 +15,9 @@ use protocol::{Firmware, Video};
 
 use crate::checks::{dump_matches_host_render, screen_matches_dump};
 use crate::{Adapter, Qemu, QemuOptions};
-use install::emulators::{ensure_secure_boot_ovmf, ovmf_microsoft_vars};
-use install::process::output_of;
-use install::virt_firmware::ensure_virt_fw_vars;
+use install::ensure_virt_fw_vars;
+use install::output_of;
+use install::{ensure_secure_boot_ovmf, ovmf_microsoft_vars};
 
 /// The GUID shim's variables (`MokList` among them) live under.
 pub const SHIM_LOCK_GUID: &str = "605dab50-e046-4300-abb6-3dd810dd8b23";

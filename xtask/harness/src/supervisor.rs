@@ -40,7 +40,7 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, Context, Result};
 use tempfile::TempDir;
 
-use install::process::command_line;
+use install::command_line;
 
 /// The watchdog's script. It reads `group N` and `folder PATH` lines until
 /// end-of-file, then kills process group N and removes PATH (a second try

@@ -11,10 +11,10 @@
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use lab::contender::Contender;
 use lab::corpus::{self, Budget, Group};
 use lab::measure;
-use lab::timing::Bound;
+use lab::Bound;
+use lab::Contender;
 use raster::Polygon;
 
 fn families(c: &mut Criterion) {
@@ -35,7 +35,7 @@ fn families(c: &mut Criterion) {
             let mut pass = contender.pass(&polygons);
             group.bench_function(contender.name(), |b| b.iter(&mut pass));
         }
-        let exact: Vec<&[lab::spans::Span]> = judged.exact.iter().map(Vec::as_slice).collect();
+        let exact: Vec<&[lab::Span]> = judged.exact.iter().map(Vec::as_slice).collect();
         group.throughput(Throughput::Elements(exact.len() as u64));
         for bound in Bound::ALL {
             let mut pass = bound.pass(&exact);

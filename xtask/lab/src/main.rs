@@ -11,7 +11,7 @@ use clap::Parser;
 
 /// Counts allocations, for the allocations per polygon of exact's paths.
 #[global_allocator]
-static ALLOCATOR: lab::heap::Counting = lab::heap::Counting;
+static ALLOCATOR: lab::Counting = lab::Counting;
 
 /// Measures every fill method for speed and accuracy on one seeded corpus,
 /// or on the polygons of a scene file.
@@ -48,8 +48,8 @@ struct Cli {
     scene_from: Option<String>,
     /// Instead of measuring: set the runs of several builds side by side,
     /// each NAME=DIR (its results.json in DIR), in --out's report.md.
-    #[arg(long, value_name = "NAME=DIR", value_parser = lab::builds::BuildRun::parse, conflicts_with = "launch")]
-    compare: Vec<lab::builds::BuildRun>,
+    #[arg(long, value_name = "NAME=DIR", value_parser = lab::BuildRun::parse, conflicts_with = "launch")]
+    compare: Vec<lab::BuildRun>,
     /// Run as launch K (from 0) of a run: time as --plan says, write what
     /// was timed to --record.
     #[arg(long, value_name = "K", hide = true, requires_all = ["plan", "record"])]
@@ -68,7 +68,7 @@ fn main() -> anyhow::Result<()> {
     };
     let out_dir = cli.out.unwrap_or_else(|| PathBuf::from(lab::default_out_dir(&shapes)));
     if !cli.compare.is_empty() {
-        return lab::builds::compare(&cli.compare, &out_dir);
+        return lab::compare(&cli.compare, &out_dir);
     }
     let options = lab::LabOptions {
         quick: cli.quick,

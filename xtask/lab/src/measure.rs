@@ -1,7 +1,7 @@
 //! Accuracy: every contender on every polygon of a family, judged against
 //! `raster::reference` under our convention (pixel centres) and under the
 //! contender's own convention (its sample point, or for a peer that
-//! thresholds area coverage, [`crate::area`]), with `raster::CoverageSink` counting
+//! thresholds area coverage, [`crate::area_reference`]), with `raster::CoverageSink` counting
 //! overdraw, gaps and stray spans.
 //!
 //! A polygon is drawn once into a [`Recorder`]. Spans equal to the
@@ -19,8 +19,8 @@ use std::thread;
 use raster::reference::{self, SampleOffset};
 use raster::{CoverageReport, CoverageSink, Polygon, SCREEN};
 
-use crate::area;
-use crate::closed;
+use crate::area_reference;
+use crate::closed_reference;
 use crate::contender::Contender;
 use crate::convention::Own;
 use crate::corpus::Family;
@@ -165,8 +165,8 @@ impl ReferenceFill {
         let mut recorder = Recorder::default();
         match own {
             Own::Sample(sample) => reference::fill(polygon, sample, &mut recorder),
-            Own::Coverage { threshold } => area::fill(polygon, threshold, &mut recorder),
-            Own::Closed { outline } => closed::fill(polygon, outline, &mut recorder),
+            Own::Coverage { threshold } => area_reference::fill(polygon, threshold, &mut recorder),
+            Own::Closed { outline } => closed_reference::fill(polygon, outline, &mut recorder),
         }
         let normal = spans::normal_form(&recorder.spans);
         Self { own, spans: recorder.spans, normal, coverage: OnceCell::new() }

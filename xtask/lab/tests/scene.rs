@@ -5,8 +5,8 @@
 use std::path::Path;
 use std::process::{Command, Output};
 
-use lab::contender::Contender;
-use lab::timing::Bound;
+use lab::Bound;
+use lab::Contender;
 
 fn lab(args: &[&str], scene: &Path, out: &Path) -> Output {
     Command::new(env!("CARGO_BIN_EXE_lab"))
@@ -45,7 +45,7 @@ fn a_small_scene_is_measured_by_every_contender() {
     let results: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
     assert_eq!(results["scene"]["name"], "mine");
-    let summary: lab::report::Summary =
+    let summary: lab::Summary =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(
         summary.families.iter().map(|f| f.family.as_str()).collect::<Vec<_>>(),

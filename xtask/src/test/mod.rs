@@ -10,15 +10,15 @@ mod units;
 
 use anyhow::Result;
 use boot_image::{build_image, IMAGE_ENV};
-use install::browser::ensure_chromium;
-use install::emulators::{ensure_bochs, ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_secure_boot_ovmf};
-use install::lab_art::ensure_lab_art;
-use install::libraries::ensure_lab_libraries;
-use install::missing::{ensure_all, Step};
-use install::process::run_streaming;
-use install::toolchain::ensure_toolchain;
-use install::toolchain::ensure_wasm_target;
-use install::virt_firmware::ensure_virt_fw_vars;
+use install::ensure_chromium;
+use install::ensure_lab_art;
+use install::ensure_lab_libraries;
+use install::ensure_toolchain;
+use install::ensure_virt_fw_vars;
+use install::ensure_wasm_target;
+use install::run_streaming;
+use install::{ensure_all, Step};
+use install::{ensure_bochs, ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_secure_boot_ovmf};
 
 use crate::opt::TestOpt;
 use selection::{cargo_part, Selection};
@@ -157,8 +157,8 @@ mod tests {
     use std::sync::atomic::{AtomicUsize, Ordering};
 
     use super::*;
-    use install::missing::MissingPackages;
-    use install::process::command_line;
+    use install::command_line;
+    use install::MissingPackages;
 
     fn args(line: &str) -> Vec<String> {
         line.split_whitespace().map(String::from).collect()

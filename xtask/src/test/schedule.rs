@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context, Result};
 use harness::supervisor::Supervised;
-use install::process::command_line;
+use install::command_line;
 
 use super::units::Unit;
 

@@ -13,8 +13,8 @@ use anyhow::{bail, Context, Result};
 use boot_image::cargo::NIGHTLY_ONLY;
 use boot_image::IMAGE_ENV;
 use cargo_metadata::{Message, MetadataCommand};
-use install::process::{command_line, output_of};
 use install::workspace;
+use install::{command_line, output_of};
 
 use super::order::expected_seconds;
 use super::selection::{cargo_part, DocTests, Selection};
@@ -75,7 +75,7 @@ impl Unit {
 /// name packages (with `--workspace`, cargo would take every package
 /// whatever `-p` says).
 pub fn cargo_test(args: &[String]) -> Command {
-    let mut command = install::toolchain::host();
+    let mut command = install::host();
     command.arg("test");
     let names_packages = cargo_part(args)
         .iter()

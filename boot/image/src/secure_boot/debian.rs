@@ -24,10 +24,10 @@ use std::process::Command;
 
 use anyhow::{bail, ensure, Context, Result};
 
-use install::apt::{PrivateApt, DEBIAN_KEYRING};
-use install::once::turn_in;
-use install::packages::ensure_debian_packages;
-use install::process::{command_line, find_in_path, run_streaming};
+use install::ensure_debian_packages;
+use install::turn_in;
+use install::{command_line, find_in_path, run_streaming};
+use install::{PrivateApt, DEBIAN_KEYRING};
 
 /// apt's helper, whose `cat-file` reads a list as apt stored it
 /// (compressed or not) and writes it out decompressed.
@@ -432,7 +432,7 @@ fn deb_version(package: &str, file_name: &str) -> Option<String> {
 
 #[cfg(test)]
 mod tests {
-    use install::process::output_of;
+    use install::output_of;
 
     use super::*;
 

@@ -36,7 +36,7 @@ use std::process::Command;
 use anyhow::{bail, ensure, Context, Result};
 use sha2::{Digest, Sha256};
 
-use install::process::{command_line, find_in_path, output_of, output_with_input};
+use install::{command_line, find_in_path, output_of, output_with_input};
 
 /// A private key (PEM, encrypted) to sign with instead of the generated one; needs [`CERT_ENV`].
 pub const KEY_ENV: &str = "POLYLAB_SECURE_BOOT_KEY";
@@ -289,7 +289,7 @@ pub fn passphrase_from_file(path: &Path) -> Result<String> {
         .with_context(|| format!("failed to open the passphrase file {} (a symlink is refused)", path.display()))?;
     let metadata = file.metadata().with_context(|| format!("failed to read {}", path.display()))?;
     ensure!(metadata.is_file(), "the passphrase file {} is not a file", path.display());
-    let owner = install::process::user_id();
+    let owner = install::user_id();
     ensure!(
         Some(metadata.uid()) == owner,
         "the passphrase file {} belongs to user {}, not to the user running the build: refusing a passphrase \
@@ -481,7 +481,7 @@ mod tests {
         std::os::unix::fs::symlink(&file, &link).unwrap();
         let error = format!("{:#}", passphrase_from_file(&link).unwrap_err());
         assert!(error.contains("a symlink is refused"), "{error}");
-        if install::process::is_root() {
+        if install::is_root() {
             std::os::unix::fs::chown(&file, Some(65534), None).unwrap();
             let error = passphrase_from_file(&file).unwrap_err().to_string();
             assert!(error.contains("belongs to user 65534, not to the user running the build"), "{error}");

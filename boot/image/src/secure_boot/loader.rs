@@ -15,7 +15,7 @@ use object::{LittleEndian as LE, Object, ObjectSection};
 use sha2::{Digest, Sha256};
 
 use super::key::SigningKey;
-use install::process::output_with_input;
+use install::output_with_input;
 
 /// The bytes that start the digest placeholder in the loader (its
 /// `MARKER`); the kernel's SHA-256 follows, then `boot.json`'s.

@@ -11,9 +11,9 @@ use std::thread::JoinHandle;
 use anyhow::{anyhow, Context, Result};
 use tiny_http::{Header, Response, Server};
 
-use install::process::run_streaming;
-use install::toolchain::{ensure_wasm_target, WASM_TARGET};
+use install::run_streaming;
 use install::workspace;
+use install::{ensure_wasm_target, WASM_TARGET};
 
 /// The hand-written files of the page, in `xtask/explorer/web`.
 const WEB_FILES: [&str; 3] = ["index.html", "explorer.js", "explorer.css"];
@@ -31,7 +31,7 @@ fn wasm_target_dir() -> PathBuf {
 }
 
 fn wasm_build_command() -> std::process::Command {
-    let mut command = install::toolchain::host();
+    let mut command = install::host();
     command.args(["build", "--package", "explorer", "--lib", "--release", "--target", WASM_TARGET]);
     // The workspace keeps line tables in release builds for profiling; the
     // page has no use for them and they would triple the module.
@@ -188,7 +188,7 @@ fn page_file(url: &str) -> Option<(&str, &'static str)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use install::process::command_line;
+    use install::command_line;
 
     #[test]
     fn the_module_is_built_for_wasm32_in_its_own_target_dir() {

@@ -11,8 +11,8 @@ use anyhow::{bail, Context, Result};
 use serde_json::{json, Value};
 
 use crate::supervisor::Supervised;
-use install::browser::{chromedriver, chromium, ensure_chromium};
-use install::process::command_line;
+use install::command_line;
+use install::{chromedriver, chromium, ensure_chromium};
 use webdriver::Session;
 
 /// Chromium's flags. This machine's network is closed: without the flags

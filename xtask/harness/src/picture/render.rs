@@ -1,98 +1,12 @@
-//! The host side of every comparison: scenes, show entries and methods
-//! looked up by name (errors list the valid names), drawn with the same
-//! `raster` code the kernel runs.
+//! The host side of every comparison: scenes and show entries drawn with
+//! the same `raster` code the kernel runs (found by name in
+//! `sources.rs`).
 
-use std::path::{Path, PathBuf};
-
-use anyhow::{anyhow, bail, Context, Result};
 use raster::{Framebuffer, MethodId, SCREEN};
-use scenes::builtin::{self, BuiltinPage};
-use scenes::show::{self, Entry, Stage, ENTRIES_IN_ORDER};
-use scenes::{file, Scene};
+use scenes::show::{self, Entry, Stage};
+use scenes::Scene;
 
 use super::Image;
-
-/// The show entry called `name`.
-pub fn show_entry(name: &str) -> Result<&'static Entry> {
-    show::entry(name).with_context(|| format!("unknown show entry `{name}`; valid entries: {}", entry_names()))
-}
-
-/// The names of the show's entries, in demo order, `, `-separated, for
-/// error messages.
-pub fn entry_names() -> String {
-    ENTRIES_IN_ORDER.iter().map(|entry| entry.name).collect::<Vec<_>>().join(", ")
-}
-
-/// The names of the built-in scenes, `, `-separated, for error messages.
-fn builtin_names() -> String {
-    builtin::ALL.map(|page| page.name).join(", ")
-}
-
-/// The built-in scene called `name`.
-pub fn builtin_scene(name: &str) -> Result<Scene> {
-    builtin::scene(name).with_context(|| format!("unknown scene `{name}`; valid scenes: {}", builtin_names()))
-}
-
-/// A scene named on the command line: a built-in page, or a scene file.
-pub enum SceneSource {
-    Builtin(&'static BuiltinPage),
-    File(SceneFile),
-}
-
-impl SceneSource {
-    /// The built-in scene called `name_or_path` or, failing that, the scene
-    /// file at that path, read and parsed whole: a bad file is an error
-    /// naming its line.
-    pub fn find(name_or_path: &str) -> Result<Self> {
-        if let Some(page) = builtin::named(name_or_path) {
-            return Ok(SceneSource::Builtin(page));
-        }
-        let path = Path::new(name_or_path);
-        if !path.is_file() {
-            bail!(
-                "`{name_or_path}` is neither a built-in scene nor a scene file; valid scenes: {}, or the path of a scene file",
-                builtin_names()
-            );
-        }
-        SceneFile::read(path).map(SceneSource::File)
-    }
-
-    /// The scene, built or parsed.
-    pub fn scene(&self) -> Scene {
-        match self {
-            SceneSource::Builtin(page) => page.scene(),
-            SceneSource::File(file) => file.scene.clone(),
-        }
-    }
-
-    /// A name for files and messages: the page's, or the file's stem.
-    pub fn name(&self) -> &str {
-        match self {
-            SceneSource::Builtin(page) => page.name,
-            SceneSource::File(file) => &file.scene.name,
-        }
-    }
-}
-
-/// A scene file, read and parsed whole, with where it came from.
-#[derive(Clone)]
-pub struct SceneFile {
-    pub path: PathBuf,
-    pub scene: Scene,
-}
-
-impl SceneFile {
-    /// Reads and parses the scene file at `path`; a bad file is an error
-    /// naming its line.
-    pub fn read(path: &Path) -> Result<Self> {
-        let text =
-            std::fs::read_to_string(path).with_context(|| format!("failed to read scene file {}", path.display()))?;
-        let name = path.file_stem().map_or_else(|| "scene".to_string(), |s| s.to_string_lossy().into_owned());
-        let scene =
-            file::parse(&name, &text).map_err(|error| anyhow!("{}: bad scene file: {error}", path.display()))?;
-        Ok(Self { path: path.to_path_buf(), scene })
-    }
-}
 
 /// `scene` drawn with `method` on a black 320x200 screen, as an indexed
 /// image in the scene's palette (the VGA default with the scene's entries
@@ -117,8 +31,11 @@ pub fn render_show(entry: &Entry, frame: u32, method: MethodId, cycles: u64) -> 
 
 #[cfg(test)]
 mod tests {
+    use anyhow::Result;
+
     use super::*;
     use crate::picture::Pixels;
+    use crate::sources::{builtin_scene, show_entry, SceneSource};
 
     #[test]
     fn unknown_names_list_the_valid_ones() {

@@ -7,7 +7,7 @@ use protocol::Firmware;
 
 use super::board::{HPET_TABLE_FILE, MADT_FILE};
 use super::options::{Cpu, Display, ExitDevice, Medium, QemuOptions, SerialLine, TimeBase};
-use install::emulators::{ovmf_code, ovmf_secure_boot_code};
+use install::{ovmf_code, ovmf_secure_boot_code};
 
 /// The slot `QemuOptions::display_ahead` puts the card in, and the QEMU
 /// id screendumps name it by.

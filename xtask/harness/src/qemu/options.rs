@@ -4,8 +4,8 @@
 //! QEMU's command line.
 
 use anyhow::{Context, Result};
-use install::emulators::{ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_qemu_window, ensure_secure_boot_ovmf};
-use install::missing::Step;
+use install::Step;
+use install::{ensure_ovmf, ensure_qemu, ensure_qemu_qxl, ensure_qemu_window, ensure_secure_boot_ovmf};
 use protocol::{Firmware, PciId};
 
 use super::board::{Board, DisplayAhead};
@@ -255,7 +255,7 @@ pub struct QemuOptions {
 
 impl QemuOptions {
     /// What a run with these options needs installed, in order, for
-    /// `install::missing::ensure_all` (a user who is not root is told
+    /// `install::ensure_all` (a user who is not root is told
     /// every missing package at once): QEMU; its window; its QXL card; OVMF
     /// under UEFI; OVMF's Secure Boot build.
     pub fn needs(&self) -> Vec<Step> {

@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::{anyhow, bail, Context, Result};
 use boot_image::build_image;
-use install::process::command_line;
+use install::command_line;
 use protocol::{Firmware, Ready};
 
 use super::arguments::{qemu_arguments, qmp_socket, uefi_variables, CARD_BEHIND_ID};
@@ -20,8 +20,8 @@ use super::qmp::{Qmp, QMP_TIMEOUT};
 use crate::client::{forward_bytes, Console, FrameReader};
 use crate::picture::Image;
 use crate::supervisor::Supervised;
-use install::emulators::{ovmf_microsoft_vars, ovmf_vars, QEMU};
-use install::missing::ensure_all;
+use install::ensure_all;
+use install::{ovmf_microsoft_vars, ovmf_vars, QEMU};
 
 /// Longest wait for QEMU to exit after QMP `quit`.
 const QUIT_TIMEOUT: Duration = Duration::from_secs(30);

@@ -22,7 +22,8 @@ use scenes::{builtin, show, Scene};
 
 use crate::client::{Console, Dump, LineStats, Reply};
 use crate::picture::compare::{compare_images, differing_palette_entries, differing_pixel_count};
-use crate::picture::render::{builtin_scene, render, render_show, show_entry};
+use crate::picture::render::{render, render_show};
+use crate::sources::{builtin_scene, show_entry};
 use crate::Image;
 use bench_table::{BenchTable, Benched, TickUnit};
 pub use report::write_reports;

@@ -9,7 +9,7 @@
 use std::path::Path;
 
 use anyhow::{bail, Context, Result};
-use install::lab_art::{FLAGS_DIR, FLAGS_PACKAGE};
+use install::{FLAGS_DIR, FLAGS_PACKAGE};
 
 use super::family::{Family, Group};
 

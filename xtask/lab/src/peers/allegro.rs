@@ -24,7 +24,7 @@ use std::sync::{Mutex, MutexGuard, OnceLock};
 
 use raster::{Polygon, SpanSink, SCREEN};
 
-use super::integer::{whole_pixel_contour, Canvas, Contour, IntegerPeer, Reach};
+use super::integer::{whole_pixel_contour, Contour, IntegerPeer, IntegerTarget, Reach};
 use super::peer::{Clock, PeerInfo};
 use super::rows::emit_row;
 use crate::convention::Own;
@@ -91,7 +91,7 @@ pub struct AllegroCanvas {
     bitmap: NonNull<Bitmap>,
 }
 
-impl Canvas for AllegroCanvas {
+impl IntegerTarget for AllegroCanvas {
     /// `x0, y0, x1, y1, ...` in whole pixels.
     type Input = Vec<c_int>;
 

@@ -22,7 +22,7 @@ use std::slice;
 
 use raster::{Polygon, SpanSink, SCREEN};
 
-use super::integer::{whole_pixel_contour, Canvas, Contour, IntegerPeer, Reach};
+use super::integer::{whole_pixel_contour, Contour, IntegerPeer, IntegerTarget, Reach};
 use super::peer::{Clock, PeerInfo};
 use super::rows::emit_row;
 use crate::convention::Own;
@@ -79,7 +79,7 @@ pub struct GdCanvas {
     white: c_int,
 }
 
-impl Canvas for GdCanvas {
+impl IntegerTarget for GdCanvas {
     type Input = Vec<GdPoint>;
 
     fn contour(polygon: &Polygon) -> Contour {

@@ -14,7 +14,7 @@ use imageproc::image::{GrayImage, Luma};
 use imageproc::point::Point;
 use raster::{Polygon, SpanSink, SCREEN};
 
-use super::integer::{whole_pixel_contour, Canvas, Contour, IntegerPeer, Reach};
+use super::integer::{whole_pixel_contour, Contour, IntegerPeer, IntegerTarget, Reach};
 use super::peer::{Clock, PeerInfo};
 use super::rows::emit_rows;
 use crate::convention::Own;
@@ -42,7 +42,7 @@ pub static IMAGEPROC: IntegerPeer<GrayCanvas> = IntegerPeer::new(PeerInfo {
 /// A 320x200 grey image, black at first.
 pub struct GrayCanvas(GrayImage);
 
-impl Canvas for GrayCanvas {
+impl IntegerTarget for GrayCanvas {
     type Input = Vec<Point<i32>>;
 
     /// No reach of its own.

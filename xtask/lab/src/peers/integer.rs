@@ -1,6 +1,6 @@
 //! What the integer peers (Allegro 4, SDL2_gfx, GD, imageproc) are given,
 //! what they decline before they are called, and how the lab drives them
-//! ([`IntegerPeer`], over each one's [`Canvas`]).
+//! ([`IntegerPeer`], over each one's [`IntegerTarget`]).
 //!
 //! Each takes one list of whole-pixel vertices (one contour) and fills it
 //! by the parity of a row's sorted crossings (even-odd): our vertices are
@@ -69,7 +69,7 @@ pub fn whole_pixel_contour(polygon: &Polygon, reach: Reach) -> Contour {
 /// An integer peer's target, as the lab drives every one of them: made
 /// empty, filled with polygons converted from whole-pixel contours, read
 /// back as spans. Each peer's file implements it over its library.
-pub trait Canvas: Sized + 'static {
+pub trait IntegerTarget: Sized + 'static {
     /// A polygon as the library takes it.
     type Input: 'static;
 
@@ -104,7 +104,7 @@ impl<C> IntegerPeer<C> {
     }
 }
 
-impl<C: Canvas> Peer for IntegerPeer<C> {
+impl<C: IntegerTarget> Peer for IntegerPeer<C> {
     fn info(&self) -> &PeerInfo {
         &self.info
     }

@@ -20,14 +20,14 @@
 //!   convention is the closed polygon at whole-pixel points
 //!   ([`Own::Closed`]); Allegro and imageproc draw the outline too. These
 //!   four are driven alike (`integer.rs`): each file gives its library's
-//!   target as an `integer::Canvas`, and an `integer::IntegerPeer` over it
+//!   target as an `integer::IntegerTarget`, and an `integer::IntegerPeer` over it
 //!   is the peer.
 //!
 //! Each file's own notes say how its peer is called and what it computes
 //! in. A peer's picture is read back as spans by `rows.rs`.
 //!
 //! Adding a peer: a file with a value implementing [`Peer`] (`peer.rs`: a
-//! unit struct, or an `IntegerPeer` over a `Canvas` for a library taking
+//! unit struct, or an `IntegerPeer` over an `IntegerTarget` for a library taking
 //! whole-pixel contours), its `mod` line here and its place in [`ALL`].
 //! Its [`PeerInfo`] says what it does inside the clock ([`Clock`]): a row
 //! of the table in docs/lab.md, which a test holds to these.
@@ -46,7 +46,10 @@ mod test_support;
 mod tiny_skia;
 mod vello_cpu;
 
-pub use peer::{Clock, Peer, PeerInfo};
+pub use peer::{Clock, Peer};
+// The peers' own descriptions, which the tests of measure.rs make up.
+#[cfg(test)]
+pub(crate) use peer::PeerInfo;
 
 /// Every peer, in the order the results and the charts list them. Where a
 /// peer's API lets a program build its path once, it is here twice: with
@@ -92,7 +95,7 @@ mod tests {
                 panic!("{} judged by another convention", peer.info().name)
             };
             let mut own = CoverageSink::new(SCREEN);
-            crate::closed::fill(&triangle, outline, &mut own);
+            crate::closed_reference::fill(&triangle, outline, &mut own);
             let report = drawn.report(&own);
             assert_eq!((report.gaps, report.overdrawn, report.out_of_bounds), (0, 0, 0), "{}", peer.info().name);
             counts.push(own.ascii().matches('#').count() + report.extras);

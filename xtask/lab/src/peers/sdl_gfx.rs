@@ -72,7 +72,7 @@ pub struct SdlCanvas {
     canvas: Canvas<Surface<'static>>,
 }
 
-impl super::integer::Canvas for SdlCanvas {
+impl super::integer::IntegerTarget for SdlCanvas {
     type Input = Vertices;
 
     /// Besides the reach, `filledPolygonRGBA` returns -1 for fewer than 3

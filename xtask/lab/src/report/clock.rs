@@ -1,6 +1,6 @@
 //! The table of what each contender does inside the clock, made from the
 //! contenders' own descriptions ([`crate::peers::Clock`]: each peer's
-//! [`crate::peers::PeerInfo`], the methods' [`crate::contender::METHODS_CLOCK`],
+//! `PeerInfo` (`peers/peer.rs`), the methods' [`crate::contender::METHODS_CLOCK`],
 //! each bound's [`Bound::clock`]), for report.md and docs/lab.md; a test
 //! holds docs/lab.md's copy to it.
 

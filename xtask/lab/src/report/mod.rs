@@ -13,7 +13,7 @@ mod speed;
 mod summary;
 
 pub use clock::clock_table;
-pub use summary::{FamilySummary, Summary};
+pub use summary::Summary;
 
 use std::fmt::Write;
 
