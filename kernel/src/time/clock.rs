@@ -118,21 +118,21 @@ fn rate_of(source: ClockSource, stalls: Stalls) -> Option<u64> {
     let rsdp = RSDP.get().copied().flatten();
     match source {
         ClockSource::Pit => rate_against(Stopwatch::start(), stalls),
-        ClockSource::PmTimer => match rsdp.and_then(PmTimer::find)? {
-            Ok(timer) => rate_against(timer, stalls),
-            Err(refused) => {
-                PM_TIMER_REFUSED.call_once(|| refused);
-                None
-            }
-        },
-        ClockSource::Hpet => match rsdp.and_then(Hpet::find)? {
-            Ok(timer) => rate_against(timer, stalls),
-            Err(refused) => {
-                HPET_REFUSED.call_once(|| refused);
-                None
-            }
-        },
+        ClockSource::PmTimer => rate_or_refusal(rsdp.and_then(PmTimer::find)?, &PM_TIMER_REFUSED, stalls),
+        ClockSource::Hpet => rate_or_refusal(rsdp.and_then(Hpet::find)?, &HPET_REFUSED, stalls),
         ClockSource::Cpuid | ClockSource::Assumed => None,
+    }
+}
+
+/// The TSC's rate against a timer the ACPI tables named, or, where the
+/// kernel refused it, `None` with the first refusal kept in `refused`.
+fn rate_or_refusal<T: Timer, R>(found: Result<T, R>, refused: &Once<R>, stalls: Stalls) -> Option<u64> {
+    match found {
+        Ok(timer) => rate_against(timer, stalls),
+        Err(why) => {
+            refused.call_once(|| why);
+            None
+        }
     }
 }
 

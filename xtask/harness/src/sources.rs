@@ -90,3 +90,40 @@ impl SceneFile {
         Ok(Self { path: path.to_path_buf(), scene })
     }
 }
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    #[test]
+    fn unknown_names_list_the_valid_ones() {
+        let error = format!("{:#}", builtin_scene("nope").unwrap_err());
+        assert!(error.starts_with("unknown scene `nope`; valid scenes: abrash38-1, abrash38-2, "), "{error}");
+        assert!(error.ends_with(", wgt-triangle, world"), "{error}");
+        let error = format!("{:#}", show_entry("nope").unwrap_err());
+        assert!(error.starts_with("unknown show entry `nope`; valid entries: abrash38-1, "), "{error}");
+        assert!(error.ends_with(", race, world"), "{error}");
+        let Err(error) = SceneSource::find("nope") else { panic!("`nope` is a scene") };
+        let error = format!("{error:#}");
+        assert!(
+            error.starts_with("`nope` is neither a built-in scene nor a scene file; valid scenes: abrash38-1,"),
+            "{error}"
+        );
+    }
+
+    /// `text` written to a scene file of its own, found as a source.
+    pub(crate) fn from_file(tag: &str, text: &str) -> Result<SceneSource> {
+        let path = std::env::temp_dir().join(format!("harness-render-{}-{tag}.scene", std::process::id()));
+        std::fs::write(&path, text).unwrap();
+        let source = SceneSource::find(path.to_str().unwrap());
+        std::fs::remove_file(&path).unwrap();
+        source
+    }
+
+    #[test]
+    fn scene_file_errors_name_the_line() {
+        let Err(error) = from_file("bad", "clear 1\n# fine\npoly color=300 0,0 1,0 0,1\n") else { panic!("parsed") };
+        let error = format!("{error:#}");
+        assert!(error.ends_with("bad scene file: line 3: bad colour `300` (expected 0-255)"), "{error}");
+    }
+}

@@ -5,14 +5,13 @@
 //! method says of itself ([`MethodInfo`]) and why it declines a polygon
 //! ([`Refusal`]) in `info.rs`.
 //!
+//! Without the `alloc` feature only `exact`'s fill is here, and
+//! [`Refusal`], not the [`Method`] interface or the classic methods.
+//!
 //! [`Method`]: crate::Method
 //! [`MethodId`]: crate::MethodId
 //! [`MethodInfo`]: crate::MethodInfo
 //! [`Refusal`]: crate::Refusal
-
-//!
-//! Without the `alloc` feature only `exact`'s fill is here, and
-//! [`Refusal`], not the [`Method`] interface or the classic methods.
 
 #[cfg(feature = "alloc")]
 mod abrash_aet;

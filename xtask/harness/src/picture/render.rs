@@ -31,27 +31,10 @@ pub fn render_show(entry: &Entry, frame: u32, method: MethodId, cycles: u64) -> 
 
 #[cfg(test)]
 mod tests {
-    use anyhow::Result;
-
     use super::*;
     use crate::picture::Pixels;
-    use crate::sources::{builtin_scene, show_entry, SceneSource};
-
-    #[test]
-    fn unknown_names_list_the_valid_ones() {
-        let error = format!("{:#}", builtin_scene("nope").unwrap_err());
-        assert!(error.starts_with("unknown scene `nope`; valid scenes: abrash38-1, abrash38-2, "), "{error}");
-        assert!(error.ends_with(", wgt-triangle, world"), "{error}");
-        let error = format!("{:#}", show_entry("nope").unwrap_err());
-        assert!(error.starts_with("unknown show entry `nope`; valid entries: abrash38-1, "), "{error}");
-        assert!(error.ends_with(", race, world"), "{error}");
-        let Err(error) = SceneSource::find("nope") else { panic!("`nope` is a scene") };
-        let error = format!("{error:#}");
-        assert!(
-            error.starts_with("`nope` is neither a built-in scene nor a scene file; valid scenes: abrash38-1,"),
-            "{error}"
-        );
-    }
+    use crate::sources::show_entry;
+    use crate::sources::tests::from_file;
 
     #[test]
     fn a_show_frame_is_drawn_in_the_show_palette() {
@@ -61,22 +44,6 @@ mod tests {
         let expected: Vec<[u8; 3]> = show::PALETTE.iter().map(|rgb| rgb.map(scenes::palette::c6_to_8)).collect();
         assert_eq!(palette, &expected);
         assert!(indices.iter().any(|&i| i != 0), "the page is drawn");
-    }
-
-    /// `text` written to a scene file of its own, found as a source.
-    fn from_file(tag: &str, text: &str) -> Result<SceneSource> {
-        let path = std::env::temp_dir().join(format!("harness-render-{}-{tag}.scene", std::process::id()));
-        std::fs::write(&path, text).unwrap();
-        let source = SceneSource::find(path.to_str().unwrap());
-        std::fs::remove_file(&path).unwrap();
-        source
-    }
-
-    #[test]
-    fn scene_file_errors_name_the_line() {
-        let Err(error) = from_file("bad", "clear 1\n# fine\npoly color=300 0,0 1,0 0,1\n") else { panic!("parsed") };
-        let error = format!("{error:#}");
-        assert!(error.ends_with("bad scene file: line 3: bad colour `300` (expected 0-255)"), "{error}");
     }
 
     #[test]
